@@ -1,0 +1,12 @@
+# Fails when any of FILES includes a ROS header: the core is Eigen and the standard library only.
+separate_arguments(file_list UNIX_COMMAND "${FILES}")
+set(bad "")
+foreach(f IN LISTS file_list)
+  file(STRINGS "${f}" hits REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"](ros/|ros\\.h|tf2|tf/|rosbag|std_msgs|geometry_msgs|visualization_msgs|sensor_msgs|rosgraph_msgs|xmlrpcpp|XmlRpc|ball_collision_sim/ros/|yaml-cpp)")
+  if(hits)
+    list(APPEND bad "${f}: ${hits}")
+  endif()
+endforeach()
+if(bad)
+  message(FATAL_ERROR "the core must not include ROS (or yaml-cpp) headers:\n${bad}")
+endif()

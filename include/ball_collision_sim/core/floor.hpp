@@ -1,0 +1,53 @@
+#pragma once
+
+#include "ball_collision_sim/core/scene.hpp"
+#include "ball_collision_sim/core/types.hpp"
+
+#include <array>
+
+namespace ball_collision_sim::core
+{
+/// The nearest point of a floor to a given point.
+struct FloorFoot
+{
+  Vec2 uv = Vec2::Zero();        ///< surface parameters
+  Vec3 point = Vec3::Zero();     ///< S(u, v) [m]
+  Vec3 normal = Vec3::UnitZ();   ///< unit normal facing against gravity
+  double height = 0.0;           ///< signed distance of the query point along `normal` [m]
+  bool inside = true;            ///< uv within [0, 1]^2 (to a small tolerance)
+};
+
+/// A parametric floor S(u, v), (u, v) in [0, 1]^2: a plane or the "nine point"
+/// biquadratic Bezier surface. A ball on it has its centre at S + r n.
+class Floor
+{
+public:
+  explicit Floor(const FloorDef& def, const Vec3& gravity);
+
+  const FloorDef& def() const { return def_; }
+  bool isPlane() const { return def_.type == FloorDef::Type::kPlane; }
+
+  /// S(u, v) [m]
+  Vec3 point(const Vec2& uv) const;
+  /// Unit normal at (u, v), on the side facing against gravity.
+  Vec3 normal(const Vec2& uv) const;
+  /// The foot point of q (nearest surface point), by Newton's method from `guess`.
+  /// The polynomial surface is used past its edges too, so `inside` tells whether
+  /// the foot is on the floor proper.
+  FloorFoot project(const Vec3& q, const Vec2& guess) const;
+  /// The centre of a ball of radius r nearest to q: foot + r n.
+  Vec3 ballCentre(const FloorFoot& foot, double radius) const { return foot.point + radius * foot.normal; }
+  /// The unit vector the floor's normals are oriented toward.
+  const Vec3& up() const { return up_; }
+
+private:
+  void derivatives(const Vec2& uv, Vec3& s, Vec3& su, Vec3& sv, Vec3& suu, Vec3& suv, Vec3& svv) const;
+  Vec3 orient(Vec3 n) const;
+
+  FloorDef def_;
+  Vec3 up_;
+  // plane only: unit normal and the inverse Gram matrix of (U, V)
+  Vec3 plane_normal_;
+  Mat2 plane_gram_inverse_;
+};
+}  // namespace ball_collision_sim::core

@@ -1,0 +1,122 @@
+#pragma once
+
+#include "ball_collision_sim/core/types.hpp"
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ball_collision_sim::core
+{
+/// The floor the balls move on: a parametric surface S(u, v), (u, v) in [0, 1]^2.
+struct FloorDef
+{
+  enum class Type
+  {
+    kPlane,        ///< S = point + u U + v V
+    kBiquadratic,  ///< tensor-product Bezier surface of 3x3 control points
+  };
+  Type type = Type::kPlane;
+  Vec3 point = Vec3(-2.0, -2.0, 0.0);  ///< plane corner [m]
+  Vec3 u = Vec3(4.0, 0.0, 0.0);        ///< plane edge vector [m]
+  Vec3 v = Vec3(0.0, 4.0, 0.0);        ///< plane edge vector [m]
+  /// biquadratic control points [m]: control_points[i][j] weighs B_i(u) B_j(v).
+  std::array<std::array<Vec3, 3>, 3> control_points = [] {
+    std::array<std::array<Vec3, 3>, 3> grid;
+    for (auto& row : grid)
+      row.fill(Vec3::Zero());
+    return grid;
+  }();
+};
+
+/// A finite two-sided wall: the parallelogram point + s u + t v, s, t in [0, 1].
+struct WallDef
+{
+  Vec3 point = Vec3::Zero();  ///< [m]
+  Vec3 u = Vec3::Zero();      ///< edge vector [m]
+  Vec3 v = Vec3::Zero();      ///< edge vector [m]
+  /// restitution of contacts with this wall, 0..1; unset: the scene's default
+  std::optional<double> restitution;
+};
+
+struct BallDef
+{
+  Vec3 position = Vec3::Zero();  ///< centre [m]; put on the floor when there is one
+  Vec3 velocity = Vec3::Zero();  ///< [m/s]; its part normal to the floor is dropped
+  double radius = 0.1;           ///< [m]
+  double mass = 1.0;             ///< [kg]
+};
+
+struct Range
+{
+  double min = 0.0;
+  double max = 0.0;
+};
+
+/// Balls placed at random on the floor, clear of walls and of each other.
+struct RandomBallsDef
+{
+  int count = 0;
+  std::uint64_t seed = 1;
+  Range radius{0.05, 0.1};  ///< uniform [m]
+  Range mass{1.0, 1.0};     ///< uniform [kg]
+  Range speed{0.0, 2.0};    ///< uniform [m/s]; direction uniform in the tangent plane
+  struct Region
+  {
+    Vec2 min = Vec2::Zero();  ///< [m], x and y
+    Vec2 max = Vec2::Zero();  ///< [m], x and y
+  };
+  std::optional<Region> region;
+};
+
+/// Settings read only by the ROS node; the offline tool accepts and ignores them.
+struct NodeSettings
+{
+  double real_time_factor = 1.0;  ///< simulated / wall time; 0 = as fast as possible
+};
+
+/// Everything a simulation starts from. Defaults are the documented YAML defaults.
+struct Scene
+{
+  std::string frame_id = "world";
+  double dt = 0.01;                          ///< physics step [s]
+  Vec3 gravity = Vec3(0.0, 0.0, -9.81);      ///< [m/s^2]
+  double restitution = 1.0;                  ///< default for every contact, 0..1
+  std::optional<FloorDef> floor;             ///< balls move on it when present
+  std::vector<WallDef> walls;
+  std::vector<BallDef> balls;
+  std::optional<RandomBallsDef> random_balls;
+  NodeSettings node;
+};
+
+/// One problem found in a scene: the key it concerns and why.
+struct SceneIssue
+{
+  std::string key;     ///< e.g. "balls[3].radius"
+  std::string reason;  ///< e.g. "must be > 0"
+  std::string str() const { return key + ": " + reason; }
+};
+
+/// Every problem of the scene, in key order; empty when the scene can be simulated.
+/// Pure: it reads the scene and nothing else.
+std::vector<SceneIssue> validate(const Scene& scene);
+
+/// Problems of one ball's own fields (finite, radius and mass > 0, sizes in range).
+/// Keys are `prefix` + field name, e.g. prefix "balls[3]." gives "balls[3].radius".
+std::vector<SceneIssue> validateBall(const BallDef& ball, const std::string& prefix);
+
+/// Problems of one wall's own fields (finite, non-zero and non-parallel edges).
+std::vector<SceneIssue> validateWall(const WallDef& wall, const std::string& prefix);
+
+/// The issues joined into one line, "a: why; b: why".
+std::string joinIssues(const std::vector<SceneIssue>& issues);
+
+/// The balls of `random_balls`, placed as the scene says (deterministic in its seed).
+/// Fewer than `count` come back when there is no room; validate() reports that.
+std::vector<BallDef> placeRandomBalls(const Scene& scene);
+
+/// The scene's explicit balls followed by its random ones.
+std::vector<BallDef> allBalls(const Scene& scene);
+}  // namespace ball_collision_sim::core

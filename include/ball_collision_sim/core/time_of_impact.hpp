@@ -1,0 +1,32 @@
+#pragma once
+
+#include "ball_collision_sim/core/types.hpp"
+#include "ball_collision_sim/core/wall.hpp"
+
+#include <optional>
+
+namespace ball_collision_sim::core
+{
+/// Below this cosine between motion and separation, two touching objects are taken
+/// as sliding along each other rather than closing (round-off after a resting contact).
+constexpr double kClosingCosine = 1e-12;
+
+/// Earliest t in [0, t_max] at which |d + t e| = reach while the distance shrinks:
+/// the smaller root of <e,e> t^2 + 2 <e,d> t + <d,d> - reach^2 = 0, in the stable form
+/// t = c / (-h + sqrt(h^2 - a c)), h = <e, d>. Already touching and closing: t = 0.
+/// Ball-ball: d = p1 - p2, e = ds1 - ds2, reach = r1 + r2.
+std::optional<double> sphereSweep(const Vec3& d, const Vec3& e, double reach, double t_max);
+
+/// First contact of a ball with a wall.
+struct WallHit
+{
+  double t = 0.0;                         ///< in units of the motion parameter
+  WallFeature feature = WallFeature::kFace;
+  Vec3 normal = Vec3::UnitZ();            ///< unit, from the wall toward the ball's centre
+};
+
+/// Earliest t in [0, t_max] at which a ball of radius r at p moving by e per unit t
+/// touches the wall's face, one of its four edges or one of its four corners.
+std::optional<WallHit> sweepWall(const Wall& wall, const Vec3& p, const Vec3& e, double r,
+                                 double t_max);
+}  // namespace ball_collision_sim::core

@@ -1,0 +1,21 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace ball_collision_sim::core
+{
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+using Mat2 = Eigen::Matrix2d;
+using Quat = Eigen::Quaterniond;
+
+/// Largest length accepted anywhere in a scene [m]; beyond it squares overflow precision.
+constexpr double kMaxLength = 1e6;
+/// Largest speed accepted [m/s].
+constexpr double kMaxSpeed = 1e7;
+/// Largest mass accepted [kg].
+constexpr double kMaxMass = 1e12;
+/// Two objects closer than this are in contact; deeper overlap is an error at input [m].
+constexpr double kContactTolerance = 1e-9;
+}  // namespace ball_collision_sim::core

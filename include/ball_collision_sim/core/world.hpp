@@ -1,0 +1,158 @@
+#pragma once
+
+#include "ball_collision_sim/core/ball.hpp"
+#include "ball_collision_sim/core/broad_phase.hpp"
+#include "ball_collision_sim/core/collision_event.hpp"
+#include "ball_collision_sim/core/floor.hpp"
+#include "ball_collision_sim/core/scene.hpp"
+#include "ball_collision_sim/core/types.hpp"
+#include "ball_collision_sim/core/wall.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ball_collision_sim::core
+{
+/// Energy of the world; potential is measured from the origin along gravity.
+struct Energy
+{
+  double kinetic = 0.0;    ///< sum of m |v|^2 / 2 [J]
+  double potential = 0.0;  ///< sum of -m <g, p> [J]
+  double total() const { return kinetic + potential; }
+};
+
+/// Counters since construction or the last reset.
+struct WorldStats
+{
+  std::uint64_t steps = 0;
+  std::uint64_t events = 0;          ///< handled collisions, resting contacts included
+  std::uint64_t resting_events = 0;
+  std::uint64_t stale_events = 0;    ///< queued impacts dropped because a ball moved on
+  std::uint64_t frozen_balls = 0;    ///< balls stopped for a step by the per-step event cap
+};
+
+/// Result of adding an object: ok, or the reason it was refused (the world unchanged).
+struct AddResult
+{
+  bool ok = false;
+  int id = -1;
+  std::string error;  ///< "radius: must be > 0"
+};
+
+/// The balls, walls and floor, advanced in fixed steps with exact continuous collision
+/// detection: every impact inside a step is found at its exact time and handled in
+/// time order.
+class World
+{
+public:
+  /// Builds the world of a scene; throws std::invalid_argument when validate() finds issues.
+  explicit World(const Scene& scene);
+  World(const World&);
+  World& operator=(const World&);
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+  ~World();
+
+  /// Advances one step of the scene's dt.
+  void step();
+  /// Back to the scene as constructed.
+  void reset();
+
+  double time() const { return static_cast<double>(stats_.steps) * dt_; }
+  double dt() const { return dt_; }
+  const Vec3& gravity() const { return gravity_; }
+  const Scene& scene() const { return scene_; }
+  const std::vector<Ball>& balls() const { return balls_; }
+  const std::vector<Wall>& walls() const { return walls_; }
+  const std::optional<Floor>& floor() const { return floor_; }
+  /// The collisions handled in the last step, in the order they were handled.
+  const std::vector<CollisionEvent>& lastEvents() const { return events_; }
+  const WorldStats& stats() const { return stats_; }
+
+  Energy energy() const;
+  Vec3 momentum() const;
+  /// Balls off the floor or outside the walls' bounds: 0 in a closed scene.
+  int lostBalls() const;
+  /// FNV-1a of the exact bits of time and every ball's state.
+  std::uint64_t stateHash() const;
+  /// The ball with this id, or nullptr.
+  const Ball* findBall(int id) const;
+
+  /// Adds a ball (put on the floor) unless it is invalid, overlaps something or is off
+  /// the floor; then nothing changes.
+  AddResult addBall(const BallDef& def);
+  /// Adds a wall unless it is degenerate or cuts through a ball.
+  AddResult addWall(const WallDef& def);
+  /// False when no ball has this id.
+  bool removeBall(int id);
+  bool removeWall(int id);
+  /// Why a ball could not be added here, or empty. Keys are relative ("radius").
+  std::string checkBall(const BallDef& def) const;
+
+private:
+  struct Motion;
+  struct Event;
+  struct EventLater
+  {
+    bool operator()(const Event& a, const Event& b) const;
+  };
+  struct RestingContact
+  {
+    std::size_t ball;
+    std::size_t other;  ///< ball index, or none for a wall
+    Vec3 dir_ball;      ///< direction of the normal impulse on `ball`
+    Vec3 dir_other;     ///< ... and, reversed, on `other`
+  };
+
+  void load();
+  Ball makeBall(int id, const BallDef& def) const;
+  /// Unit vector against gravity (the floor's normal side).
+  Vec3 up() const;
+
+  // The stages of a step, in order.
+  void predictMotions();
+  void buildBroadPhase();
+  void findFirstImpacts();
+  void resolveEventsInTimeOrder();
+  void commitToFloor();
+
+  Vec3 predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span);
+  Aabb currentBox(std::size_t i) const;
+  void pushEvent(const Event& event);
+  void detect(std::size_t i, bool only_higher);
+  void detectWalls(std::size_t i);
+  void detectBall(std::size_t i, std::size_t j);
+  void resolveBallWall(const Event& event);
+  void resolveBallBall(const Event& event);
+  void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity);
+  void countEvent(std::size_t i);
+  void recordEvent(CollisionEvent event, double x);
+  Vec3 positionAt(std::size_t i, double x) const;
+  Vec3 floorNormalAt(std::size_t i, const Vec3& position) const;
+  Vec3 onFloorVelocity(const Motion& m, double x, const Vec3& position, const Vec3& normal) const;
+  double restingSpeed(const Vec3& floor_normal) const;
+
+  Scene scene_;
+  double dt_;
+  Vec3 gravity_;
+  std::optional<Floor> floor_;
+  std::vector<Wall> walls_;
+  std::vector<Ball> balls_;
+  int next_ball_id_ = 0;
+  int next_wall_id_ = 0;
+  WorldStats stats_;
+
+  // per-step work space, kept between steps to avoid allocation
+  std::vector<Motion> motions_;
+  std::vector<Event> heap_;
+  UniformGrid grid_;
+  std::vector<std::uint32_t> seen_;
+  std::uint32_t seen_stamp_ = 0;
+  std::vector<double> extents_;
+  std::vector<Vec3> floor_normals_;
+  std::vector<CollisionEvent> events_;
+  std::vector<RestingContact> resting_;
+};
+}  // namespace ball_collision_sim::core

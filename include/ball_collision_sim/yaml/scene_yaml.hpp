@@ -1,0 +1,46 @@
+#pragma once
+
+#include "ball_collision_sim/core/scene.hpp"
+
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace ball_collision_sim::yaml
+{
+/// A scene that cannot be read. what() is the whole one-line message, prefixed by the
+/// source: "scene.yaml: balls[3].radus: unknown key (expected one of: ...)", or
+/// "scene.yaml:12:5: <parser message>" for malformed YAML.
+struct SceneError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/// Top-level keys that only the ROS node reads. The reader accepts them (they must be
+/// numbers) and ignores them, because core::Scene has no place for them yet; wiring one
+/// into NodeSettings means reading it in scene_yaml.cpp and removing it from here.
+inline constexpr std::array<std::string_view, 3> kNodeOnlyKeys{
+  "marker_rate",   // markers published per second [Hz]
+  "tf_rate",       // tf frames published per second [Hz]
+  "tf_max_balls",  // at most this many balls get a tf frame
+};
+
+/// Reads a scene from YAML text (design.md section 5). Every key is checked: an unknown
+/// key, a value of the wrong type or a missing required key throws SceneError naming
+/// the key path as written in the YAML ("balls[3].radius",
+/// "floor.control_points[1][2]"). Integers are accepted where reals are expected; strings
+/// and booleans are not. `.nan` and `.inf` are read as numbers: rejecting them is the job
+/// of core::validate(), which this function does not call. An empty (null) `floor`,
+/// `walls`, `balls`, `random_balls` or `region` means the section is absent.
+/// @param source_name prefixes every error message (a file path, or "<string>")
+core::Scene parseScene(const std::string& yaml_text, const std::string& source_name = "<string>");
+
+/// parseScene() of a file's contents; errors are prefixed by `path`. An unreadable file
+/// throws SceneError "path: cannot open file (No such file or directory)".
+core::Scene loadSceneFile(const std::string& path);
+
+/// loadSceneFile(), then core::validate(): when it finds issues, throws SceneError
+/// "path: " + core::joinIssues(issues). The scene returned can build a core::World.
+core::Scene loadValidScene(const std::string& path);
+}  // namespace ball_collision_sim::yaml

@@ -1,0 +1,150 @@
+#include "ball_collision_sim/core/floor.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ball_collision_sim::core
+{
+namespace
+{
+/// Quadratic Bernstein weights and their first and second derivatives at t.
+struct Bernstein
+{
+  double b[3];
+  double d[3];
+  double dd[3];
+  explicit Bernstein(double t)
+      : b{(1 - t) * (1 - t), 2 * t * (1 - t), t * t}
+      , d{-2 * (1 - t), 2 - 4 * t, 2 * t}
+      , dd{2, -4, 2}
+  {
+  }
+};
+
+constexpr double kInsideTolerance = 1e-9;
+constexpr int kMaxNewtonIterations = 30;
+}  // namespace
+
+Floor::Floor(const FloorDef& def, const Vec3& gravity) : def_(def)
+{
+  const double g = gravity.norm();
+  if (def_.type == FloorDef::Type::kPlane)
+  {
+    plane_normal_ = def_.u.cross(def_.v).normalized();
+    Mat2 gram;
+    gram << def_.u.dot(def_.u), def_.u.dot(def_.v), def_.u.dot(def_.v), def_.v.dot(def_.v);
+    plane_gram_inverse_ = gram.inverse();
+  }
+  else
+  {
+    plane_normal_ = Vec3::UnitZ();
+    plane_gram_inverse_ = Mat2::Identity();
+  }
+  // "Up" is against gravity; without gravity, the side of the surface's own normal at
+  // its centre.
+  if (g > 0)
+    up_ = -gravity / g;
+  else
+  {
+    Vec3 s, su, sv, suu, suv, svv;
+    derivatives(Vec2(0.5, 0.5), s, su, sv, suu, suv, svv);
+    up_ = su.cross(sv).normalized();
+  }
+  if (isPlane())
+    plane_normal_ = orient(plane_normal_);
+}
+
+Vec3 Floor::orient(Vec3 n) const
+{
+  return n.dot(up_) < 0 ? Vec3(-n) : n;
+}
+
+void Floor::derivatives(const Vec2& uv, Vec3& s, Vec3& su, Vec3& sv, Vec3& suu, Vec3& suv,
+                        Vec3& svv) const
+{
+  if (isPlane())
+  {
+    s = def_.point + uv.x() * def_.u + uv.y() * def_.v;
+    su = def_.u;
+    sv = def_.v;
+    suu = suv = svv = Vec3::Zero();
+    return;
+  }
+  const Bernstein bu(uv.x());
+  const Bernstein bv(uv.y());
+  s = su = sv = suu = suv = svv = Vec3::Zero();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+    {
+      const Vec3& p = def_.control_points[i][j];
+      s += bu.b[i] * bv.b[j] * p;
+      su += bu.d[i] * bv.b[j] * p;
+      sv += bu.b[i] * bv.d[j] * p;
+      suu += bu.dd[i] * bv.b[j] * p;
+      suv += bu.d[i] * bv.d[j] * p;
+      svv += bu.b[i] * bv.dd[j] * p;
+    }
+}
+
+Vec3 Floor::point(const Vec2& uv) const
+{
+  Vec3 s, su, sv, suu, suv, svv;
+  derivatives(uv, s, su, sv, suu, suv, svv);
+  return s;
+}
+
+Vec3 Floor::normal(const Vec2& uv) const
+{
+  if (isPlane())
+    return plane_normal_;
+  Vec3 s, su, sv, suu, suv, svv;
+  derivatives(uv, s, su, sv, suu, suv, svv);
+  return orient(su.cross(sv).normalized());
+}
+
+FloorFoot Floor::project(const Vec3& q, const Vec2& guess) const
+{
+  FloorFoot foot;
+  if (isPlane())
+  {
+    const Vec3 d = q - def_.point;
+    foot.uv = plane_gram_inverse_ * Vec2(d.dot(def_.u), d.dot(def_.v));
+    foot.normal = plane_normal_;
+    foot.height = d.dot(plane_normal_);
+    foot.point = q - foot.height * plane_normal_;
+  }
+  else
+  {
+    // Newton's method on the gradient of |S(u, v) - q|^2 / 2; where its Hessian is not
+    // positive definite (far from the surface), the Gauss-Newton step instead.
+    Vec2 uv = guess;
+    Vec3 s, su, sv, suu, suv, svv;
+    for (int it = 0; it < kMaxNewtonIterations; ++it)
+    {
+      derivatives(uv, s, su, sv, suu, suv, svv);
+      const Vec3 r = s - q;
+      const Vec2 grad(r.dot(su), r.dot(sv));
+      Mat2 h;
+      h << su.dot(su) + r.dot(suu), su.dot(sv) + r.dot(suv), su.dot(sv) + r.dot(suv),
+          sv.dot(sv) + r.dot(svv);
+      if (h.determinant() <= 0 || h(0, 0) <= 0)
+        h << su.dot(su), su.dot(sv), su.dot(sv), sv.dot(sv);
+      Vec2 step = -h.inverse() * grad;
+      const double len = step.norm();
+      if (len > 0.5)
+        step *= 0.5 / len;
+      uv += step;
+      if (len < 1e-15)
+        break;
+    }
+    derivatives(uv, s, su, sv, suu, suv, svv);
+    foot.uv = uv;
+    foot.point = s;
+    foot.normal = orient(su.cross(sv).normalized());
+    foot.height = (q - s).dot(foot.normal);
+  }
+  foot.inside = (foot.uv.array() >= -kInsideTolerance).all() &&
+                (foot.uv.array() <= 1 + kInsideTolerance).all();
+  return foot;
+}
+}  // namespace ball_collision_sim::core

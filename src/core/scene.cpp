@@ -1,0 +1,338 @@
+#include "ball_collision_sim/core/scene.hpp"
+
+#include "ball_collision_sim/core/floor.hpp"
+#include "ball_collision_sim/core/format.hpp"
+#include "ball_collision_sim/core/placement.hpp"
+#include "ball_collision_sim/core/wall.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace ball_collision_sim::core
+{
+namespace
+{
+std::string index(const std::string& key, std::size_t i)
+{
+  return key + "[" + std::to_string(i) + "]";
+}
+
+/// Collects issues; each check returns whether the value passed.
+class Checker
+{
+public:
+  explicit Checker(std::vector<SceneIssue>& issues) : issues_(issues) {}
+
+  void fail(const std::string& key, const std::string& reason) { issues_.push_back({key, reason}); }
+
+  bool finite(const std::string& key, double value)
+  {
+    if (std::isfinite(value))
+      return true;
+    fail(key, "must be finite (got " + formatNumber(value) + ")");
+    return false;
+  }
+  bool finite(const std::string& key, const Vec3& value)
+  {
+    if (value.allFinite())
+      return true;
+    fail(key, "must be finite (got [" + formatNumber(value.x()) + ", " + formatNumber(value.y()) + ", " + formatNumber(value.z()) + "])");
+    return false;
+  }
+  /// finite and |value| <= limit
+  bool bounded(const std::string& key, const Vec3& value, double limit, const char* unit)
+  {
+    if (!finite(key, value))
+      return false;
+    if (value.norm() <= limit)
+      return true;
+    fail(key, "length must be <= " + formatNumber(limit) + " " + unit + " (got " + formatNumber(value.norm()) + ")");
+    return false;
+  }
+  /// finite and in (0, limit]
+  bool positive(const std::string& key, double value, double limit, const char* unit)
+  {
+    if (!finite(key, value))
+      return false;
+    if (!(value > 0))
+    {
+      fail(key, "must be > 0 (got " + formatNumber(value) + ")");
+      return false;
+    }
+    if (value > limit)
+    {
+      fail(key, "must be <= " + formatNumber(limit) + " " + unit + " (got " + formatNumber(value) + ")");
+      return false;
+    }
+    return true;
+  }
+  bool unitInterval(const std::string& key, double value)
+  {
+    if (!finite(key, value))
+      return false;
+    if (value >= 0 && value <= 1)
+      return true;
+    fail(key, "must be in [0, 1] (got " + formatNumber(value) + ")");
+    return false;
+  }
+  /// Two edge vectors spanning a parallelogram: non-zero, bounded, not parallel.
+  bool edges(const std::string& prefix, const Vec3& u, const Vec3& v)
+  {
+    bool ok = bounded(prefix + "u", u, kMaxLength, "m");
+    ok = bounded(prefix + "v", v, kMaxLength, "m") && ok;
+    if (!ok)
+      return false;
+    if (u.norm() == 0)
+    {
+      fail(prefix + "u", "must be non-zero");
+      return false;
+    }
+    if (v.norm() == 0)
+    {
+      fail(prefix + "v", "must be non-zero");
+      return false;
+    }
+    if (u.cross(v).norm() <= 1e-9 * u.norm() * v.norm())
+    {
+      fail(prefix + "v", "parallel to " + prefix + "u (they must span a parallelogram)");
+      return false;
+    }
+    return true;
+  }
+  bool range(const std::string& key, const Range& r, double lowest, bool strict, double limit)
+  {
+    if (!finite(key + ".min", r.min) || !finite(key + ".max", r.max))
+      return false;
+    if (strict ? !(r.min > lowest) : !(r.min >= lowest))
+    {
+      fail(key, std::string("minimum must be ") + (strict ? "> " : ">= ") + formatNumber(lowest) + " (got " + formatNumber(r.min) + ")");
+      return false;
+    }
+    if (r.max < r.min)
+    {
+      fail(key, "maximum " + formatNumber(r.max) + " is below minimum " + formatNumber(r.min));
+      return false;
+    }
+    if (r.max > limit)
+    {
+      fail(key, "maximum must be <= " + formatNumber(limit) + " (got " + formatNumber(r.max) + ")");
+      return false;
+    }
+    return true;
+  }
+
+private:
+  std::vector<SceneIssue>& issues_;
+};
+
+bool checkFloor(Checker& check, const FloorDef& floor)
+{
+  if (floor.type == FloorDef::Type::kPlane)
+  {
+    const bool point_ok = check.bounded("floor.point", floor.point, kMaxLength, "m");
+    return check.edges("floor.", floor.u, floor.v) && point_ok;
+  }
+  bool ok = true;
+  double scale = 0;
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t j = 0; j < 3; ++j)
+    {
+      const std::string key = index(index("floor.control_points", i), j);
+      ok = check.bounded(key, floor.control_points[i][j], kMaxLength, "m") && ok;
+      if (ok)
+        scale = std::max(scale, (floor.control_points[i][j] - floor.control_points[0][0]).norm());
+    }
+  if (!ok)
+    return false;
+  // A regular surface has a normal everywhere on [0, 1]^2: sample it densely.
+  const Floor surface(floor, Vec3(0, 0, -1));
+  constexpr int kSamples = 16;
+  for (int a = 0; a <= kSamples; ++a)
+    for (int b = 0; b <= kSamples; ++b)
+    {
+      const Vec2 uv(double(a) / kSamples, double(b) / kSamples);
+      const double h = 1e-6;
+      const Vec3 su = surface.point(uv + Vec2(h, 0)) - surface.point(uv - Vec2(h, 0));
+      const Vec3 sv = surface.point(uv + Vec2(0, h)) - surface.point(uv - Vec2(0, h));
+      if (!(su.cross(sv).norm() > 1e-9 * scale * scale * h * h) || scale == 0)
+      {
+        check.fail("floor.control_points",
+                   "degenerate surface (no normal at u = " + formatNumber(uv.x()) + ", v = " + formatNumber(uv.y()) + ")");
+        return false;
+      }
+    }
+  return true;
+}
+
+bool checkBall(Checker& check, const std::string& prefix, const BallDef& ball)
+{
+  bool ok = check.bounded(prefix + "position", ball.position, kMaxLength, "m");
+  ok = check.bounded(prefix + "velocity", ball.velocity, kMaxSpeed, "m/s") && ok;
+  ok = check.positive(prefix + "radius", ball.radius, kMaxLength, "m") && ok;
+  ok = check.positive(prefix + "mass", ball.mass, kMaxMass, "kg") && ok;
+  return ok;
+}
+
+bool checkWall(Checker& check, const std::string& prefix, const WallDef& wall)
+{
+  bool ok = check.bounded(prefix + "point", wall.point, kMaxLength, "m");
+  ok = check.edges(prefix, wall.u, wall.v) && ok;
+  if (wall.restitution)
+    ok = check.unitInterval(prefix + "restitution", *wall.restitution) && ok;
+  return ok;
+}
+
+/// Explicit balls that overlap one another, by a sweep over x (no all-pairs loop).
+void checkOverlaps(Checker& check, const std::vector<BallDef>& placed, const std::vector<bool>& usable)
+{
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < placed.size(); ++i)
+    if (usable[i])
+      order.push_back(i);
+  auto low = [&](std::size_t i) { return placed[i].position.x() - placed[i].radius; };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return low(a) < low(b) || (low(a) == low(b) && a < b);
+  });
+  std::vector<std::size_t> active;
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t i : order)
+  {
+    const BallDef& bi = placed[i];
+    active.erase(std::remove_if(active.begin(), active.end(),
+                                [&](std::size_t j) {
+                                  return placed[j].position.x() + placed[j].radius < low(i);
+                                }),
+                 active.end());
+    for (std::size_t j : active)
+    {
+      const double gap = (bi.position - placed[j].position).norm() - bi.radius - placed[j].radius;
+      if (gap < -kContactTolerance)
+        pairs.emplace_back(std::min(i, j), std::max(i, j));
+    }
+    active.push_back(i);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  for (const auto& [a, b] : pairs)
+  {
+    const double depth = placed[a].radius + placed[b].radius - (placed[a].position - placed[b].position).norm();
+    check.fail(index("balls", b), "overlaps balls[" + std::to_string(a) + "] by " + formatNumber(depth) + " m");
+  }
+}
+}  // namespace
+
+std::vector<SceneIssue> validateBall(const BallDef& ball, const std::string& prefix)
+{
+  std::vector<SceneIssue> issues;
+  Checker check(issues);
+  checkBall(check, prefix, ball);
+  return issues;
+}
+
+std::vector<SceneIssue> validateWall(const WallDef& wall, const std::string& prefix)
+{
+  std::vector<SceneIssue> issues;
+  Checker check(issues);
+  checkWall(check, prefix, wall);
+  return issues;
+}
+
+std::string joinIssues(const std::vector<SceneIssue>& issues)
+{
+  std::string out;
+  for (const SceneIssue& issue : issues)
+    out += (out.empty() ? "" : "; ") + issue.str();
+  return out;
+}
+
+std::vector<SceneIssue> validate(const Scene& scene)
+{
+  std::vector<SceneIssue> issues;
+  Checker check(issues);
+
+  if (scene.frame_id.empty())
+    check.fail("frame_id", "must not be empty");
+  if (check.finite("dt", scene.dt) && !(scene.dt > 0 && scene.dt <= 10))
+    check.fail("dt", "must be in (0, 10] s (got " + formatNumber(scene.dt) + ")");
+  if (check.finite("real_time_factor", scene.node.real_time_factor) && scene.node.real_time_factor < 0)
+    check.fail("real_time_factor", "must be >= 0 (0 = as fast as possible)");
+  const bool gravity_ok = check.bounded("gravity", scene.gravity, 1e6, "m/s^2");
+  check.unitInterval("restitution", scene.restitution);
+
+  const bool floor_ok = !scene.floor || checkFloor(check, *scene.floor);
+
+  bool walls_ok = true;
+  for (std::size_t i = 0; i < scene.walls.size(); ++i)
+    walls_ok = checkWall(check, index("walls", i) + ".", scene.walls[i]) && walls_ok;
+
+  std::vector<bool> usable(scene.balls.size(), false);
+  for (std::size_t i = 0; i < scene.balls.size(); ++i)
+    usable[i] = checkBall(check, index("balls", i) + ".", scene.balls[i]);
+
+  // Geometry only once the objects themselves are sound, so one mistake gives one issue.
+  if (gravity_ok && floor_ok && walls_ok)
+  {
+    const Placement placement(scene);
+    std::vector<BallDef> placed = scene.balls;
+    for (std::size_t i = 0; i < scene.balls.size(); ++i)
+    {
+      if (!usable[i])
+        continue;
+      const std::string why = placement.place(placed[i]);
+      if (!why.empty())
+      {
+        check.fail(index("balls", i) + (why.rfind("overlaps", 0) == 0 ? "" : ".position"), why);
+        usable[i] = false;
+      }
+    }
+    checkOverlaps(check, placed, usable);
+  }
+
+  if (scene.random_balls)
+  {
+    const RandomBallsDef& rb = *scene.random_balls;
+    bool ok = true;
+    if (rb.count < 0 || rb.count > 10'000'000)
+    {
+      check.fail("random_balls.count", "must be in [0, 10000000] (got " + std::to_string(rb.count) + ")");
+      ok = false;
+    }
+    ok = check.range("random_balls.radius", rb.radius, 0, true, kMaxLength) && ok;
+    ok = check.range("random_balls.mass", rb.mass, 0, true, kMaxMass) && ok;
+    ok = check.range("random_balls.speed", rb.speed, 0, false, kMaxSpeed) && ok;
+    if (rb.region)
+    {
+      const bool fin = check.finite("random_balls.region.min", Vec3(rb.region->min.x(), rb.region->min.y(), 0)) &&
+                       check.finite("random_balls.region.max", Vec3(rb.region->max.x(), rb.region->max.y(), 0));
+      if (fin && !(rb.region->min.array() < rb.region->max.array()).all())
+      {
+        check.fail("random_balls.region", "min must be below max in x and y");
+        ok = false;
+      }
+      ok = ok && fin;
+    }
+    if (!scene.floor)
+    {
+      check.fail("random_balls", "needs a floor to place the balls on");
+      ok = false;
+    }
+    if (ok && issues.empty() && rb.count > 0)
+    {
+      const std::size_t placed = placeRandomBalls(scene).size();
+      if (placed < static_cast<std::size_t>(rb.count))
+        check.fail("random_balls.count", "room for only " + std::to_string(placed) + " of " +
+                                             std::to_string(rb.count) +
+                                             " balls (use fewer or smaller balls, or a larger region)");
+    }
+  }
+  return issues;
+}
+
+std::vector<BallDef> allBalls(const Scene& scene)
+{
+  std::vector<BallDef> balls = scene.balls;
+  const std::vector<BallDef> random = placeRandomBalls(scene);
+  balls.insert(balls.end(), random.begin(), random.end());
+  return balls;
+}
+}  // namespace ball_collision_sim::core

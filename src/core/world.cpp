@@ -1,0 +1,681 @@
+#include "ball_collision_sim/core/world.hpp"
+
+#include "ball_collision_sim/core/format.hpp"
+#include "ball_collision_sim/core/placement.hpp"
+#include "ball_collision_sim/core/response.hpp"
+#include "ball_collision_sim/core/state_hash.hpp"
+#include "ball_collision_sim/core/time_of_impact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace ball_collision_sim::core
+{
+namespace
+{
+/// A ball with more events than this in one step is stopped for the rest of the step
+/// and acts as immovable: a guard against endless chatter in jammed piles.
+constexpr std::uint32_t kMaxEventsPerBallStep = 256;
+/// A closing speed below what gravity along the floor adds in this many steps is a
+/// resting contact: the motion is stopped along the normal instead of bounced, so a
+/// ball leaning on a wall neither jitters nor makes endless events.
+constexpr double kRestingSteps = 2.0;
+/// ... and below this [m/s] always (flat floors, where gravity adds nothing).
+constexpr double kRestingSpeedFloor = 1e-9;
+constexpr std::size_t kNoBall = std::numeric_limits<std::size_t>::max();
+/// A resting contact removes the closing part of the motion and this fraction more, so
+/// that what is left separates by more than round-off and is not seen as closing again.
+constexpr double kSeparationBias = 1e-12;
+}  // namespace
+
+/// A ball's straight motion inside the current step, in the step fraction x shared by all
+/// balls: centre c(x) = p0 + (x - x0) b for x in [x0, 1]. A new one starts at every event.
+struct World::Motion
+{
+  double x0 = 0.0;               ///< where this motion starts, fraction of the step
+  Vec3 p0 = Vec3::Zero();        ///< centre at x0 [m]
+  Vec3 v0 = Vec3::Zero();        ///< velocity at x0 [m/s]
+  Vec3 b = Vec3::Zero();         ///< displacement per unit of x [m]
+  Vec3 start = Vec3::Zero();     ///< centre at the step's start [m]
+  Vec2 uv = Vec2::Zero();        ///< last foot point, Newton's starting guess
+  std::uint32_t epoch = 0;       ///< bumped at every event of this ball
+  std::uint32_t events = 0;      ///< events of this ball in this step
+  bool frozen = false;
+};
+
+/// A predicted impact; stale once either ball's epoch has moved on.
+struct World::Event
+{
+  double x;                  ///< step fraction of the impact
+  std::uint32_t i;           ///< ball index (the lower one for ball-ball)
+  std::uint32_t j;           ///< other ball index, or wall index
+  std::uint32_t epoch_i;
+  std::uint32_t epoch_j;
+  bool wall;
+  WallFeature feature;
+  Vec3 normal;               ///< ball-wall: unit, from the wall toward the ball
+};
+
+bool World::EventLater::operator()(const Event& a, const Event& b) const
+{
+  // Earliest first; ties broken by indices so that runs are deterministic.
+  if (a.x != b.x)
+    return a.x > b.x;
+  if (a.i != b.i)
+    return a.i > b.i;
+  if (a.wall != b.wall)
+    return !a.wall;
+  return a.j > b.j;
+}
+
+World::World(const Scene& scene) : scene_(scene), dt_(scene.dt), gravity_(scene.gravity)
+{
+  const std::vector<SceneIssue> issues = validate(scene);
+  if (!issues.empty())
+    throw std::invalid_argument(joinIssues(issues));
+  load();
+}
+
+World::World(const World&) = default;
+World& World::operator=(const World&) = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+World::~World() = default;
+
+void World::load()
+{
+  dt_ = scene_.dt;
+  gravity_ = scene_.gravity;
+  floor_.reset();
+  if (scene_.floor)
+    floor_.emplace(*scene_.floor, gravity_);
+  walls_.clear();
+  next_wall_id_ = 0;
+  for (const WallDef& def : scene_.walls)
+    walls_.emplace_back(next_wall_id_++, def, scene_.restitution);
+  balls_.clear();
+  next_ball_id_ = 0;
+  for (const BallDef& def : allBalls(scene_))
+    balls_.push_back(makeBall(next_ball_id_++, def));
+  stats_ = WorldStats{};
+  events_.clear();
+}
+
+void World::reset()
+{
+  load();
+}
+
+Vec3 World::up() const
+{
+  if (floor_)
+    return floor_->up();
+  const double g = gravity_.norm();
+  return g > 0 ? Vec3(-gravity_ / g) : Vec3(Vec3::UnitZ());
+}
+
+Ball World::makeBall(int id, const BallDef& def) const
+{
+  BallDef placed = def;
+  Ball ball;
+  placeOnFloor(placed, floor_, &ball.uv);
+  ball.id = id;
+  ball.radius = def.radius;
+  ball.mass = def.mass;
+  ball.position = placed.position;
+  ball.velocity = placed.velocity;
+  ball.angular_velocity = up().cross(ball.velocity) / ball.radius;
+  if (floor_)
+    ball.angular_velocity = floor_->normal(ball.uv).cross(ball.velocity) / ball.radius;
+  return ball;
+}
+
+// ---- the step ------------------------------------------------------------------------
+
+void World::step()
+{
+  events_.clear();
+  resting_.clear();
+  predictMotions();            // each ball's free motion over the step, on the floor
+  buildBroadPhase();           // swept boxes into a uniform grid
+  findFirstImpacts();          // exact times of impact of nearby pairs and walls
+  resolveEventsInTimeOrder();  // earliest first; re-detect only the balls involved
+  commitToFloor();             // every ball to the step's end, back on the floor
+  ++stats_.steps;
+}
+
+void World::predictMotions()
+{
+  motions_.resize(balls_.size());
+  for (std::size_t i = 0; i < balls_.size(); ++i)
+  {
+    const Ball& ball = balls_[i];
+    Motion& m = motions_[i];
+    m = Motion{};
+    m.p0 = m.start = ball.position;
+    m.v0 = ball.velocity;
+    m.uv = ball.uv;
+    m.b = predictedEnd(i, m.p0, m.v0, dt_) - m.p0;
+  }
+}
+
+Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span)
+{
+  // seed (1): ds = dt v + dt^2 g / 2, then back onto the floor, seed (2)-(4)
+  const Vec3 q = p + span * v + (0.5 * span * span) * gravity_;
+  if (!floor_)
+    return q;
+  const FloorFoot foot = floor_->project(q, motions_[i].uv);
+  motions_[i].uv = foot.uv;
+  return floor_->ballCentre(foot, balls_[i].radius);
+}
+
+Aabb World::currentBox(std::size_t i) const
+{
+  const Motion& m = motions_[i];
+  return sweptBox(m.p0, m.p0 + (1 - m.x0) * m.b, balls_[i].radius);
+}
+
+void World::buildBroadPhase()
+{
+  const std::size_t n = balls_.size();
+  seen_.assign(n, 0);
+  seen_stamp_ = 0;
+  heap_.clear();
+  if (n == 0)
+    return;
+  // Cells as large as a typical swept box: most balls then touch one to eight cells,
+  // and the rare fast or large ball spans many or goes to the grid's oversized list.
+  extents_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    extents_[i] = motions_[i].b.cwiseAbs().maxCoeff() + 2 * balls_[i].radius;
+  std::nth_element(extents_.begin(), extents_.begin() + n / 2, extents_.end());
+  grid_.reset(std::max(extents_[n / 2], 1e-9), n);
+  for (std::size_t i = 0; i < n; ++i)
+    grid_.insert(static_cast<std::uint32_t>(i), currentBox(i));
+}
+
+void World::findFirstImpacts()
+{
+  for (std::size_t i = 0; i < balls_.size(); ++i)
+    detect(i, true);
+}
+
+void World::resolveEventsInTimeOrder()
+{
+  const EventLater later;
+  while (!heap_.empty())
+  {
+    std::pop_heap(heap_.begin(), heap_.end(), later);
+    const Event event = heap_.back();
+    heap_.pop_back();
+    if (motions_[event.i].epoch != event.epoch_i || (!event.wall && motions_[event.j].epoch != event.epoch_j))
+    {
+      ++stats_.stale_events;  // a ball involved has had an event since this was found
+      continue;
+    }
+    if (event.wall)
+      resolveBallWall(event);
+    else
+      resolveBallBall(event);
+  }
+}
+
+void World::commitToFloor()
+{
+  floor_normals_.resize(balls_.size());
+  for (std::size_t i = 0; i < balls_.size(); ++i)
+  {
+    Motion& m = motions_[i];
+    Ball& ball = balls_[i];
+    Vec3 p = positionAt(i, 1.0);
+    Vec3 normal = up();
+    if (floor_)
+    {
+      const FloorFoot foot = floor_->project(p, m.uv);
+      p = floor_->ballCentre(foot, ball.radius);
+      ball.uv = foot.uv;
+      normal = foot.normal;
+    }
+    floor_normals_[i] = normal;
+    ball.position = p;
+    ball.velocity = m.frozen ? Vec3::Zero() : onFloorVelocity(m, 1.0, p, normal);
+  }
+  // Resting contacts keep no closing speed into the step that follows.
+  for (const RestingContact& contact : resting_)
+  {
+    Ball& a = balls_[contact.ball];
+    if (contact.other == kNoBall)
+    {
+      const double closing = a.velocity.dot(contact.dir_ball);
+      if (closing > 0)
+        a.velocity -= closing * contact.dir_ball;
+      continue;
+    }
+    Ball& b = balls_[contact.other];
+    const double inv_a = motions_[contact.ball].frozen ? 0.0 : 1.0 / a.mass;
+    const double inv_b = motions_[contact.other].frozen ? 0.0 : 1.0 / b.mass;
+    const double closing = a.velocity.dot(contact.dir_ball) - b.velocity.dot(contact.dir_other);
+    if (closing > 0)
+    {
+      const double j = collisionImpulse(closing, inv_a, contact.dir_ball, inv_b, contact.dir_other, 0.0);
+      a.velocity -= (j * inv_a) * contact.dir_ball;
+      b.velocity += (j * inv_b) * contact.dir_other;
+    }
+  }
+  for (std::size_t i = 0; i < balls_.size(); ++i)
+  {
+    Ball& ball = balls_[i];
+    const Vec3& normal = floor_normals_[i];
+    if (floor_ && !resting_.empty())
+      ball.velocity -= ball.velocity.dot(normal) * normal;
+    // Rolling without slip: turned by |d| / r about n x d.
+    const Vec3 d = ball.position - motions_[i].start;
+    const Vec3 axis = normal.cross(d);
+    const double axis_norm = axis.norm();
+    if (axis_norm > 0)
+    {
+      const double angle = (d - d.dot(normal) * normal).norm() / ball.radius;
+      ball.orientation = (Eigen::AngleAxisd(angle, axis / axis_norm) * ball.orientation).normalized();
+    }
+    ball.angular_velocity = normal.cross(ball.velocity) / ball.radius;
+  }
+}
+
+// ---- detection -----------------------------------------------------------------------
+
+void World::pushEvent(const Event& event)
+{
+  heap_.push_back(event);
+  std::push_heap(heap_.begin(), heap_.end(), EventLater{});
+}
+
+void World::detect(std::size_t i, bool only_higher)
+{
+  detectWalls(i);
+  if (++seen_stamp_ == 0)
+  {
+    std::fill(seen_.begin(), seen_.end(), 0);
+    seen_stamp_ = 1;
+  }
+  auto visit = [&](std::uint32_t j) {
+    if (j == i || seen_[j] == seen_stamp_)
+      return;
+    seen_[j] = seen_stamp_;
+    if (only_higher && j < i)
+      return;  // the pair is found from j's side
+    detectBall(i, j);
+  };
+  const Aabb box = currentBox(i);
+  if (grid_.oversized(box))
+    for (std::size_t j = 0; j < balls_.size(); ++j)
+      visit(static_cast<std::uint32_t>(j));
+  else
+    grid_.query(box, visit);
+}
+
+void World::detectWalls(std::size_t i)
+{
+  const Motion& m = motions_[i];
+  if (m.frozen)
+    return;
+  const Aabb box = currentBox(i);
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+  {
+    const Wall& wall = walls_[w];
+    if (!box.overlaps(Aabb{wall.box_min, wall.box_max}))
+      continue;
+    const auto hit = sweepWall(wall, m.p0, m.b, balls_[i].radius, 1 - m.x0);
+    if (hit)
+      pushEvent(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0,
+                      true, hit->feature, hit->normal});
+  }
+}
+
+void World::detectBall(std::size_t i, std::size_t j)
+{
+  // Always in index order, so that the same pair gives the same bits whoever asks.
+  const std::size_t a = std::min(i, j), b = std::max(i, j);
+  const Motion& ma = motions_[a];
+  const Motion& mb = motions_[b];
+  if (ma.frozen && mb.frozen)
+    return;
+  const double xs = std::max(ma.x0, mb.x0);
+  const Vec3 d = positionAt(a, xs) - positionAt(b, xs);
+  const auto t = sphereSweep(d, ma.b - mb.b, balls_[a].radius + balls_[b].radius, 1 - xs);
+  if (t)
+    pushEvent(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), ma.epoch, mb.epoch,
+                    false, WallFeature::kFace, Vec3::Zero()});
+}
+
+// ---- response ------------------------------------------------------------------------
+
+Vec3 World::positionAt(std::size_t i, double x) const
+{
+  const Motion& m = motions_[i];
+  return m.p0 + (x - m.x0) * m.b;
+}
+
+Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
+{
+  if (!floor_)
+    return up();
+  if (floor_->isPlane())
+    return floor_->normal(Vec2::Zero());
+  return floor_->project(position, motions_[i].uv).normal;
+}
+
+Vec3 World::onFloorVelocity(const Motion& m, double x, const Vec3& position, const Vec3& normal) const
+{
+  Vec3 v = m.v0 + ((x - m.x0) * dt_) * gravity_;
+  if (!floor_)
+    return v;
+  v -= v.dot(normal) * normal;
+  if (floor_->isPlane())
+    return v;  // constant acceleration along the plane: exact as it stands
+  // On a curved floor the tangent projection alone gains or loses energy; keep the
+  // frictionless ball's |v|^2 = |v0|^2 + 2 <g, p - p0> (the course code's correction).
+  const double target = m.v0.squaredNorm() + 2 * gravity_.dot(position - m.p0);
+  const double norm = v.norm();
+  if (target <= 0 || norm == 0)
+    return Vec3::Zero();
+  return v * (std::sqrt(target) / norm);
+}
+
+double World::restingSpeed(const Vec3& floor_normal) const
+{
+  const Vec3 along = floor_ ? tangentPart(gravity_, floor_normal) : gravity_;
+  return kRestingSteps * dt_ * along.norm() + kRestingSpeedFloor;
+}
+
+void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity)
+{
+  Motion& m = motions_[i];
+  m.x0 = x;
+  m.p0 = position;
+  m.v0 = velocity;
+  const double rest = 1 - x;
+  m.b = rest > 0 ? Vec3((predictedEnd(i, position, velocity, rest * dt_) - position) / rest) : Vec3(dt_ * velocity);
+}
+
+void World::countEvent(std::size_t i)
+{
+  Motion& m = motions_[i];
+  ++m.epoch;
+  if (++m.events > kMaxEventsPerBallStep && !m.frozen)
+  {
+    m.frozen = true;
+    m.v0 = Vec3::Zero();
+    m.b = Vec3::Zero();
+    ++stats_.frozen_balls;
+  }
+}
+
+void World::recordEvent(CollisionEvent event, double x)
+{
+  event.time = (static_cast<double>(stats_.steps) + x) * dt_;
+  events_.push_back(event);
+  ++stats_.events;
+  if (event.resting)
+    ++stats_.resting_events;
+}
+
+void World::resolveBallWall(const Event& event)
+{
+  const std::size_t i = event.i;
+  const Wall& wall = walls_[event.j];
+  const Ball& ball = balls_[i];
+  const Vec3 p = positionAt(i, event.x);
+  const Vec3 floor_normal = floorNormalAt(i, p);
+  Vec3 v = onFloorVelocity(motions_[i], event.x, p, floor_normal);
+
+  const Vec3 n = -event.normal;  // from the ball toward the wall
+  Vec3 dir = floor_ ? tangentPart(n, floor_normal) : n;
+  if (dir.squaredNorm() < 1e-12)
+    dir = n;  // a wall parallel to the floor: answer in space
+  dir.normalize();
+  const double closing = v.dot(dir);
+  const bool resting = closing <= restingSpeed(floor_normal);
+  const double inv_mass = motions_[i].frozen ? 0.0 : 1.0 / ball.mass;
+  const double impulse =
+      collisionImpulse(std::max(closing, 0.0), inv_mass, dir, 0.0, dir, resting ? 0.0 : wall.restitution);
+  v -= (impulse * inv_mass) * dir;
+
+  startMotion(i, event.x, p, v);
+  if (resting)
+  {
+    Motion& m = motions_[i];
+    const double into = m.b.dot(dir);
+    if (into > 0)
+      m.b -= (into * (1 + kSeparationBias)) * dir;
+    resting_.push_back({i, kNoBall, dir, dir});
+  }
+  CollisionEvent out;
+  out.kind = CollisionEvent::Kind::kBallWall;
+  out.ball = ball.id;
+  out.other = wall.id;
+  out.feature = event.feature;
+  out.point = p + ball.radius * n;
+  out.normal = n;
+  out.impulse = impulse;
+  out.approach_speed = closing;
+  out.resting = resting;
+  recordEvent(out, event.x);
+
+  countEvent(i);
+  grid_.insert(static_cast<std::uint32_t>(i), currentBox(i));
+  detect(i, false);
+}
+
+void World::resolveBallBall(const Event& event)
+{
+  const std::size_t i = event.i, j = event.j;
+  const Ball& a = balls_[i];
+  const Ball& b = balls_[j];
+  const Vec3 pa = positionAt(i, event.x);
+  const Vec3 pb = positionAt(j, event.x);
+  const Vec3 na = floorNormalAt(i, pa);
+  const Vec3 nb = floorNormalAt(j, pb);
+  Vec3 va = onFloorVelocity(motions_[i], event.x, pa, na);
+  Vec3 vb = onFloorVelocity(motions_[j], event.x, pb, nb);
+  if (motions_[i].frozen)
+    va = Vec3::Zero();
+  if (motions_[j].frozen)
+    vb = Vec3::Zero();
+
+  Vec3 n = pb - pa;
+  const double dist = n.norm();
+  n = dist > 0 ? Vec3(n / dist) : Vec3(Vec3::UnitX());
+  // Each ball is pushed along the normal's part tangent to the floor under it.
+  const Vec3 ta = floor_ ? tangentPart(n, na) : n;
+  const Vec3 tb = floor_ ? tangentPart(n, nb) : n;
+  const double inv_a = motions_[i].frozen ? 0.0 : 1.0 / a.mass;
+  const double inv_b = motions_[j].frozen ? 0.0 : 1.0 / b.mass;
+  const double closing = va.dot(ta) - vb.dot(tb);
+  const bool resting = closing <= std::max(restingSpeed(na), restingSpeed(nb));
+  const double impulse =
+      collisionImpulse(std::max(closing, 0.0), inv_a, ta, inv_b, tb, resting ? 0.0 : scene_.restitution);
+  va -= (impulse * inv_a) * ta;
+  vb += (impulse * inv_b) * tb;
+
+  startMotion(i, event.x, pa, va);
+  startMotion(j, event.x, pb, vb);
+  if (resting)
+  {
+    Motion& ma = motions_[i];
+    Motion& mb = motions_[j];
+    const double into = ma.b.dot(ta) - mb.b.dot(tb);
+    if (into > 0)
+    {
+      const double k = collisionImpulse(into * (1 + kSeparationBias), inv_a, ta, inv_b, tb, 0.0);
+      ma.b -= (k * inv_a) * ta;
+      mb.b += (k * inv_b) * tb;
+    }
+    resting_.push_back({i, j, ta, tb});
+  }
+  CollisionEvent out;
+  out.kind = CollisionEvent::Kind::kBallBall;
+  out.ball = a.id;
+  out.other = b.id;
+  out.point = pa + a.radius * n;
+  out.normal = n;
+  out.impulse = impulse;
+  out.approach_speed = closing;
+  out.resting = resting;
+  recordEvent(out, event.x);
+
+  countEvent(i);
+  countEvent(j);
+  grid_.insert(static_cast<std::uint32_t>(i), currentBox(i));
+  grid_.insert(static_cast<std::uint32_t>(j), currentBox(j));
+  detect(i, false);
+  detect(j, false);
+}
+
+// ---- queries -------------------------------------------------------------------------
+
+Energy World::energy() const
+{
+  Energy e;
+  for (const Ball& ball : balls_)
+  {
+    e.kinetic += 0.5 * ball.mass * ball.velocity.squaredNorm();
+    e.potential -= ball.mass * gravity_.dot(ball.position);
+  }
+  return e;
+}
+
+Vec3 World::momentum() const
+{
+  Vec3 p = Vec3::Zero();
+  for (const Ball& ball : balls_)
+    p += ball.mass * ball.velocity;
+  return p;
+}
+
+int World::lostBalls() const
+{
+  int lost = 0;
+  if (floor_)
+  {
+    for (const Ball& ball : balls_)
+      if (!((ball.uv.array() >= -1e-9).all() && (ball.uv.array() <= 1 + 1e-9).all()))
+        ++lost;
+    return lost;
+  }
+  if (walls_.empty())
+    return 0;
+  Vec3 lo = walls_.front().box_min, hi = walls_.front().box_max;
+  for (const Wall& wall : walls_)
+  {
+    lo = lo.cwiseMin(wall.box_min);
+    hi = hi.cwiseMax(wall.box_max);
+  }
+  for (const Ball& ball : balls_)
+    if ((ball.position.array() < lo.array() - ball.radius).any() || (ball.position.array() > hi.array() + ball.radius).any())
+      ++lost;
+  return lost;
+}
+
+std::uint64_t World::stateHash() const
+{
+  Fnv1a h;
+  h.add(stats_.steps);
+  h.add(balls_.size());
+  for (const Ball& ball : balls_)
+  {
+    h.add(ball.id);
+    h.add(ball.radius);
+    h.add(ball.mass);
+    h.add(ball.position.data(), 3 * sizeof(double));
+    h.add(ball.velocity.data(), 3 * sizeof(double));
+    h.add(ball.orientation.coeffs().data(), 4 * sizeof(double));
+  }
+  return h.value();
+}
+
+const Ball* World::findBall(int id) const
+{
+  // Ids only grow and removal keeps order, so the list is sorted by id.
+  const auto it = std::lower_bound(balls_.begin(), balls_.end(), id, [](const Ball& b, int v) { return b.id < v; });
+  return it != balls_.end() && it->id == id ? &*it : nullptr;
+}
+
+// ---- editing -------------------------------------------------------------------------
+
+std::string World::checkBall(const BallDef& def) const
+{
+  const std::vector<SceneIssue> issues = validateBall(def, "");
+  if (!issues.empty())
+    return joinIssues(issues);
+  BallDef placed = def;
+  const std::string why = placeOnFloor(placed, floor_);
+  if (!why.empty())
+    return "position: " + why;
+  if (const auto overlap = wallOverlap(placed, walls_))
+    return "position: overlaps wall " + std::to_string(walls_[overlap->index].id) + " by " +
+           formatNumber(overlap->depth) + " m";
+  for (const Ball& other : balls_)
+  {
+    const double depth = placed.radius + other.radius - (placed.position - other.position).norm();
+    if (depth > kContactTolerance)
+      return "position: overlaps ball " + std::to_string(other.id) + " by " + formatNumber(depth) + " m";
+  }
+  return "";
+}
+
+AddResult World::addBall(const BallDef& def)
+{
+  AddResult result;
+  result.error = checkBall(def);
+  if (!result.error.empty())
+    return result;
+  result.ok = true;
+  result.id = next_ball_id_++;
+  balls_.push_back(makeBall(result.id, def));
+  return result;
+}
+
+AddResult World::addWall(const WallDef& def)
+{
+  AddResult result;
+  result.error = joinIssues(validateWall(def, ""));
+  if (!result.error.empty())
+    return result;
+  const Wall wall(next_wall_id_, def, scene_.restitution);
+  for (const Ball& ball : balls_)
+  {
+    const double depth = ball.radius - wall.distance(ball.position);
+    if (depth > kContactTolerance)
+    {
+      result.error = "point: the wall cuts through ball " + std::to_string(ball.id) + " (by " + formatNumber(depth) + " m)";
+      return result;
+    }
+  }
+  ++next_wall_id_;
+  walls_.push_back(wall);
+  result.ok = true;
+  result.id = wall.id;
+  return result;
+}
+
+bool World::removeBall(int id)
+{
+  const auto it = std::find_if(balls_.begin(), balls_.end(), [&](const Ball& b) { return b.id == id; });
+  if (it == balls_.end())
+    return false;
+  balls_.erase(it);
+  return true;
+}
+
+bool World::removeWall(int id)
+{
+  const auto it = std::find_if(walls_.begin(), walls_.end(), [&](const Wall& w) { return w.id == id; });
+  if (it == walls_.end())
+    return false;
+  walls_.erase(it);
+  return true;
+}
+}  // namespace ball_collision_sim::core

@@ -1,0 +1,211 @@
+// simulate: runs a scene offline as fast as possible (design.md section 6).
+// stdout carries exactly one line, the summary, so that scripts can take `tail -n1`;
+// every error goes to stderr as one "simulate: error: ..." line.
+
+#include "simulate_options.hpp"
+
+#include "ball_collision_sim/core/world.hpp"
+#include "ball_collision_sim/yaml/scene_yaml.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace
+{
+using ball_collision_sim::core::Ball;
+using ball_collision_sim::core::Scene;
+using ball_collision_sim::core::World;
+using ball_collision_sim::tools::SimulateOptions;
+
+constexpr int kExitInternalError = 1;
+constexpr int kExitBadInput = 2;
+
+// Steps are counted in floating point first; beyond this a run could never finish and the
+// count would lose integer precision.
+constexpr double kMaxSteps = 1e15;
+
+int reportBadInput(const std::string& message)
+{
+  std::fprintf(stderr, "simulate: error: %s\n", message.c_str());
+  return kExitBadInput;
+}
+
+// One row per ball per sample. %.17g so that every double reads back to the same bits:
+// the CSV is ground truth, not a plot.
+class CsvWriter
+{
+public:
+  /// Opens the file and writes the header; the error text when it cannot be opened.
+  std::string open(const std::string& path)
+  {
+    path_ = path;
+    file_.reset(std::fopen(path.c_str(), "w"));
+    if (!file_)
+    {
+      const int open_errno = errno;  // before the message's allocations can change it
+      return path + ": cannot open for writing (" + std::strerror(open_errno) + ")";
+    }
+    // A large buffer: a sample per step of many balls is a lot of small writes.
+    buffer_.resize(1 << 20);
+    std::setvbuf(file_.get(), buffer_.data(), _IOFBF, buffer_.size());
+    std::fputs("t,id,x,y,z,vx,vy,vz\n", file_.get());
+    return "";
+  }
+
+  bool isOpen() const { return file_ != nullptr; }
+
+  void writeSample(const World& world)
+  {
+    const double t = world.time();
+    for (const Ball& ball : world.balls())
+    {
+      std::fprintf(file_.get(), "%.17g,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, ball.id, ball.position.x(),
+                   ball.position.y(), ball.position.z(), ball.velocity.x(), ball.velocity.y(), ball.velocity.z());
+    }
+  }
+
+  /// Flushes and closes; the error text when anything failed to be written (disk full).
+  std::string close()
+  {
+    if (!file_)
+    {
+      return "";
+    }
+    // fclose flushes the buffer, so a full disk may show only here.
+    const bool write_failed = std::ferror(file_.get()) != 0;
+    const int write_errno = errno;
+    const bool close_failed = std::fclose(file_.release()) != 0;
+    const int close_errno = errno;
+    if (write_failed || close_failed)
+    {
+      return path_ + ": write failed (" + std::strerror(write_failed ? write_errno : close_errno) + ")";
+    }
+    return "";
+  }
+
+private:
+  struct FileCloser
+  {
+    void operator()(std::FILE* file) const { std::fclose(file); }
+  };
+  std::string path_;
+  // Declared before file_ so that it is destroyed after it: fclose flushes from it.
+  std::vector<char> buffer_;
+  std::unique_ptr<std::FILE, FileCloser> file_;
+};
+
+int run(const SimulateOptions& options)
+{
+  if (!options.bag_path.empty())
+  {
+    return reportBadInput("--bag: writing rosbags is not built yet (planned); use --csv");
+  }
+
+  Scene scene;
+  try
+  {
+    scene = ball_collision_sim::yaml::loadValidScene(options.scene_path);
+  }
+  catch (const ball_collision_sim::yaml::SceneError& e)
+  {
+    return reportBadInput(e.what());
+  }
+
+  // validate() has passed, so this throws only if the core finds something validate()
+  // missed; that is still the scene's fault, reported the same way.
+  std::unique_ptr<World> world;
+  try
+  {
+    world = std::make_unique<World>(scene);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    return reportBadInput(options.scene_path + ": " + e.what());
+  }
+
+  // The small epsilon keeps a duration that is a whole number of steps from taking an
+  // extra one when the division rounds up: 0.07 / 0.01 is 7.000000000000001 in doubles.
+  const double exact_steps = options.duration / world->dt();
+  if (!(exact_steps <= kMaxSteps))
+  {
+    char message[160];
+    std::snprintf(message, sizeof(message), "--duration: %g s at dt = %g s is more than %g steps", options.duration,
+                  world->dt(), kMaxSteps);
+    return reportBadInput(message);
+  }
+  const auto steps = static_cast<std::uint64_t>(std::max(0.0, std::ceil(exact_steps - 1e-9)));
+
+  CsvWriter csv;
+  if (!options.csv_path.empty())
+  {
+    const std::string error = csv.open(options.csv_path);
+    if (!error.empty())
+    {
+      return reportBadInput(error);
+    }
+  }
+
+  const double energy_start = world->energy().total();
+  if (csv.isOpen())
+  {
+    csv.writeSample(*world);
+  }
+  const auto wall_start = std::chrono::steady_clock::now();
+  for (std::uint64_t step = 1; step <= steps; ++step)
+  {
+    world->step();
+    if (csv.isOpen() && step % options.sample_every == 0)
+    {
+      csv.writeSample(*world);
+    }
+  }
+  const std::string csv_error = csv.close();
+  const double wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  if (!csv_error.empty())
+  {
+    std::fprintf(stderr, "simulate: error: %s\n", csv_error.c_str());
+    return kExitInternalError;
+  }
+
+  std::printf("summary: steps=%llu events=%llu wall_s=%.6f energy_start=%.17g energy_end=%.17g balls_lost=%d\n",
+              static_cast<unsigned long long>(world->stats().steps),
+              static_cast<unsigned long long>(world->stats().events), wall_seconds, energy_start,
+              world->energy().total(), world->lostBalls());
+  return std::fflush(stdout) == 0 ? 0 : kExitInternalError;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  const ball_collision_sim::tools::ParsedOptions parsed = ball_collision_sim::tools::parseSimulateOptions(args);
+  if (!parsed.ok())
+  {
+    std::fprintf(stderr, "simulate: error: %s\nTry 'simulate --help' for usage.\n", parsed.error.c_str());
+    return kExitBadInput;
+  }
+  if (parsed.options.help)
+  {
+    std::fputs(ball_collision_sim::tools::simulateUsage().c_str(), stdout);
+    return 0;
+  }
+  try
+  {
+    return run(parsed.options);
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "simulate: internal error: %s\n", e.what());
+    return kExitInternalError;
+  }
+}

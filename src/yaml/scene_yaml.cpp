@@ -1,0 +1,677 @@
+#include "ball_collision_sim/yaml/scene_yaml.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace ball_collision_sim::yaml
+{
+namespace
+{
+using core::Vec2;
+using core::Vec3;
+
+// A problem at a key path. Thrown inside the reader and turned into a SceneError with the
+// source name in front by parseScene(), so the helpers need not carry the source around.
+struct KeyError
+{
+  std::string key;  // empty: the document itself
+  std::string reason;
+};
+
+[[noreturn]] void fail(const std::string& key, const std::string& reason)
+{
+  throw KeyError{key, reason};
+}
+
+constexpr std::string_view kPlainTag = "?";  // yaml-cpp's tag of an unquoted, untagged scalar
+constexpr std::string_view kFloatTag = "tag:yaml.org,2002:float";
+constexpr std::string_view kIntTag = "tag:yaml.org,2002:int";
+
+std::string childKey(const std::string& parent, std::string_view name)
+{
+  return parent.empty() ? std::string(name) : parent + "." + std::string(name);
+}
+
+std::string indexKey(const std::string& parent, std::size_t i)
+{
+  return parent + "[" + std::to_string(i) + "]";
+}
+
+// What a node is, for "expected X, got Y". A scalar is shown as written (shortened, one
+// line), quoted when it was a string in the YAML so that `"1.0"` is not mistaken for 1.0.
+std::string describe(const YAML::Node& node)
+{
+  switch (node.Type())
+  {
+    case YAML::NodeType::Undefined:
+    case YAML::NodeType::Null:
+      return "null";
+    case YAML::NodeType::Sequence:
+      return "a list";
+    case YAML::NodeType::Map:
+      return "a map";
+    case YAML::NodeType::Scalar:
+      break;
+  }
+  constexpr std::size_t kMaxShown = 40;
+  std::string text = node.Scalar();
+  if (text.size() > kMaxShown)
+  {
+    text = text.substr(0, kMaxShown) + "...";
+  }
+  for (char& c : text)
+  {
+    if (c == '\n' || c == '\r' || c == '\t')
+    {
+      c = ' ';
+    }
+  }
+  return node.Tag() == kPlainTag ? text : "the string \"" + text + "\"";
+}
+
+// As describe(), with the length of a list: for "expected a list of 3 numbers".
+std::string describeSized(const YAML::Node& node)
+{
+  if (node.IsSequence())
+  {
+    return "a list of " + std::to_string(node.size()) + (node.size() == 1 ? " item" : " items");
+  }
+  return describe(node);
+}
+
+bool isDigit(char c)
+{
+  return c >= '0' && c <= '9';
+}
+
+// YAML 1.2 core schema float: [-+]? ( \.[0-9]+ | [0-9]+ ( \. [0-9]* )? ) ( [eE] [-+]? [0-9]+ )?
+// Checked by hand because from_chars alone would also take "nan", "inf" and trailing junk.
+bool isDecimalNumber(std::string_view s)
+{
+  std::size_t i = 0;
+  if (i < s.size() && (s[i] == '+' || s[i] == '-'))
+  {
+    ++i;
+  }
+  std::size_t digits = 0;
+  while (i < s.size() && isDigit(s[i]))
+  {
+    ++i;
+    ++digits;
+  }
+  if (i < s.size() && s[i] == '.')
+  {
+    ++i;
+    while (i < s.size() && isDigit(s[i]))
+    {
+      ++i;
+      ++digits;
+    }
+  }
+  if (digits == 0)
+  {
+    return false;
+  }
+  if (i < s.size() && (s[i] == 'e' || s[i] == 'E'))
+  {
+    ++i;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-'))
+    {
+      ++i;
+    }
+    std::size_t exponent_digits = 0;
+    while (i < s.size() && isDigit(s[i]))
+    {
+      ++i;
+      ++exponent_digits;
+    }
+    if (exponent_digits == 0)
+    {
+      return false;
+    }
+  }
+  return i == s.size();
+}
+
+bool isInteger(std::string_view s)
+{
+  std::size_t i = (!s.empty() && (s[0] == '+' || s[0] == '-')) ? 1 : 0;
+  if (i == s.size())
+  {
+    return false;
+  }
+  for (; i < s.size(); ++i)
+  {
+    if (!isDigit(s[i]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The YAML spellings of NaN and infinity. They are numbers here; core::validate() is the
+// one place that rejects non-finite values, with the key's name.
+std::optional<double> specialNumber(std::string_view s)
+{
+  if (s == ".nan" || s == ".NaN" || s == ".NAN")
+  {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  double sign = 1.0;
+  if (!s.empty() && (s[0] == '+' || s[0] == '-'))
+  {
+    sign = s[0] == '-' ? -1.0 : 1.0;
+    s.remove_prefix(1);
+  }
+  if (s == ".inf" || s == ".Inf" || s == ".INF")
+  {
+    return sign * std::numeric_limits<double>::infinity();
+  }
+  return std::nullopt;
+}
+
+double readNumber(const YAML::Node& node, const std::string& key)
+{
+  const std::string expected = "expected a number, got ";
+  if (!node.IsScalar() || (node.Tag() != kPlainTag && node.Tag() != kFloatTag && node.Tag() != kIntTag))
+  {
+    fail(key, expected + describe(node));
+  }
+  const std::string& text = node.Scalar();
+  if (const std::optional<double> special = specialNumber(text))
+  {
+    return *special;
+  }
+  if (!isDecimalNumber(text))
+  {
+    fail(key, expected + describe(node));
+  }
+  // from_chars takes no '+' and ignores the locale (strtod would read "0,5" in de_DE).
+  const char* first = text.data() + (text[0] == '+' ? 1 : 0);
+  const char* last = text.data() + text.size();
+  double value = 0.0;
+  const std::from_chars_result result = std::from_chars(first, last, value);
+  if (result.ec == std::errc::result_out_of_range)
+  {
+    fail(key, "number out of range of a double, got " + text);
+  }
+  if (result.ec != std::errc() || result.ptr != last)
+  {
+    fail(key, expected + describe(node));
+  }
+  return value;
+}
+
+bool isIntegerScalar(const YAML::Node& node)
+{
+  return node.IsScalar() && (node.Tag() == kPlainTag || node.Tag() == kIntTag) && isInteger(node.Scalar());
+}
+
+int readInt(const YAML::Node& node, const std::string& key)
+{
+  if (!isIntegerScalar(node))
+  {
+    fail(key, "expected an integer, got " + describe(node));
+  }
+  const std::string& text = node.Scalar();
+  const char* first = text.data() + (text[0] == '+' ? 1 : 0);
+  const char* last = text.data() + text.size();
+  int value = 0;
+  const std::from_chars_result result = std::from_chars(first, last, value);
+  if (result.ec != std::errc() || result.ptr != last)
+  {
+    fail(key, "integer out of range, got " + text);
+  }
+  return value;
+}
+
+std::uint64_t readUnsigned(const YAML::Node& node, const std::string& key)
+{
+  if (!isIntegerScalar(node) || node.Scalar()[0] == '-')
+  {
+    fail(key, "expected an integer >= 0, got " + describe(node));
+  }
+  const std::string& text = node.Scalar();
+  const char* first = text.data() + (text[0] == '+' ? 1 : 0);
+  const char* last = text.data() + text.size();
+  std::uint64_t value = 0;
+  const std::from_chars_result result = std::from_chars(first, last, value);
+  if (result.ec != std::errc() || result.ptr != last)
+  {
+    fail(key, "integer out of range (at most 18446744073709551615), got " + text);
+  }
+  return value;
+}
+
+std::string readString(const YAML::Node& node, const std::string& key)
+{
+  if (!node.IsScalar())
+  {
+    fail(key, "expected a string, got " + describe(node));
+  }
+  return node.Scalar();
+}
+
+Vec3 readVec3(const YAML::Node& node, const std::string& key)
+{
+  if (!node.IsSequence() || node.size() != 3)
+  {
+    fail(key, "expected a list of 3 numbers, got " + describeSized(node));
+  }
+  Vec3 v;
+  for (std::size_t i = 0; i < 3; ++i)
+  {
+    v[static_cast<Eigen::Index>(i)] = readNumber(node[i], indexKey(key, i));
+  }
+  return v;
+}
+
+Vec2 readVec2(const YAML::Node& node, const std::string& key)
+{
+  if (!node.IsSequence() || node.size() != 2)
+  {
+    fail(key, "expected a list of 2 numbers [x, y], got " + describeSized(node));
+  }
+  return Vec2(readNumber(node[0], indexKey(key, 0)), readNumber(node[1], indexKey(key, 1)));
+}
+
+core::Range readRange(const YAML::Node& node, const std::string& key)
+{
+  if (!node.IsSequence() || node.size() != 2)
+  {
+    fail(key, "expected a list [min, max] of 2 numbers, got " + describeSized(node));
+  }
+  core::Range range;
+  range.min = readNumber(node[0], indexKey(key, 0));
+  range.max = readNumber(node[1], indexKey(key, 1));
+  return range;
+}
+
+// A YAML map whose keys have been checked against the allowed names (unknown and
+// duplicate keys are errors: yaml-cpp keeps both copies of a duplicate and a lookup
+// would silently take one).
+class MapFields
+{
+public:
+  MapFields(const YAML::Node& node, std::string key, const std::vector<std::string_view>& allowed)
+    : key_(std::move(key))
+  {
+    if (!node.IsMap())
+    {
+      fail(key_, "expected a map, got " + describe(node));
+    }
+    for (const auto& entry : node)
+    {
+      if (!entry.first.IsScalar())
+      {
+        fail(key_, "keys must be names, got " + describe(entry.first) + " as a key");
+      }
+      const std::string& name = entry.first.Scalar();
+      bool known = false;
+      for (const std::string_view candidate : allowed)
+      {
+        known = known || candidate == name;
+      }
+      if (!known)
+      {
+        std::string list;
+        for (const std::string_view candidate : allowed)
+        {
+          list += (list.empty() ? "" : ", ") + std::string(candidate);
+        }
+        fail(childKey(key_, name), "unknown key (expected one of: " + list + ")");
+      }
+      if (find(name) != nullptr)
+      {
+        fail(childKey(key_, name), "duplicate key");
+      }
+      fields_.emplace_back(name, entry.second);
+    }
+  }
+
+  /// The value of `name`, or nullptr when the key is absent.
+  const YAML::Node* find(std::string_view name) const
+  {
+    for (const auto& field : fields_)
+    {
+      if (field.first == name)
+      {
+        return &field.second;
+      }
+    }
+    return nullptr;
+  }
+
+  /// The value of `name`, or nullptr when it is absent or null (an empty section).
+  const YAML::Node* findSection(std::string_view name) const
+  {
+    const YAML::Node* node = find(name);
+    return (node != nullptr && !node->IsNull()) ? node : nullptr;
+  }
+
+  const YAML::Node& require(std::string_view name) const
+  {
+    const YAML::Node* node = find(name);
+    if (node == nullptr)
+    {
+      fail(keyOf(name), "required");
+    }
+    return *node;
+  }
+
+  std::string keyOf(std::string_view name) const { return childKey(key_, name); }
+
+private:
+  std::string key_;
+  std::vector<std::pair<std::string, YAML::Node>> fields_;
+};
+
+// The elements of a list section; null (the section left empty) is an empty list.
+std::vector<YAML::Node> readList(const YAML::Node* node, const std::string& key)
+{
+  std::vector<YAML::Node> items;
+  if (node == nullptr || node->IsNull())
+  {
+    return items;
+  }
+  if (!node->IsSequence())
+  {
+    fail(key, "expected a list, got " + describe(*node));
+  }
+  for (const auto& item : *node)
+  {
+    items.push_back(item);
+  }
+  return items;
+}
+
+core::FloorDef readFloor(const YAML::Node& node, const std::string& key)
+{
+  if (!node.IsMap())
+  {
+    fail(key, "expected a map, got " + describe(node));
+  }
+  // The type decides which other keys are allowed, so it is read first.
+  core::FloorDef floor;
+  const YAML::Node type_node = node["type"];
+  if (type_node.IsDefined())
+  {
+    const std::string type_key = childKey(key, "type");
+    if (!type_node.IsScalar() || (type_node.Scalar() != "plane" && type_node.Scalar() != "biquadratic"))
+    {
+      fail(type_key, "expected plane or biquadratic, got " + describe(type_node));
+    }
+    floor.type = type_node.Scalar() == "plane" ? core::FloorDef::Type::kPlane : core::FloorDef::Type::kBiquadratic;
+  }
+
+  if (floor.type == core::FloorDef::Type::kPlane)
+  {
+    const MapFields fields(node, key, {"type", "point", "u", "v"});
+    if (const YAML::Node* point = fields.find("point"))
+    {
+      floor.point = readVec3(*point, fields.keyOf("point"));
+    }
+    if (const YAML::Node* u = fields.find("u"))
+    {
+      floor.u = readVec3(*u, fields.keyOf("u"));
+    }
+    if (const YAML::Node* v = fields.find("v"))
+    {
+      floor.v = readVec3(*v, fields.keyOf("v"));
+    }
+    return floor;
+  }
+
+  const MapFields fields(node, key, {"type", "control_points"});
+  const std::string points_key = fields.keyOf("control_points");
+  const YAML::Node& points = fields.require("control_points");
+  if (!points.IsSequence() || points.size() != 3)
+  {
+    fail(points_key, "expected 3 rows of 3 points [x, y, z], got " + describeSized(points));
+  }
+  for (std::size_t i = 0; i < 3; ++i)
+  {
+    const YAML::Node row = points[i];
+    const std::string row_key = indexKey(points_key, i);
+    if (!row.IsSequence() || row.size() != 3)
+    {
+      fail(row_key, "expected a row of 3 points [x, y, z], got " + describeSized(row));
+    }
+    for (std::size_t j = 0; j < 3; ++j)
+    {
+      floor.control_points[i][j] = readVec3(row[j], indexKey(row_key, j));
+    }
+  }
+  return floor;
+}
+
+core::WallDef readWall(const YAML::Node& node, const std::string& key)
+{
+  const MapFields fields(node, key, {"point", "u", "v", "restitution"});
+  core::WallDef wall;
+  wall.point = readVec3(fields.require("point"), fields.keyOf("point"));
+  wall.u = readVec3(fields.require("u"), fields.keyOf("u"));
+  wall.v = readVec3(fields.require("v"), fields.keyOf("v"));
+  if (const YAML::Node* restitution = fields.find("restitution"))
+  {
+    wall.restitution = readNumber(*restitution, fields.keyOf("restitution"));
+  }
+  return wall;
+}
+
+core::BallDef readBall(const YAML::Node& node, const std::string& key)
+{
+  const MapFields fields(node, key, {"position", "velocity", "radius", "mass"});
+  core::BallDef ball;
+  ball.position = readVec3(fields.require("position"), fields.keyOf("position"));
+  ball.velocity = Vec3::Zero();
+  if (const YAML::Node* velocity = fields.find("velocity"))
+  {
+    ball.velocity = readVec3(*velocity, fields.keyOf("velocity"));
+  }
+  ball.radius = readNumber(fields.require("radius"), fields.keyOf("radius"));
+  ball.mass = 1.0;
+  if (const YAML::Node* mass = fields.find("mass"))
+  {
+    ball.mass = readNumber(*mass, fields.keyOf("mass"));
+  }
+  return ball;
+}
+
+core::RandomBallsDef readRandomBalls(const YAML::Node& node, const std::string& key)
+{
+  const MapFields fields(node, key, {"count", "seed", "radius", "mass", "speed", "region"});
+  core::RandomBallsDef random;
+  random.count = readInt(fields.require("count"), fields.keyOf("count"));
+  if (const YAML::Node* seed = fields.find("seed"))
+  {
+    random.seed = readUnsigned(*seed, fields.keyOf("seed"));
+  }
+  if (const YAML::Node* radius = fields.find("radius"))
+  {
+    random.radius = readRange(*radius, fields.keyOf("radius"));
+  }
+  if (const YAML::Node* mass = fields.find("mass"))
+  {
+    random.mass = readRange(*mass, fields.keyOf("mass"));
+  }
+  if (const YAML::Node* speed = fields.find("speed"))
+  {
+    random.speed = readRange(*speed, fields.keyOf("speed"));
+  }
+  if (const YAML::Node* region_node = fields.findSection("region"))
+  {
+    const MapFields region_fields(*region_node, fields.keyOf("region"), {"min", "max"});
+    core::RandomBallsDef::Region region;
+    region.min = readVec2(region_fields.require("min"), region_fields.keyOf("min"));
+    region.max = readVec2(region_fields.require("max"), region_fields.keyOf("max"));
+    random.region = region;
+  }
+  return random;
+}
+
+core::Scene readScene(const YAML::Node& root)
+{
+  if (!root.IsMap())
+  {
+    fail("", "the scene must be a YAML map, got " + (root.IsNull() ? std::string("an empty document") : describe(root)));
+  }
+  std::vector<std::string_view> allowed{"frame_id", "dt",    "real_time_factor", "gravity",     "restitution",
+                                        "floor",    "walls", "balls",            "random_balls"};
+  allowed.insert(allowed.end(), kNodeOnlyKeys.begin(), kNodeOnlyKeys.end());
+  const MapFields fields(root, "", allowed);
+
+  core::Scene scene;
+  if (const YAML::Node* frame_id = fields.find("frame_id"))
+  {
+    scene.frame_id = readString(*frame_id, "frame_id");
+  }
+  if (const YAML::Node* dt = fields.find("dt"))
+  {
+    scene.dt = readNumber(*dt, "dt");
+  }
+  if (const YAML::Node* factor = fields.find("real_time_factor"))
+  {
+    scene.node.real_time_factor = readNumber(*factor, "real_time_factor");
+  }
+  if (const YAML::Node* gravity = fields.find("gravity"))
+  {
+    scene.gravity = readVec3(*gravity, "gravity");
+  }
+  if (const YAML::Node* restitution = fields.find("restitution"))
+  {
+    scene.restitution = readNumber(*restitution, "restitution");
+  }
+  if (const YAML::Node* floor = fields.findSection("floor"))
+  {
+    scene.floor = readFloor(*floor, "floor");
+  }
+  const std::vector<YAML::Node> walls = readList(fields.find("walls"), "walls");
+  for (std::size_t i = 0; i < walls.size(); ++i)
+  {
+    scene.walls.push_back(readWall(walls[i], indexKey("walls", i)));
+  }
+  const std::vector<YAML::Node> balls = readList(fields.find("balls"), "balls");
+  for (std::size_t i = 0; i < balls.size(); ++i)
+  {
+    scene.balls.push_back(readBall(balls[i], indexKey("balls", i)));
+  }
+  if (const YAML::Node* random = fields.findSection("random_balls"))
+  {
+    scene.random_balls = readRandomBalls(*random, "random_balls");
+  }
+  // Node-only keys are type-checked now so that a typo'd value fails here, not in the node.
+  for (const std::string_view name : kNodeOnlyKeys)
+  {
+    if (const YAML::Node* value = fields.find(name))
+    {
+      readNumber(*value, std::string(name));
+    }
+  }
+  return scene;
+}
+
+struct FileCloser
+{
+  void operator()(std::FILE* file) const { std::fclose(file); }
+};
+
+std::string withMark(const std::string& source, const YAML::Mark& mark)
+{
+  if (mark.is_null())
+  {
+    return source + ": ";
+  }
+  // yaml-cpp counts from 0; editors and compilers count from 1.
+  return source + ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1) + ": ";
+}
+}  // namespace
+
+core::Scene parseScene(const std::string& yaml_text, const std::string& source_name)
+{
+  std::vector<YAML::Node> documents;
+  try
+  {
+    documents = YAML::LoadAll(yaml_text);
+  }
+  catch (const YAML::ParserException& e)
+  {
+    throw SceneError(withMark(source_name, e.mark) + e.msg);
+  }
+  catch (const YAML::Exception& e)
+  {
+    throw SceneError(withMark(source_name, e.mark) + e.msg);
+  }
+  if (documents.size() > 1)
+  {
+    throw SceneError(source_name + ": expected one YAML document, found " + std::to_string(documents.size()));
+  }
+  try
+  {
+    return readScene(documents.empty() ? YAML::Node() : documents.front());
+  }
+  catch (const KeyError& e)
+  {
+    throw SceneError(source_name + ": " + (e.key.empty() ? "" : e.key + ": ") + e.reason);
+  }
+  catch (const YAML::Exception& e)
+  {
+    // Not expected (every access is checked first), but keep the one-line contract.
+    throw SceneError(withMark(source_name, e.mark) + e.msg);
+  }
+}
+
+core::Scene loadSceneFile(const std::string& path)
+{
+  errno = 0;
+  const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
+  if (!file)
+  {
+    const int open_errno = errno;  // before anything else can change it
+    throw SceneError(path + ": cannot open file (" + std::strerror(open_errno) + ")");
+  }
+  std::string text;
+  char buffer[1 << 16];
+  for (;;)
+  {
+    const std::size_t n = std::fread(buffer, 1, sizeof(buffer), file.get());
+    text.append(buffer, n);
+    if (n == sizeof(buffer))
+    {
+      continue;
+    }
+    // A directory opens fine with fopen and fails only on read (EISDIR).
+    if (std::ferror(file.get()) != 0)
+    {
+      const int read_errno = errno;
+      throw SceneError(path + ": cannot read file (" + std::strerror(read_errno) + ")");
+    }
+    break;
+  }
+  return parseScene(text, path);
+}
+
+core::Scene loadValidScene(const std::string& path)
+{
+  core::Scene scene = loadSceneFile(path);
+  const std::vector<core::SceneIssue> issues = core::validate(scene);
+  if (!issues.empty())
+  {
+    throw SceneError(path + ": " + core::joinIssues(issues));
+  }
+  return scene;
+}
+}  // namespace ball_collision_sim::yaml

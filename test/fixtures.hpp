@@ -1,0 +1,74 @@
+#pragma once
+
+#include "ball_collision_sim/core/scene.hpp"
+#include "ball_collision_sim/core/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace ball_collision_sim::test
+{
+using core::BallDef;
+using core::FloorDef;
+using core::Scene;
+using core::Vec3;
+using core::WallDef;
+
+/// A flat floor [x0, x1] x [y0, y1] at z = 0, gravity straight down, no walls or balls.
+inline Scene flatScene(double x0 = -2, double x1 = 2, double y0 = -2, double y1 = 2)
+{
+  Scene s;
+  FloorDef f;
+  f.type = FloorDef::Type::kPlane;
+  f.point = Vec3(x0, y0, 0);
+  f.u = Vec3(x1 - x0, 0, 0);
+  f.v = Vec3(0, y1 - y0, 0);
+  s.floor = f;
+  return s;
+}
+
+/// Four walls of the given height around [x0, x1] x [y0, y1], standing on z = 0.
+inline void addBox(Scene& s, double x0, double x1, double y0, double y1, double height = 0.5)
+{
+  const double w = x1 - x0, d = y1 - y0;
+  s.walls.push_back({Vec3(x0, y0, 0), Vec3(w, 0, 0), Vec3(0, 0, height), {}});
+  s.walls.push_back({Vec3(x0, y1, 0), Vec3(w, 0, 0), Vec3(0, 0, height), {}});
+  s.walls.push_back({Vec3(x0, y0, 0), Vec3(0, d, 0), Vec3(0, 0, height), {}});
+  s.walls.push_back({Vec3(x1, y0, 0), Vec3(0, d, 0), Vec3(0, 0, height), {}});
+}
+
+inline BallDef ball(double x, double y, double vx, double vy, double radius = 0.1, double mass = 1.0)
+{
+  BallDef b;
+  b.position = Vec3(x, y, radius);
+  b.velocity = Vec3(vx, vy, 0);
+  b.radius = radius;
+  b.mass = mass;
+  return b;
+}
+
+/// Deepest overlap between any two balls [m] (<= 0 when none overlap), by a sweep in x.
+inline double deepestOverlap(const std::vector<core::Ball>& balls)
+{
+  std::vector<std::size_t> order(balls.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+    order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return balls[a].position.x() - balls[a].radius < balls[b].position.x() - balls[b].radius;
+  });
+  double deepest = -1e300;
+  for (std::size_t k = 0; k < order.size(); ++k)
+  {
+    const auto& a = balls[order[k]];
+    for (std::size_t l = k + 1; l < order.size(); ++l)
+    {
+      const auto& b = balls[order[l]];
+      if (b.position.x() - b.radius > a.position.x() + a.radius)
+        break;
+      deepest = std::max(deepest, a.radius + b.radius - (a.position - b.position).norm());
+    }
+  }
+  return deepest;
+}
+}  // namespace ball_collision_sim::test

@@ -1,0 +1,169 @@
+#include "fixtures.hpp"
+
+#include "ball_collision_sim/core/floor.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace ball_collision_sim::core;
+using namespace ball_collision_sim::test;
+
+namespace
+{
+/// The biquadratic with control z = f_i + f_j, f = (h, -h, h), over [-L/2, L/2]^2: its
+/// height is exactly the paraboloid z = 4 h (x^2 + y^2) / L^2.
+FloorDef bowl(double L, double h)
+{
+  FloorDef f;
+  f.type = FloorDef::Type::kBiquadratic;
+  const double c[3] = {-L / 2, 0, L / 2};
+  const double z[3] = {h, -h, h};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      f.control_points[i][j] = Vec3(c[i], c[j], z[i] + z[j]);
+  return f;
+}
+}  // namespace
+
+TEST(Floor, BiquadraticBowlIsAParaboloid)
+{
+  const double L = 4, h = 0.5;
+  const Floor floor(bowl(L, h), Vec3(0, 0, -9.81));
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int k = 0; k < 100; ++k)
+  {
+    const Vec3 p = floor.point(Vec2(u(rng), u(rng)));
+    EXPECT_NEAR(p.z(), 4 * h * (p.x() * p.x() + p.y() * p.y()) / (L * L), 1e-14);
+  }
+  // the normal of z = a r^2 is (-2 a x, -2 a y, 1) normalised, facing up
+  const double a = 4 * h / (L * L);
+  const Vec2 uv(0.8, 0.3);
+  const Vec3 p = floor.point(uv);
+  EXPECT_TRUE(floor.normal(uv).isApprox(Vec3(-2 * a * p.x(), -2 * a * p.y(), 1).normalized(), 1e-13));
+}
+
+TEST(Floor, ProjectionFindsTheFootPoint)
+{
+  const Floor floor(bowl(4, 0.5), Vec3(0, 0, -9.81));
+  std::mt19937_64 rng(2);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  for (int k = 0; k < 200; ++k)
+  {
+    const Vec3 q(u(rng), u(rng), 0.3 + 0.2 * u(rng));
+    const FloorFoot foot = floor.project(q, Vec2(0.5, 0.5));
+    // q - S lies along the normal, at signed distance `height`
+    EXPECT_LT((q - foot.point).cross(foot.normal).norm(), 1e-12) << k;
+    EXPECT_NEAR((q - foot.point).dot(foot.normal), foot.height, 1e-12) << k;
+    EXPECT_TRUE(foot.point.isApprox(floor.point(foot.uv), 1e-14));
+    EXPECT_GT(foot.normal.z(), 0);
+  }
+}
+
+TEST(Floor, PlaneProjectionIsExact)
+{
+  FloorDef def;
+  def.point = Vec3(1, 2, 3);
+  def.u = Vec3(2, 0, 1);
+  def.v = Vec3(0, 3, 0);
+  const Floor floor(def, Vec3(0, 0, -1));
+  const Vec2 uv(0.25, 0.75);
+  const Vec3 n = def.u.cross(def.v).normalized();
+  const FloorFoot foot = floor.project(floor.point(uv) + 0.4 * n, Vec2(0, 0));
+  EXPECT_TRUE(foot.uv.isApprox(uv, 1e-14));
+  EXPECT_NEAR(foot.height, 0.4, 1e-14);
+  EXPECT_GT(foot.normal.z(), 0);  // oriented against gravity
+}
+
+// A frictionless ball released on a plane tilted by theta slides s = g sin(theta) t^2 / 2
+// down the slope, exactly at any step size.
+TEST(TiltedPlane, SlidesWithConstantAcceleration)
+{
+  const double theta = 0.3, g = 9.81, L = 20;
+  for (double dt : {0.01, 0.001, 0.037})
+  {
+    Scene scene;
+    FloorDef f;
+    f.point = Vec3(0, -1, 0);
+    f.u = Vec3(L * std::cos(theta), 0, -L * std::sin(theta));  // downhill along +u
+    f.v = Vec3(0, 2, 0);
+    scene.floor = f;
+    scene.dt = dt;
+    BallDef b;
+    b.radius = 0.1;
+    const Vec3 n = f.u.cross(f.v).normalized();  // the upward normal
+    b.position = Vec3(0.5 * std::cos(theta), 0, -0.5 * std::sin(theta)) + b.radius * n;
+    scene.balls = {b};
+    World world(scene);
+    const Vec3 start = world.balls()[0].position;
+    const Vec3 down = f.u.normalized();
+    const int steps = static_cast<int>(std::lround(1.5 / dt));
+    for (int k = 0; k < steps; ++k)
+      world.step();
+    const double t = world.time();
+    const double s = (world.balls()[0].position - start).dot(down);
+    EXPECT_NEAR(s, g * std::sin(theta) * t * t / 2, 1e-10) << "dt = " << dt;
+    EXPECT_NEAR(world.balls()[0].velocity.dot(down), g * std::sin(theta) * t, 1e-10) << "dt = " << dt;
+    EXPECT_NEAR((world.balls()[0].position - start).dot(n), 0, 1e-12);
+  }
+}
+
+namespace
+{
+Scene bowlScene(double dt, const Vec3& start, const Vec3& velocity)
+{
+  Scene scene;
+  scene.floor = bowl(4, 0.5);
+  scene.dt = dt;
+  BallDef b;
+  b.radius = 0.1;
+  b.mass = 2;
+  b.position = start;
+  b.velocity = velocity;
+  scene.balls = {b};
+  return scene;
+}
+}  // namespace
+
+// A frictionless ball orbiting and oscillating in the bowl for a minute keeps its
+// mechanical energy.
+TEST(Bowl, KeepsMechanicalEnergyForAMinute)
+{
+  World world(bowlScene(0.01, Vec3(1.2, 0, 0.3), Vec3(0, 0.8, 0)));
+  const double e0 = world.energy().total();
+  const double scale = world.energy().kinetic + 2 * 9.81 * 0.2;  // energies involved [J]
+  double worst = 0;
+  for (int k = 0; k < 6000; ++k)
+  {
+    world.step();
+    worst = std::max(worst, std::abs(world.energy().total() - e0));
+    ASSERT_TRUE(world.balls()[0].position.allFinite());
+  }
+  EXPECT_LT(worst / scale, 1e-9);
+  // and it really moved about: it is not resting at the bottom
+  EXPECT_GT(world.energy().kinetic, 0.01);
+}
+
+// Small oscillations about the bottom: the centre rides on the offset surface, whose
+// radius of curvature there is 1 / (2 a) - r, so omega^2 = g / (1 / (2 a) - r).
+TEST(Bowl, SmallOscillationPeriod)
+{
+  const double a = 4 * 0.5 / 16, r = 0.1, g = 9.81;
+  const double expected = 2 * M_PI * std::sqrt((1 / (2 * a) - r) / g);
+  World world(bowlScene(0.001, Vec3(0.05, 0, 0.12), Vec3::Zero()));
+  std::vector<double> crossings;  // upward zero crossings of x
+  double prev_x = world.balls()[0].position.x(), prev_t = 0;
+  while (crossings.size() < 4 && world.time() < 30)
+  {
+    world.step();
+    const double x = world.balls()[0].position.x();
+    if (prev_x < 0 && x >= 0)
+      crossings.push_back(prev_t + (world.time() - prev_t) * (-prev_x) / (x - prev_x));
+    prev_x = x;
+    prev_t = world.time();
+  }
+  ASSERT_EQ(crossings.size(), 4u);
+  const double period = (crossings[3] - crossings[0]) / 3;
+  EXPECT_NEAR(period, expected, 2e-3 * expected);
+}

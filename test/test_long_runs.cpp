@@ -1,0 +1,79 @@
+#include "fixtures.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace ball_collision_sim::core;
+using namespace ball_collision_sim::test;
+
+namespace
+{
+Scene closedBox(int count, double half)
+{
+  Scene scene = flatScene(-half, half, -half, half);
+  addBox(scene, -half, half, -half, half);
+  RandomBallsDef rb;
+  rb.count = count;
+  rb.seed = 2024;
+  rb.radius = {0.05, 0.1};
+  rb.mass = {0.5, 3};
+  rb.speed = {0, 2};
+  scene.random_balls = rb;
+  return scene;
+}
+}  // namespace
+
+// 1000 balls in a closed box for 100 s at restitution 1: kinetic energy to 1e-9
+// relative, no overlap deeper than 1e-9 m, nobody leaves.
+TEST(LongRun, ThousandBallsHundredSeconds)
+{
+  const double half = 5;
+  World world(closedBox(1000, half));
+  ASSERT_EQ(world.balls().size(), 1000u);
+  const double e0 = world.energy().kinetic;
+  double worst_energy = 0, worst_overlap = -1;
+  for (int k = 1; k <= 10000; ++k)
+  {
+    world.step();
+    if (k % 50 != 0)
+      continue;
+    worst_energy = std::max(worst_energy, std::abs(world.energy().kinetic / e0 - 1));
+    worst_overlap = std::max(worst_overlap, deepestOverlap(world.balls()));
+    for (const Ball& b : world.balls())
+    {
+      ASSERT_TRUE(b.position.allFinite() && b.velocity.allFinite());
+      ASSERT_LE(b.position.head<2>().cwiseAbs().maxCoeff(), half - b.radius + 1e-9) << "step " << k;
+    }
+  }
+  EXPECT_LT(worst_energy, 1e-9);
+  EXPECT_LT(worst_overlap, 1e-9);
+  EXPECT_EQ(world.lostBalls(), 0);
+  EXPECT_EQ(world.stats().frozen_balls, 0u);
+  // it was a gas, not a still life
+  EXPECT_GT(world.stats().events, 100000u);
+  RecordProperty("events", std::to_string(world.stats().events));
+  RecordProperty("kinetic_energy_drift", std::to_string(worst_energy));
+}
+
+// Without walls, ball-ball collisions alone: total momentum is kept to round-off.
+TEST(LongRun, MomentumWithoutWalls)
+{
+  Scene scene = flatScene(-50, 50, -50, 50);
+  RandomBallsDef rb;
+  rb.count = 1000;
+  rb.seed = 5;
+  rb.radius = {0.05, 0.1};
+  rb.mass = {0.5, 3};
+  rb.speed = {0, 2};
+  rb.region = RandomBallsDef::Region{Vec2(-4, -4), Vec2(4, 4)};
+  scene.random_balls = rb;
+  World world(scene);
+  const Vec3 p0 = world.momentum();
+  double scale = 0;
+  for (const Ball& b : world.balls())
+    scale += b.mass * b.velocity.norm();
+  for (int k = 0; k < 1000; ++k)
+    world.step();
+  EXPECT_GT(world.stats().events, 1000u);
+  EXPECT_LT((world.momentum() - p0).norm(), 1e-12 * scale);
+  EXPECT_LT(deepestOverlap(world.balls()), 1e-9);
+}

@@ -1,0 +1,120 @@
+#include "fixtures.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace ball_collision_sim::core;
+using namespace ball_collision_sim::test;
+
+namespace
+{
+/// The issues' keys, in order.
+std::vector<std::string> keys(const Scene& scene)
+{
+  std::vector<std::string> out;
+  for (const SceneIssue& issue : validate(scene))
+    out.push_back(issue.key);
+  return out;
+}
+}  // namespace
+
+TEST(Validate, GoodSceneHasNoIssues)
+{
+  Scene scene = flatScene();
+  addBox(scene, -2, 2, -2, 2);
+  scene.balls = {ball(0, 0, 1, 0), ball(0.2, 0, 0, 0)};  // touching is fine
+  EXPECT_TRUE(validate(scene).empty()) << joinIssues(validate(scene));
+}
+
+TEST(Validate, EveryProblemWithItsKey)
+{
+  Scene scene = flatScene();
+  scene.dt = 0;
+  scene.restitution = 1.5;
+  scene.gravity.x() = std::numeric_limits<double>::infinity();
+  scene.walls = {{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), {}}, {Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(0, 1, 0), {}}};
+  BallDef nan_pos = ball(0, 0, 0, 0);
+  nan_pos.position.y() = std::nan("");
+  BallDef neg = ball(1, 1, 0, 0);
+  neg.radius = -0.1;
+  neg.mass = 0;
+  scene.balls = {nan_pos, neg};
+  const std::vector<std::string> expected = {"dt",         "gravity",          "restitution",     "walls[0].v",
+                                             "walls[1].u", "balls[0].position", "balls[1].radius", "balls[1].mass"};
+  EXPECT_EQ(keys(scene), expected) << joinIssues(validate(scene));
+  for (const SceneIssue& issue : validate(scene))
+    EXPECT_FALSE(issue.reason.empty());
+}
+
+TEST(Validate, GeometryProblems)
+{
+  Scene scene = flatScene();
+  addBox(scene, -2, 2, -2, 2);
+  scene.balls = {ball(0, 0, 0, 0), ball(0.15, 0, 0, 0), ball(3, 0, 0, 0), ball(1.95, 0, 0, 0)};
+  const auto issues = validate(scene);
+  ASSERT_EQ(issues.size(), 3u) << joinIssues(issues);
+  EXPECT_EQ(issues[0].key, "balls[2].position");
+  EXPECT_NE(issues[0].reason.find("off the floor"), std::string::npos);
+  EXPECT_EQ(issues[1].key, "balls[3]");
+  EXPECT_NE(issues[1].reason.find("overlaps walls[3]"), std::string::npos);
+  EXPECT_EQ(issues[2].key, "balls[1]");
+  EXPECT_NE(issues[2].reason.find("overlaps balls[0]"), std::string::npos);
+}
+
+TEST(Validate, BallFloatingAboveOrSunkInTheFloor)
+{
+  Scene scene = flatScene();
+  BallDef high = ball(0, 0, 0, 0);
+  high.position.z() = 5;
+  BallDef low = ball(1, 1, 0, 0);
+  low.position.z() = -0.05;
+  scene.balls = {high, low};
+  EXPECT_EQ(keys(scene), (std::vector<std::string>{"balls[0].position", "balls[1].position"}));
+}
+
+TEST(Validate, DegenerateBiquadraticFloor)
+{
+  Scene scene;
+  FloorDef f;
+  f.type = FloorDef::Type::kBiquadratic;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      f.control_points[i][j] = Vec3(i, 0, j);  // all in one line along x? no: the x-z plane, fine
+  scene.floor = f;
+  EXPECT_TRUE(validate(scene).empty()) << joinIssues(validate(scene));
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      f.control_points[i][j] = Vec3(i + j, 0, 0);  // a line: no normal anywhere
+  scene.floor = f;
+  EXPECT_EQ(keys(scene), std::vector<std::string>{"floor.control_points"});
+}
+
+TEST(RandomBalls, PlacedClearDeterministicAndInsideTheRegion)
+{
+  Scene scene = flatScene();
+  addBox(scene, -2, 2, -2, 2);
+  scene.balls = {ball(0, 0, 0, 0, 0.3)};
+  RandomBallsDef rb;
+  rb.count = 400;
+  rb.seed = 9;
+  rb.radius = {0.03, 0.06};
+  rb.speed = {1, 2};
+  rb.region = RandomBallsDef::Region{Vec2(-1.5, -1.5), Vec2(1.5, 0.5)};
+  scene.random_balls = rb;
+  ASSERT_TRUE(validate(scene).empty()) << joinIssues(validate(scene));
+  const std::vector<BallDef> a = placeRandomBalls(scene), b = placeRandomBalls(scene);
+  ASSERT_EQ(a.size(), 400u);
+  for (std::size_t k = 0; k < a.size(); ++k)
+  {
+    EXPECT_EQ(a[k].position, b[k].position);
+    EXPECT_GE(a[k].position.x(), -1.5);
+    EXPECT_LE(a[k].position.y(), 0.5);
+    EXPECT_NEAR(a[k].position.z(), a[k].radius, 1e-15);
+    EXPECT_GE(a[k].velocity.norm(), 1 - 1e-12);
+    EXPECT_LE(a[k].velocity.norm(), 2 + 1e-12);
+    EXPECT_GE(a[k].radius, 0.03);
+  }
+  World world(scene);
+  EXPECT_LT(deepestOverlap(world.balls()), 0);
+  scene.random_balls->count = 5000;  // no room
+  EXPECT_EQ(keys(scene), std::vector<std::string>{"random_balls.count"});
+}

@@ -1,0 +1,401 @@
+// The `simulate` tool through its real command line: exit codes, the one-line errors,
+// the summary line and the CSV (design.md section 6).
+
+#include "ball_collision_sim/core/scene.hpp"
+#include "ball_collision_sim/yaml/scene_yaml.hpp"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+namespace fs = std::filesystem;
+
+const std::string kDataDir = BCS_TEST_DATA_DIR;
+const std::string kGoodScene = kDataDir + "/good_small.yaml";
+
+struct RunResult
+{
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string shellQuote(const std::string& text)
+{
+  std::string quoted = "'";
+  for (const char c : text)
+  {
+    quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  }
+  return quoted + "'";
+}
+
+std::string readFile(const fs::path& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::vector<std::string> lines(const std::string& text)
+{
+  std::vector<std::string> result;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line))
+  {
+    result.push_back(line);
+  }
+  return result;
+}
+
+bool startsWith(const std::string& text, const std::string& prefix)
+{
+  return text.rfind(prefix, 0) == 0;
+}
+
+bool contains(const std::string& text, const std::string& part)
+{
+  return text.find(part) != std::string::npos;
+}
+
+/// Runs the test in a fresh temporary folder, removed afterwards.
+class SimulateCli : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("bcs_simulate_cli_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override
+  {
+    std::error_code ignored;
+    fs::remove_all(dir_, ignored);
+  }
+
+  RunResult run(const std::vector<std::string>& args)
+  {
+    const fs::path out = dir_ / "stdout.txt";
+    const fs::path err = dir_ / "stderr.txt";
+    std::string command = shellQuote(BCS_SIMULATE_EXE);
+    for (const std::string& arg : args)
+    {
+      command += " " + shellQuote(arg);
+    }
+    command += " >" + shellQuote(out.string()) + " 2>" + shellQuote(err.string()) + " </dev/null";
+    const int status = std::system(command.c_str());
+    RunResult result;
+    result.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+    result.out = readFile(out);
+    result.err = readFile(err);
+    return result;
+  }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  fs::path dir_;
+};
+
+/// A bad scene: exit 2, nothing on stdout, one stderr line naming the file and the key.
+void expectSceneError(const RunResult& result, const std::string& scene_path, const std::string& key)
+{
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(result.out, "");
+  ASSERT_FALSE(result.err.empty());
+  EXPECT_EQ(result.err.back(), '\n');
+  EXPECT_EQ(lines(result.err).size(), 1u) << result.err;
+  EXPECT_TRUE(startsWith(result.err, "simulate: error: " + scene_path)) << result.err;
+  EXPECT_TRUE(contains(result.err, key)) << "no '" << key << "' in: " << result.err;
+}
+
+TEST_F(SimulateCli, BadScenesExitTwoWithOneLineNamingTheKey)
+{
+  // The reasons are the core's and the reader's words; the key is the contract.
+  const std::vector<std::pair<std::string, std::string>> cases{
+    {"bad_negative_radius.yaml", ": balls[0].radius"},
+    {"bad_nan.yaml", ": balls[0].position"},
+    {"bad_parallel_wall.yaml", ": walls[0]."},
+    {"bad_overlap.yaml", ": balls[1]"},
+    {"bad_off_floor.yaml", ": balls[0].position"},
+    {"bad_unknown_key.yaml", ": balls[0].radus: unknown key"},
+    {"bad_wrong_type.yaml", ": walls[0].u: expected a list of 3 numbers"},
+    {"bad_malformed.yaml", "bad_malformed.yaml:4:"},
+    {"empty.yaml", ": the scene must be a YAML map"},
+    {"bad_top_level_list.yaml", ": the scene must be a YAML map"},
+    {"no_such_file.yaml", ": cannot open file (No such file or directory)"},
+  };
+  for (const auto& [file, key] : cases)
+  {
+    SCOPED_TRACE(file);
+    const std::string scene = kDataDir + "/" + file;
+    expectSceneError(run({scene, "--duration", "1", "--csv", path("out.csv")}), scene, key);
+    EXPECT_FALSE(fs::exists(path("out.csv"))) << "a bad scene must not leave a CSV behind";
+  }
+}
+
+struct CommandLineCase
+{
+  std::vector<std::string> args;
+  std::string mentions;  // a word the error must contain
+};
+
+TEST_F(SimulateCli, BadCommandLinesExitTwoWithAUsageHint)
+{
+  const std::vector<CommandLineCase> cases{
+    {{}, "scene"},
+    {{kGoodScene}, "--duration"},
+    {{"--duration", "1"}, "scene"},
+    {{kGoodScene, "--duration", "1", "--frobnicate"}, "--frobnicate"},
+    {{kGoodScene, "--duration", "1", "-x"}, "-x"},
+    {{kGoodScene, "--duration", "-1"}, "--duration"},
+    {{kGoodScene, "--duration", "abc"}, "--duration"},
+    {{kGoodScene, "--duration", "nan"}, "--duration"},
+    {{kGoodScene, "--duration", "inf"}, "--duration"},
+    {{kGoodScene, "--duration"}, "--duration"},
+    {{kGoodScene, "--duration", "--csv", "x.csv"}, "--duration"},
+    {{kGoodScene, "--duration", "1", "--duration", "2"}, "--duration"},
+    {{kGoodScene, "--duration", "1", "--sample-every", "0"}, "--sample-every"},
+    {{kGoodScene, "--duration", "1", "--sample-every", "-3"}, "--sample-every"},
+    {{kGoodScene, "--duration", "1", "--sample-every", "2.5"}, "--sample-every"},
+    {{kGoodScene, "--duration", "1", "--csv"}, "--csv"},
+    {{kGoodScene, kGoodScene, "--duration", "1"}, "unexpected argument"},
+  };
+  for (const CommandLineCase& c : cases)
+  {
+    std::string shown;
+    for (const std::string& arg : c.args)
+    {
+      shown += " " + arg;
+    }
+    SCOPED_TRACE("simulate" + shown);
+    const RunResult result = run(c.args);
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_EQ(result.out, "");
+    const std::vector<std::string> err = lines(result.err);
+    ASSERT_GE(err.size(), 1u);
+    EXPECT_TRUE(startsWith(err[0], "simulate: error: ")) << result.err;
+    EXPECT_TRUE(contains(err[0], c.mentions)) << result.err;
+    EXPECT_TRUE(contains(result.err, "--help")) << "no usage hint: " << result.err;
+  }
+}
+
+TEST_F(SimulateCli, BagIsNotBuiltYet)
+{
+  const RunResult result = run({kGoodScene, "--duration", "1", "--bag", path("x.bag")});
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(result.out, "");
+  EXPECT_EQ(result.err, "simulate: error: --bag: writing rosbags is not built yet (planned); use --csv\n");
+  EXPECT_FALSE(fs::exists(path("x.bag")));
+}
+
+TEST_F(SimulateCli, HelpGoesToStdoutAndExitsZero)
+{
+  for (const char* flag : {"--help", "-h"})
+  {
+    SCOPED_TRACE(flag);
+    const RunResult result = run({flag});
+    EXPECT_EQ(result.exit_code, 0);
+    EXPECT_TRUE(startsWith(result.out, "usage: simulate SCENE.yaml --duration SECONDS")) << result.out;
+    EXPECT_EQ(result.err, "");
+  }
+  // --help wins over anything else on the line.
+  EXPECT_EQ(run({"--frobnicate", "--help"}).exit_code, 0);
+}
+
+TEST_F(SimulateCli, UnwritableCsvIsAnErrorNamingThePath)
+{
+  const std::string csv = path("no_such_folder/out.csv");
+  const RunResult result = run({kGoodScene, "--duration", "0.1", "--csv", csv});
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(result.out, "");
+  EXPECT_EQ(lines(result.err).size(), 1u) << result.err;
+  EXPECT_TRUE(startsWith(result.err, "simulate: error: " + csv + ": cannot open")) << result.err;
+}
+
+struct Summary
+{
+  std::uint64_t steps = 0;
+  std::uint64_t events = 0;
+  double wall_s = 0.0;
+  double energy_start = 0.0;
+  double energy_end = 0.0;
+  int balls_lost = -1;
+};
+
+/// The summary line: exactly these keys, in this order, every value parsing whole.
+Summary parseSummary(const std::string& line)
+{
+  static const std::regex pattern(
+      R"(^summary: steps=([0-9]+) events=([0-9]+) wall_s=(\S+) energy_start=(\S+) energy_end=(\S+) balls_lost=([0-9]+)$)");
+  std::smatch match;
+  Summary summary;
+  EXPECT_TRUE(std::regex_match(line, match, pattern)) << line;
+  if (match.empty())
+  {
+    return summary;
+  }
+  auto number = [&](int i) {
+    const std::string text = match[i].str();
+    std::size_t used = 0;
+    const double value = std::stod(text, &used);
+    EXPECT_EQ(used, text.size()) << text;
+    return value;
+  };
+  summary.steps = std::stoull(match[1].str());
+  summary.events = std::stoull(match[2].str());
+  summary.wall_s = number(3);
+  summary.energy_start = number(4);
+  summary.energy_end = number(5);
+  summary.balls_lost = std::stoi(match[6].str());
+  return summary;
+}
+
+struct CsvRow
+{
+  double t;
+  int id;
+  double x, y, z, vx, vy, vz;
+};
+
+std::vector<CsvRow> parseCsv(const std::string& text, std::string* header)
+{
+  std::vector<std::string> all = lines(text);
+  std::vector<CsvRow> rows;
+  if (all.empty())
+  {
+    return rows;
+  }
+  *header = all[0];
+  for (std::size_t i = 1; i < all.size(); ++i)
+  {
+    CsvRow row{};
+    char tail = 0;
+    const int fields = std::sscanf(all[i].c_str(), "%lf,%d,%lf,%lf,%lf,%lf,%lf,%lf%c", &row.t, &row.id, &row.x, &row.y,
+                                   &row.z, &row.vx, &row.vy, &row.vz, &tail);
+    EXPECT_EQ(fields, 8) << "row " << i << ": " << all[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+/// 1/2 m |v|^2 - m <g, p> over a block of rows, with the masses of the scene by ball id.
+double energyOf(const std::vector<CsvRow>& rows, std::size_t first, std::size_t count,
+                const ball_collision_sim::core::Scene& scene)
+{
+  const std::vector<ball_collision_sim::core::BallDef> balls = ball_collision_sim::core::allBalls(scene);
+  double energy = 0.0;
+  for (std::size_t i = first; i < first + count; ++i)
+  {
+    const CsvRow& row = rows[i];
+    EXPECT_GE(row.id, 0);
+    EXPECT_LT(static_cast<std::size_t>(row.id), balls.size());
+    const double m = balls.at(static_cast<std::size_t>(row.id)).mass;
+    const ball_collision_sim::core::Vec3 p(row.x, row.y, row.z);
+    const ball_collision_sim::core::Vec3 v(row.vx, row.vy, row.vz);
+    energy += 0.5 * m * v.squaredNorm() - m * scene.gravity.dot(p);
+  }
+  return energy;
+}
+
+TEST_F(SimulateCli, GoodSceneWritesTheSummaryAndTheCsv)
+{
+  const std::string csv = path("out.csv");
+  const RunResult result = run({kGoodScene, "--duration", "0.5", "--csv", csv, "--sample-every", "5"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.err, "");
+  const std::vector<std::string> out = lines(result.out);
+  ASSERT_EQ(out.size(), 1u) << "stdout must hold only the summary:\n" << result.out;
+  const Summary summary = parseSummary(out.back());
+
+  const ball_collision_sim::core::Scene scene = ball_collision_sim::yaml::loadValidScene(kGoodScene);
+  EXPECT_EQ(summary.steps, 50u);  // 0.5 s / 0.01 s
+  EXPECT_GE(summary.wall_s, 0.0);
+  EXPECT_EQ(summary.balls_lost, 0);
+
+  std::string header;
+  const std::vector<CsvRow> rows = parseCsv(readFile(csv), &header);
+  EXPECT_EQ(header, "t,id,x,y,z,vx,vy,vz");
+  const std::size_t balls = scene.balls.size();
+  const std::size_t samples = 50 / 5;
+  ASSERT_EQ(rows.size(), balls * (samples + 1));
+  for (std::size_t i = 0; i < rows.size(); ++i)
+  {
+    const std::size_t sample = i / balls;
+    EXPECT_NEAR(rows[i].t, static_cast<double>(sample * 5) * scene.dt, 1e-12) << "row " << i;
+  }
+
+  // The summary's energies are those of the first and the last sample, to round-off.
+  const double start = energyOf(rows, 0, balls, scene);
+  EXPECT_NEAR(summary.energy_start, start, 1e-12 * std::abs(start)) << "csv gives " << start;
+  const double end = energyOf(rows, rows.size() - balls, balls, scene);
+  EXPECT_NEAR(summary.energy_end, end, 1e-12 * std::abs(end)) << "csv gives " << end;
+  // Restitution 1 on a flat floor keeps the energy.
+  EXPECT_NEAR(summary.energy_end, summary.energy_start, 1e-9 * std::abs(summary.energy_start));
+}
+
+TEST_F(SimulateCli, StepAndSampleCounts)
+{
+  struct Case
+  {
+    std::vector<std::string> args;
+    std::uint64_t steps;
+    std::size_t samples;  // after t = 0
+  };
+  const std::vector<Case> cases{
+    {{"--duration", "1"}, 100, 100},
+    {{"--duration", "0.07"}, 7, 7},  // 0.07 / 0.01 is 7.000000000000001 in doubles: no 8th step
+    {{"--duration=0.5", "--sample-every=7"}, 50, 7},
+    {{"--duration", "0.005"}, 1, 1},  // a part of a step is a whole step
+    {{"--duration", "0"}, 0, 0},
+  };
+  const std::size_t balls = ball_collision_sim::yaml::loadValidScene(kGoodScene).balls.size();
+  for (const Case& c : cases)
+  {
+    SCOPED_TRACE(c.args[0]);
+    std::vector<std::string> args{kGoodScene, "--csv", path("out.csv")};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const RunResult result = run(args);
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(parseSummary(lines(result.out).back()).steps, c.steps);
+    std::string header;
+    EXPECT_EQ(parseCsv(readFile(path("out.csv")), &header).size(), balls * (c.samples + 1));
+  }
+}
+
+TEST_F(SimulateCli, WithoutCsvOnlyTheSummary)
+{
+  const RunResult result = run({kGoodScene, "--duration", "0.2"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.err, "");
+  ASSERT_EQ(lines(result.out).size(), 1u) << result.out;
+  EXPECT_EQ(parseSummary(lines(result.out)[0]).steps, 20u);
+}
+
+TEST_F(SimulateCli, TwoRunsWriteTheSameBits)
+{
+  ASSERT_EQ(run({kGoodScene, "--duration", "2", "--csv", path("a.csv")}).exit_code, 0);
+  ASSERT_EQ(run({kGoodScene, "--duration", "2", "--csv", path("b.csv")}).exit_code, 0);
+  const std::string a = readFile(path("a.csv"));
+  EXPECT_FALSE(a.empty());
+  EXPECT_TRUE(a == readFile(path("b.csv")));
+}
+}  // namespace

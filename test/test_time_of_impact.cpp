@@ -1,0 +1,145 @@
+#include "ball_collision_sim/core/time_of_impact.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace ball_collision_sim::core;
+
+TEST(SphereSweep, HeadOnMeetsAtGapOverClosingSpeed)
+{
+  // centres 1 m apart, radii sum 0.3, closing at 0.5 m per unit t: t = 0.7 / 0.5
+  const auto t = sphereSweep(Vec3(-1, 0, 0), Vec3(0.5, 0, 0), 0.3, 10);
+  ASSERT_TRUE(t);
+  EXPECT_NEAR(*t, 1.4, 1e-15);
+}
+
+TEST(SphereSweep, NoImpactWhenSeparatingPassingByOrTooLate)
+{
+  EXPECT_FALSE(sphereSweep(Vec3(-1, 0, 0), Vec3(-0.5, 0, 0), 0.3, 10));  // separating
+  EXPECT_FALSE(sphereSweep(Vec3(-1, 0.31, 0), Vec3(1, 0, 0), 0.3, 10));  // passes by
+  EXPECT_FALSE(sphereSweep(Vec3(-1, 0, 0), Vec3(0.5, 0, 0), 0.3, 1.39));  // after t_max
+  EXPECT_FALSE(sphereSweep(Vec3(-1, 0, 0), Vec3(0, 0, 0), 0.3, 10));     // no relative motion
+}
+
+TEST(SphereSweep, TouchingAndClosingIsAnImpactNow)
+{
+  EXPECT_EQ(*sphereSweep(Vec3(-0.3, 0, 0), Vec3(1, 0, 0), 0.3, 1), 0.0);
+  EXPECT_FALSE(sphereSweep(Vec3(-0.3, 0, 0), Vec3(-1, 0, 0), 0.3, 1));
+  // sliding past each other while touching is not an impact
+  EXPECT_FALSE(sphereSweep(Vec3(-0.3, 0, 0), Vec3(0, 1, 0), 0.3, 1));
+}
+
+TEST(SphereSweep, GrazingImpactsTouchAtTheContactDistance)
+{
+  // offsets ever closer to the sum of radii: the root found must put the centres at
+  // exactly that distance, to round-off
+  const double R = 0.2;
+  for (int k = 1; k <= 14; ++k)
+  {
+    const double h = R * (1 - std::pow(10.0, -k));
+    const auto t = sphereSweep(Vec3(-1, h, 0), Vec3(1.3, 0, 0), R, 10);
+    ASSERT_TRUE(t) << k;
+    EXPECT_NEAR((Vec3(-1, h, 0) + *t * Vec3(1.3, 0, 0)).norm(), R, 1e-15) << k;
+    // the time itself is as well conditioned as the graze allows: the distance changes
+    // at the rate sqrt(R^2 - h^2) / R there
+    const double along = std::sqrt((R - h) * (R + h));
+    EXPECT_NEAR(*t, (1 - along) / 1.3, 1e-13 + 1e-15 * R / along) << k;
+  }
+}
+
+TEST(SphereSweep, RandomCasesTouchAtTheRootAndNeverBefore)
+{
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int found = 0;
+  for (int k = 0; k < 5000; ++k)
+  {
+    const Vec3 d(u(rng), u(rng), u(rng)), e(u(rng), u(rng), u(rng));
+    const double reach = 0.5 * std::abs(u(rng));
+    const auto t = sphereSweep(d, e, reach, 1.0);
+    // the closed form: the earliest t in [0, 1] with |d + t e| <= reach
+    double first = -1;
+    if (d.norm() <= reach && e.dot(d) < 0)
+      first = 0;  // already touching and closing
+    else if (d.norm() > reach)
+    {
+      const double a = e.dot(e), hb = e.dot(d), c = d.dot(d) - reach * reach, disc = hb * hb - a * c;
+      if (hb < 0 && disc >= 0)
+      {
+        const double r = (-hb - std::sqrt(disc)) / a;
+        if (r <= 1)
+          first = r;
+      }
+    }
+    if (first < 0)
+    {
+      EXPECT_FALSE(t) << k;
+      continue;
+    }
+    ++found;
+    ASSERT_TRUE(t) << k;
+    EXPECT_NEAR(*t, first, 1e-9) << k;
+    if (first > 0)
+    {
+      EXPECT_NEAR((d + *t * e).norm(), reach, 1e-12) << k;
+    }
+  }
+  EXPECT_GT(found, 100);
+}
+
+namespace
+{
+Wall unitWall()
+{
+  // the square [0, 1] x [0, 1] in the plane z = 0
+  return Wall(0, WallDef{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), {}}, 1.0);
+}
+}  // namespace
+
+TEST(SweepWall, FaceFromEitherSide)
+{
+  const Wall w = unitWall();
+  auto hit = sweepWall(w, Vec3(0.5, 0.5, 2), Vec3(0, 0, -1), 0.25, 10);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->feature, WallFeature::kFace);
+  EXPECT_NEAR(hit->t, 1.75, 1e-15);
+  EXPECT_TRUE(hit->normal.isApprox(Vec3(0, 0, 1)));
+  hit = sweepWall(w, Vec3(0.5, 0.5, -2), Vec3(0, 0, 1), 0.25, 10);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->t, 1.75, 1e-15);
+  EXPECT_TRUE(hit->normal.isApprox(Vec3(0, 0, -1)));
+}
+
+TEST(SweepWall, EdgeWhenPassingBesideTheFace)
+{
+  const Wall w = unitWall();
+  // moving down at x = 1.1: misses the face, touches the edge x = 1 (a cylinder of
+  // radius 0.25): contact when the centre is at height sqrt(0.25^2 - 0.1^2)
+  const auto hit = sweepWall(w, Vec3(1.1, 0.5, 2), Vec3(0, 0, -1), 0.25, 10);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->feature, WallFeature::kEdge);
+  const double z = std::sqrt(0.25 * 0.25 - 0.1 * 0.1);
+  EXPECT_NEAR(hit->t, 2 - z, 1e-14);
+  EXPECT_TRUE(hit->normal.isApprox(Vec3(0.1, 0, z) / 0.25, 1e-12));
+}
+
+TEST(SweepWall, CornerWhenPassingBesideTwoEdges)
+{
+  const Wall w = unitWall();
+  const auto hit = sweepWall(w, Vec3(1.1, 1.1, 2), Vec3(0, 0, -1), 0.25, 10);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->feature, WallFeature::kCorner);
+  const double z = std::sqrt(0.25 * 0.25 - 0.02);
+  EXPECT_NEAR(hit->t, 2 - z, 1e-14);
+  EXPECT_FALSE(sweepWall(w, Vec3(1.2, 1.2, 2), Vec3(0, 0, -1), 0.25, 10));  // sqrt(0.08) > 0.25
+}
+
+TEST(SweepWall, NoTunnellingAtAnySpeed)
+{
+  const Wall w = unitWall();
+  // 1e6 m per unit t through a wall of zero thickness
+  const auto hit = sweepWall(w, Vec3(0.5, 0.5, 3), Vec3(0, 0, -1e6), 0.01, 1);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->t, (3 - 0.01) / 1e6, 1e-20);
+}

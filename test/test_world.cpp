@@ -1,0 +1,326 @@
+#include "fixtures.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace ball_collision_sim::core;
+using namespace ball_collision_sim::test;
+
+namespace
+{
+std::vector<CollisionEvent> runCollecting(World& world, int steps)
+{
+  std::vector<CollisionEvent> all;
+  for (int k = 0; k < steps; ++k)
+  {
+    world.step();
+    all.insert(all.end(), world.lastEvents().begin(), world.lastEvents().end());
+  }
+  return all;
+}
+}  // namespace
+
+// One ball runs into a row of four at rest, all touching: the momentum passes down the
+// row in one instant and only the last ball leaves, at the first one's speed.
+TEST(NewtonsCradle, OneInOneOut)
+{
+  Scene scene = flatScene(-2, 3, -1, 1);
+  scene.balls = {ball(-0.3, 0, 1, 0), ball(0, 0, 0, 0), ball(0.2, 0, 0, 0), ball(0.4, 0, 0, 0), ball(0.6, 0, 0, 0)};
+  World world(scene);
+  const auto events = runCollecting(world, 50);
+  ASSERT_EQ(events.size(), 4u);
+  for (std::size_t k = 0; k < events.size(); ++k)
+  {
+    EXPECT_NEAR(events[k].time, 0.1, 1e-12);
+    EXPECT_EQ(events[k].ball, static_cast<int>(k));
+    EXPECT_EQ(events[k].other, static_cast<int>(k + 1));
+  }
+  for (int i = 0; i < 4; ++i)
+    EXPECT_LT(world.balls()[i].velocity.norm(), 1e-12) << i;
+  EXPECT_NEAR(world.balls()[4].velocity.x(), 1, 1e-12);
+}
+
+// Two touching balls come in: two leave.
+TEST(NewtonsCradle, TwoInTwoOut)
+{
+  Scene scene = flatScene(-2, 3, -1, 1);
+  scene.balls = {ball(-0.5, 0, 1, 0), ball(-0.3, 0, 1, 0), ball(0, 0, 0, 0), ball(0.2, 0, 0, 0), ball(0.4, 0, 0, 0)};
+  World world(scene);
+  const double e0 = world.energy().kinetic;
+  runCollecting(world, 50);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_LT(world.balls()[i].velocity.norm(), 1e-12) << i;
+  EXPECT_NEAR(world.balls()[3].velocity.x(), 1, 1e-12);
+  EXPECT_NEAR(world.balls()[4].velocity.x(), 1, 1e-12);
+  EXPECT_NEAR(world.energy().kinetic, e0, 1e-14);
+}
+
+// 10^4 m/s between walls 2 m apart for 10 s: about 55,600 bounces, none missed.
+TEST(FastBall, NeverTunnels)
+{
+  Scene scene = flatScene(-1, 1, -0.5, 0.5);
+  addBox(scene, -1, 1, -0.5, 0.5);
+  const double speed = 1e4, r = 0.1;
+  scene.balls = {ball(0, 0, speed, 0, r)};
+  World world(scene);
+  std::uint64_t events = 0;
+  for (int k = 0; k < 1000; ++k)
+  {
+    world.step();
+    events += world.lastEvents().size();
+    const Vec3& p = world.balls()[0].position;
+    ASSERT_LE(std::abs(p.x()), 1 - r + 1e-9) << "step " << k;
+    ASSERT_LE(std::abs(p.y()), 0.5 - r + 1e-9) << "step " << k;
+  }
+  // first impact after 0.9 m, then one every 1.8 m
+  const double expected = std::floor((speed * world.time() - 0.9) / 1.8) + 1;
+  EXPECT_NEAR(static_cast<double>(events), expected, 1.0);
+  EXPECT_NEAR(world.balls()[0].velocity.norm(), speed, 1e-9 * speed);
+  EXPECT_EQ(world.lostBalls(), 0);
+}
+
+TEST(FastBall, DiagonalInABoxStaysInside)
+{
+  Scene scene = flatScene(-1, 1, -1, 1);
+  addBox(scene, -1, 1, -1, 1);
+  scene.balls = {ball(0, 0, 7000, 3000, 0.05), ball(0.5, 0.5, -2000, 9000, 0.07, 3)};
+  World world(scene);
+  const double e0 = world.energy().kinetic;
+  for (int k = 0; k < 1000; ++k)
+  {
+    world.step();
+    for (const Ball& b : world.balls())
+      ASSERT_LE(b.position.head<2>().cwiseAbs().maxCoeff(), 1 - b.radius + 1e-9) << k;
+    ASSERT_LT(deepestOverlap(world.balls()), 1e-9);
+  }
+  EXPECT_NEAR(world.energy().kinetic, e0, 1e-9 * e0);
+}
+
+// A wall x = 0 from y = -0.5 to 0.5: a ball passing just beyond its end hits the
+// vertical edge and leaves along the reflection about the radial normal.
+TEST(WallFeatures, VerticalEdge)
+{
+  Scene scene = flatScene(-2, 2, -2, 2);
+  scene.walls = {{Vec3(0, -0.5, 0), Vec3(0, 1, 0), Vec3(0, 0, 0.5), {}}};
+  const double r = 0.1, off = 0.05;
+  scene.balls = {ball(-1, 0.5 + off, 2, 0, r)};
+  World world(scene);
+  const auto events = runCollecting(world, 100);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].feature, WallFeature::kEdge);
+  const double x_hit = -std::sqrt(r * r - off * off);
+  EXPECT_NEAR(events[0].time, (x_hit + 1) / 2, 1e-12);
+  const Vec3 n = Vec3(x_hit, off, 0) / r;  // from the edge toward the centre
+  const Vec3 v_in(2, 0, 0);
+  EXPECT_TRUE(world.balls()[0].velocity.isApprox(v_in - 2 * v_in.dot(n) * n, 1e-12));
+}
+
+// A low wall (0.05 m, below the centre of a 0.1 m ball): a ball beyond its end hits the
+// top corner; on the floor only the horizontal part of the normal acts.
+TEST(WallFeatures, CornerOfALowWall)
+{
+  Scene scene = flatScene(-2, 2, -2, 2);
+  scene.walls = {{Vec3(0, -0.5, 0), Vec3(0, 1, 0), Vec3(0, 0, 0.05), {}}};
+  const double r = 0.1, off = 0.05;
+  scene.balls = {ball(-1, 0.5 + off, 2, 0, r)};
+  World world(scene);
+  const double e0 = world.energy().total();
+  const auto events = runCollecting(world, 100);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].feature, WallFeature::kCorner);
+  // centre at height r, corner at (0, 0.5, 0.05): |c - corner| = r
+  const double x_hit = -std::sqrt(r * r - off * off - (r - 0.05) * (r - 0.05));
+  EXPECT_NEAR(events[0].time, (x_hit + 1) / 2, 1e-12);
+  const Vec3 t = Vec3(x_hit, off, 0).normalized();
+  const Vec3 v_in(2, 0, 0);
+  EXPECT_TRUE(world.balls()[0].velocity.isApprox(v_in - 2 * v_in.dot(t) * t, 1e-12));
+  EXPECT_NEAR(world.balls()[0].velocity.z(), 0, 1e-15);
+  EXPECT_NEAR(world.energy().total(), e0, 1e-12 * e0);
+}
+
+TEST(WallFeatures, TopEdgeOfALowWall)
+{
+  Scene scene = flatScene(-2, 2, -2, 2);
+  scene.walls = {{Vec3(0, -0.5, 0), Vec3(0, 1, 0), Vec3(0, 0, 0.05), {}}};
+  scene.balls = {ball(-1, 0, 2, 0.5)};
+  World world(scene);
+  const auto events = runCollecting(world, 100);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].feature, WallFeature::kEdge);
+  EXPECT_TRUE(world.balls()[0].velocity.isApprox(Vec3(-2, 0.5, 0), 1e-12));
+}
+
+namespace
+{
+/// A plane tilted by theta, downhill along +x, with a wall across its lower end.
+Scene slopeWithWall(double theta, double restitution)
+{
+  Scene scene;
+  const double L = 4;
+  FloorDef f;
+  f.point = Vec3(0, -1, 0);
+  f.u = Vec3(L * std::cos(theta), 0, -L * std::sin(theta));
+  f.v = Vec3(0, 2, 0);
+  scene.floor = f;
+  scene.restitution = restitution;
+  const Vec3 n = f.u.cross(f.v).normalized();
+  const Vec3 foot = f.point + 0.9 * f.u;  // the wall stands at 90 % of the slope
+  scene.walls = {{foot, f.v, 0.5 * n, {}}};
+  return scene;
+}
+}  // namespace
+
+// A ball leaning on a wall on a slope stays put: no jitter and at most one contact a step.
+TEST(RestingContact, BallAgainstWallOnSlopeDoesNotJitter)
+{
+  const double theta = 0.4, r = 0.1;
+  Scene scene = slopeWithWall(theta, 1.0);
+  const Vec3 down = scene.floor->u.normalized();
+  const Vec3 n = scene.floor->u.cross(scene.floor->v).normalized();
+  BallDef b;
+  b.radius = r;
+  b.position = scene.walls[0].point + Vec3(0, 1, 0) - r * down + r * n;  // touching the wall
+  scene.balls = {b};
+  World world(scene);
+  const Vec3 start = world.balls()[0].position;
+  std::size_t most = 0;
+  for (int k = 0; k < 1000; ++k)
+  {
+    world.step();
+    most = std::max(most, world.lastEvents().size());
+    ASSERT_LT((world.balls()[0].position - start).norm(), 1e-9) << "step " << k;
+  }
+  EXPECT_LE(most, 1u);
+  EXPECT_LT(world.balls()[0].velocity.norm(), 1e-9);
+}
+
+// Released above the wall with some restitution, the ball bounces, settles, then rests.
+TEST(RestingContact, BouncesDieOutThenRests)
+{
+  const double theta = 0.4, r = 0.1;
+  Scene scene = slopeWithWall(theta, 0.5);
+  const Vec3 down = scene.floor->u.normalized();
+  const Vec3 n = scene.floor->u.cross(scene.floor->v).normalized();
+  BallDef b;
+  b.radius = r;
+  b.position = scene.walls[0].point + Vec3(0, 1, 0) - 1.0 * down + r * n;
+  scene.balls = {b};
+  World world(scene);
+  for (int k = 0; k < 1000; ++k)
+    world.step();
+  const double gap = (world.balls()[0].position - scene.walls[0].point).dot(-down) - r;
+  EXPECT_NEAR(gap, 0, 1e-9);
+  EXPECT_LT(world.balls()[0].velocity.norm(), 1e-9);
+  std::size_t most = 0;
+  for (int k = 0; k < 100; ++k)
+  {
+    world.step();
+    most = std::max(most, world.lastEvents().size());
+  }
+  EXPECT_LE(most, 1u);
+  EXPECT_GT(world.stats().resting_events, 0u);
+}
+
+namespace
+{
+Scene gas(std::uint64_t seed)
+{
+  Scene scene = flatScene(-2, 2, -2, 2);
+  addBox(scene, -2, 2, -2, 2);
+  RandomBallsDef rb;
+  rb.count = 300;
+  rb.seed = seed;
+  rb.radius = {0.04, 0.08};
+  rb.mass = {0.5, 2};
+  rb.speed = {0, 3};
+  scene.random_balls = rb;
+  return scene;
+}
+}  // namespace
+
+TEST(Determinism, SameSceneSameBits)
+{
+  World a(gas(11)), b(gas(11)), c(gas(12));
+  EXPECT_EQ(a.stateHash(), b.stateHash());
+  EXPECT_NE(a.stateHash(), c.stateHash());
+  for (int k = 0; k < 300; ++k)
+  {
+    a.step();
+    b.step();
+  }
+  EXPECT_GT(a.stats().events, 100u);
+  EXPECT_EQ(a.stateHash(), b.stateHash());
+  EXPECT_EQ(a.stats().events, b.stats().events);
+  // the hash sees a change of one bit in one velocity
+  World d(gas(11));
+  for (int k = 0; k < 300; ++k)
+    d.step();
+  EXPECT_EQ(d.stateHash(), a.stateHash());
+  d.reset();
+  World fresh(gas(11));
+  EXPECT_EQ(d.stateHash(), fresh.stateHash());
+}
+
+TEST(Editing, RefusedAddChangesNothing)
+{
+  Scene scene = flatScene();
+  addBox(scene, -2, 2, -2, 2);
+  scene.balls = {ball(0, 0, 1, 0)};
+  World world(scene);
+  const std::uint64_t before = world.stateHash();
+
+  struct Case
+  {
+    BallDef def;
+    const char* key;
+  };
+  BallDef nan_ball = ball(0.5, 0.5, 0, 0);
+  nan_ball.velocity.x() = std::nan("");
+  BallDef zero_radius = ball(0.5, 0.5, 0, 0);
+  zero_radius.radius = 0;
+  BallDef neg_mass = ball(0.5, 0.5, 0, 0);
+  neg_mass.mass = -1;
+  BallDef huge = ball(0.5, 0.5, 0, 0);
+  huge.radius = 1e300;
+  const Case cases[] = {
+      {nan_ball, "velocity"},         {zero_radius, "radius"},          {neg_mass, "mass"},
+      {huge, "radius"},               {ball(0.15, 0, 0, 0), "position"},  // overlaps ball 0
+      {ball(1.95, 0, 0, 0), "position"},                                  // overlaps a wall
+      {ball(5, 0, 0, 0), "position"},                                     // off the floor
+  };
+  for (const Case& c : cases)
+  {
+    const AddResult result = world.addBall(c.def);
+    EXPECT_FALSE(result.ok) << c.key;
+    EXPECT_EQ(result.error.rfind(c.key, 0), 0u) << result.error;
+    EXPECT_EQ(world.stateHash(), before) << c.key;
+  }
+  const AddResult bad_wall = world.addWall({Vec3(0, -1, 0), Vec3(0, 2, 0), Vec3(0, 4, 0), {}});
+  EXPECT_FALSE(bad_wall.ok);
+  EXPECT_NE(bad_wall.error.find("parallel"), std::string::npos) << bad_wall.error;
+  const AddResult through = world.addWall({Vec3(0, -1, 0), Vec3(0, 2, 0), Vec3(0, 0, 0.5), {}});
+  EXPECT_FALSE(through.ok);
+  EXPECT_EQ(world.walls().size(), 4u);
+  EXPECT_FALSE(world.removeBall(42));
+  EXPECT_FALSE(world.removeWall(42));
+  EXPECT_EQ(world.stateHash(), before);
+}
+
+TEST(Editing, AddedBallSitsOnTheFloorAndMoves)
+{
+  Scene scene = flatScene();
+  World world(scene);
+  BallDef def = ball(0.5, 0.5, 1, 0, 0.2);
+  def.position.z() = 0.25;  // put back on the floor: centre at one radius
+  def.velocity.z() = 3;     // only the tangent part is kept
+  const AddResult added = world.addBall(def);
+  ASSERT_TRUE(added.ok) << added.error;
+  const Ball* b = world.findBall(added.id);
+  ASSERT_NE(b, nullptr);
+  EXPECT_NEAR(b->position.z(), 0.2, 1e-15);
+  EXPECT_NEAR(b->velocity.z(), 0, 1e-15);
+  for (int k = 0; k < 10; ++k)
+    world.step();
+  EXPECT_NEAR(world.findBall(added.id)->position.x(), 0.6, 1e-12);
+  EXPECT_TRUE(world.removeBall(added.id));
+  EXPECT_EQ(world.findBall(added.id), nullptr);
+}
