@@ -1,0 +1,27 @@
+# The package's two everyday commands, for a fresh Debian 12 machine:
+#   make demo   installs what is needed, builds, and runs the demo
+#   make test   installs what is needed, builds, and runs every test
+BUILD ?= build
+BUILD_ABS := $(abspath $(BUILD))
+JOBS ?= 2
+DURATION ?= 10
+
+.PHONY: deps build test demo clean
+
+deps:
+	bash scripts/install_deps
+
+build: deps
+	cmake -S . -B $(BUILD) -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+	  -DCATKIN_DEVEL_PREFIX=$(BUILD_ABS)/devel -DCMAKE_BUILD_TYPE=RelWithDebInfo
+	cmake --build $(BUILD) -j$(JOBS)
+
+test: build
+	cmake --build $(BUILD) -j$(JOBS) --target tests
+	bash scripts/run_tests $(BUILD)
+
+demo: build
+	bash scripts/demo $(BUILD) $(DURATION)
+
+clean:
+	rm -rf $(BUILD)
