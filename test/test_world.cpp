@@ -220,6 +220,62 @@ TEST(RestingContact, BouncesDieOutThenRests)
   EXPECT_GT(world.stats().resting_events, 0u);
 }
 
+// A row of three balls leaning on the wall, each on the next: the pile stays put and the
+// contacts stay few (no endless chain of resting events).
+TEST(RestingContact, PileOfThreeAgainstWallOnSlope)
+{
+  const double theta = 0.3, r = 0.1;
+  Scene scene = slopeWithWall(theta, 1.0);
+  const Vec3 down = scene.floor->u.normalized();
+  const Vec3 n = scene.floor->u.cross(scene.floor->v).normalized();
+  for (int k = 0; k < 3; ++k)
+  {
+    BallDef b;
+    b.radius = r;
+    b.mass = 1.0 + k;
+    b.position = scene.walls[0].point + Vec3(0, 1, 0) - (1 + 2 * k) * r * down + r * n;
+    scene.balls.push_back(b);
+  }
+  World world(scene);
+  std::vector<Vec3> start;
+  for (const Ball& b : world.balls())
+    start.push_back(b.position);
+  std::size_t most = 0;
+  for (int k = 0; k < 1000; ++k)
+  {
+    world.step();
+    most = std::max(most, world.lastEvents().size());
+  }
+  for (std::size_t i = 0; i < 3; ++i)
+    EXPECT_LT((world.balls()[i].position - start[i]).norm(), 1e-9) << i;
+  EXPECT_LE(most, 3u);  // one per contact
+  EXPECT_EQ(world.stats().frozen_balls, 0u);
+}
+
+// Two balls in a channel barely wider than both: many impacts per step, all kept.
+TEST(Squeeze, TwoBallsBetweenCloseWalls)
+{
+  const double r = 0.1, gap = 0.004;
+  const double width = 4 * r + 3 * gap;
+  Scene scene = flatScene(0, width, -1, 1);
+  scene.walls = {{Vec3(0, -1, 0), Vec3(0, 2, 0), Vec3(0, 0, 0.5), {}},
+                 {Vec3(width, -1, 0), Vec3(0, 2, 0), Vec3(0, 0, 0.5), {}}};
+  scene.balls = {ball(r + gap, 0, 1.3, 0), ball(3 * r + 2 * gap, 0, -0.7, 0, r, 2)};
+  World world(scene);
+  const double e0 = world.energy().kinetic;
+  for (int k = 0; k < 1000; ++k)
+  {
+    world.step();
+    const auto& b = world.balls();
+    ASSERT_GE(b[0].position.x(), r - 1e-9);
+    ASSERT_LE(b[1].position.x(), width - r + 1e-9);
+    ASSERT_GE(b[1].position.x() - b[0].position.x(), 2 * r - 1e-9);
+  }
+  EXPECT_GT(world.stats().events, 1000u);
+  EXPECT_NEAR(world.energy().kinetic, e0, 1e-12 * e0);
+  EXPECT_EQ(world.stats().frozen_balls, 0u);
+}
+
 namespace
 {
 Scene gas(std::uint64_t seed)

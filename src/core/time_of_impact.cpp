@@ -11,7 +11,7 @@ std::optional<double> sphereSweep(const Vec3& d, const Vec3& e, double reach, do
   if (c <= 0)
   {
     // Touching (or overlapping by round-off): an impact now, if closing at all.
-    if (h < -kClosingCosine * e.norm() * d.norm())
+    if (-h * t_max > kClosingSlop * reach * d.norm())
       return 0.0;
     return std::nullopt;
   }
@@ -45,7 +45,7 @@ std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e,
   double t = 0;
   if (d0 <= r)
   {
-    if (!(rate < -kClosingCosine * e.norm()))
+    if (!(-rate * t_max > kClosingSlop * r))
       return std::nullopt;
   }
   else

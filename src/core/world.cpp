@@ -7,6 +7,7 @@
 #include "ball_collision_sim/core/time_of_impact.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -24,7 +25,6 @@ constexpr std::uint32_t kMaxEventsPerBallStep = 256;
 constexpr double kRestingSteps = 2.0;
 /// ... and below this [m/s] always (flat floors, where gravity adds nothing).
 constexpr double kRestingSpeedFloor = 1e-9;
-constexpr std::size_t kNoBall = std::numeric_limits<std::size_t>::max();
 /// A resting contact removes the closing part of the motion and this fraction more, so
 /// that what is left separates by more than round-off and is not seen as closing again.
 constexpr double kSeparationBias = 1e-12;
@@ -43,6 +43,43 @@ struct World::Motion
   std::uint32_t epoch = 0;       ///< bumped at every event of this ball
   std::uint32_t events = 0;      ///< events of this ball in this step
   bool frozen = false;
+  /// Unit directions this ball may not move along for the rest of the step: toward a
+  /// wall or a blocked ball it rests on. A ball in a corner or a pile has several.
+  std::array<Vec3, 4> blocked;
+  std::uint8_t blocked_count = 0;
+
+  /// Removes from `w` its part along any blocked direction, and `bias` more of it, so
+  /// that what is left separates by more than round-off.
+  void block(Vec3& w, double bias) const
+  {
+    for (int pass = 0; pass < 2; ++pass)  // a second pass for corners that are not square
+      for (std::uint8_t k = 0; k < blocked_count; ++k)
+      {
+        const double into = w.dot(blocked[k]);
+        if (into > 0)
+          w -= (into * (1 + bias)) * blocked[k];
+      }
+  }
+  /// The part of an impulse direction `d` (the ball's velocity changes along +d) that
+  /// the blocked directions let through.
+  Vec3 allowed(Vec3 d) const
+  {
+    for (std::uint8_t k = 0; k < blocked_count; ++k)
+    {
+      const double into = d.dot(blocked[k]);
+      if (into > 0)
+        d -= into * blocked[k];
+    }
+    return d;
+  }
+  void addBlocked(const Vec3& direction)
+  {
+    for (std::uint8_t k = 0; k < blocked_count; ++k)
+      if (blocked[k].dot(direction) > 1 - 1e-12)
+        return;
+    if (blocked_count < blocked.size())
+      blocked[blocked_count++] = direction;
+  }
 };
 
 /// A predicted impact; stale once either ball's epoch has moved on.
@@ -244,16 +281,11 @@ void World::commitToFloor()
     ball.velocity = m.frozen ? Vec3::Zero() : onFloorVelocity(m, 1.0, p, normal);
   }
   // Resting contacts keep no closing speed into the step that follows.
+  for (std::size_t i = 0; i < balls_.size(); ++i)
+    motions_[i].block(balls_[i].velocity, 0.0);
   for (const RestingContact& contact : resting_)
   {
     Ball& a = balls_[contact.ball];
-    if (contact.other == kNoBall)
-    {
-      const double closing = a.velocity.dot(contact.dir_ball);
-      if (closing > 0)
-        a.velocity -= closing * contact.dir_ball;
-      continue;
-    }
     Ball& b = balls_[contact.other];
     const double inv_a = motions_[contact.ball].frozen ? 0.0 : 1.0 / a.mass;
     const double inv_b = motions_[contact.other].frozen ? 0.0 : 1.0 / b.mass;
@@ -395,9 +427,16 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   Motion& m = motions_[i];
   m.x0 = x;
   m.p0 = position;
+  if (m.frozen)
+  {
+    m.v0 = m.b = Vec3::Zero();
+    return;
+  }
   m.v0 = velocity;
+  m.block(m.v0, 0.0);
   const double rest = 1 - x;
-  m.b = rest > 0 ? Vec3((predictedEnd(i, position, velocity, rest * dt_) - position) / rest) : Vec3(dt_ * velocity);
+  m.b = rest > 0 ? Vec3((predictedEnd(i, position, m.v0, rest * dt_) - position) / rest) : Vec3(dt_ * m.v0);
+  m.block(m.b, kSeparationBias);
 }
 
 void World::countEvent(std::size_t i)
@@ -443,15 +482,9 @@ void World::resolveBallWall(const Event& event)
       collisionImpulse(std::max(closing, 0.0), inv_mass, dir, 0.0, dir, resting ? 0.0 : wall.restitution);
   v -= (impulse * inv_mass) * dir;
 
-  startMotion(i, event.x, p, v);
   if (resting)
-  {
-    Motion& m = motions_[i];
-    const double into = m.b.dot(dir);
-    if (into > 0)
-      m.b -= (into * (1 + kSeparationBias)) * dir;
-    resting_.push_back({i, kNoBall, dir, dir});
-  }
+    motions_[i].addBlocked(dir);  // leaning on the wall until the step ends
+  startMotion(i, event.x, p, v);
   CollisionEvent out;
   out.kind = CollisionEvent::Kind::kBallWall;
   out.ball = ball.id;
@@ -488,11 +521,16 @@ void World::resolveBallBall(const Event& event)
   Vec3 n = pb - pa;
   const double dist = n.norm();
   n = dist > 0 ? Vec3(n / dist) : Vec3(Vec3::UnitX());
-  // Each ball is pushed along the normal's part tangent to the floor under it.
-  const Vec3 ta = floor_ ? tangentPart(n, na) : n;
-  const Vec3 tb = floor_ ? tangentPart(n, nb) : n;
-  const double inv_a = motions_[i].frozen ? 0.0 : 1.0 / a.mass;
-  const double inv_b = motions_[j].frozen ? 0.0 : 1.0 / b.mass;
+  Motion& ma = motions_[i];
+  Motion& mb = motions_[j];
+  // Each ball is pushed along the normal's part tangent to the floor under it, less any
+  // part toward what it leans on (that part of the impulse goes into the wall).
+  const Vec3 along_a = floor_ ? tangentPart(n, na) : n;
+  const Vec3 along_b = floor_ ? tangentPart(n, nb) : n;
+  const Vec3 ta = -ma.allowed(-along_a);
+  const Vec3 tb = mb.allowed(along_b);
+  const double inv_a = ma.frozen ? 0.0 : 1.0 / a.mass;
+  const double inv_b = mb.frozen ? 0.0 : 1.0 / b.mass;
   const double closing = va.dot(ta) - vb.dot(tb);
   const bool resting = closing <= std::max(restingSpeed(na), restingSpeed(nb));
   const double impulse =
@@ -500,18 +538,28 @@ void World::resolveBallBall(const Event& event)
   va -= (impulse * inv_a) * ta;
   vb += (impulse * inv_b) * tb;
 
+  if (resting)
+  {
+    // A ball that cannot give way along the contact blocks the other's approach for the
+    // rest of the step, so piles against a wall settle in one event per contact.
+    const bool a_fixed = inv_a * ta.squaredNorm() < 1e-12 * inv_b * tb.squaredNorm();
+    const bool b_fixed = inv_b * tb.squaredNorm() < 1e-12 * inv_a * ta.squaredNorm();
+    if (a_fixed && along_b.squaredNorm() > 0)
+      mb.addBlocked(-along_b.normalized());
+    if (b_fixed && along_a.squaredNorm() > 0)
+      ma.addBlocked(along_a.normalized());
+  }
   startMotion(i, event.x, pa, va);
   startMotion(j, event.x, pb, vb);
   if (resting)
   {
-    Motion& ma = motions_[i];
-    Motion& mb = motions_[j];
     const double into = ma.b.dot(ta) - mb.b.dot(tb);
-    if (into > 0)
+    const double k = inv_a * ta.squaredNorm() + inv_b * tb.squaredNorm();
+    if (into > 0 && k > 0)
     {
-      const double k = collisionImpulse(into * (1 + kSeparationBias), inv_a, ta, inv_b, tb, 0.0);
-      ma.b -= (k * inv_a) * ta;
-      mb.b += (k * inv_b) * tb;
+      const double jb = into * (1 + kSeparationBias) / k;
+      ma.b -= (jb * inv_a) * ta;
+      mb.b += (jb * inv_b) * tb;
     }
     resting_.push_back({i, j, ta, tb});
   }

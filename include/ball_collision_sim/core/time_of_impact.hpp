@@ -7,13 +7,15 @@
 
 namespace ball_collision_sim::core
 {
-/// Below this cosine between motion and separation, two touching objects are taken
-/// as sliding along each other rather than closing (round-off after a resting contact).
-constexpr double kClosingCosine = 1e-12;
+/// Two touching objects are closing only when the motion left in the step would take
+/// them deeper than this fraction of the contact distance; less is round-off (from a
+/// resting contact), not an impact.
+constexpr double kClosingSlop = 1e-12;
 
 /// Earliest t in [0, t_max] at which |d + t e| = reach while the distance shrinks:
 /// the smaller root of <e,e> t^2 + 2 <e,d> t + <d,d> - reach^2 = 0, in the stable form
-/// t = c / (-h + sqrt(h^2 - a c)), h = <e, d>. Already touching and closing: t = 0.
+/// t = c / (-h + sqrt(h^2 - a c)), h = <e, d>. Already touching and closing by more
+/// than kClosingSlop * reach over [0, t_max]: t = 0.
 /// Ball-ball: d = p1 - p2, e = ds1 - ds2, reach = r1 + r2.
 std::optional<double> sphereSweep(const Vec3& d, const Vec3& e, double reach, double t_max);
 

@@ -98,12 +98,13 @@ private:
   {
     bool operator()(const Event& a, const Event& b) const;
   };
+  /// Two balls resting on each other: no closing speed is left at the step's end.
   struct RestingContact
   {
     std::size_t ball;
-    std::size_t other;  ///< ball index, or none for a wall
-    Vec3 dir_ball;      ///< direction of the normal impulse on `ball`
-    Vec3 dir_other;     ///< ... and, reversed, on `other`
+    std::size_t other;
+    Vec3 dir_ball;   ///< direction of the normal impulse on `ball`
+    Vec3 dir_other;  ///< ... and, reversed, on `other`
   };
 
   void load();
