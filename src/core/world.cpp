@@ -25,9 +25,6 @@ constexpr std::uint32_t kMaxEventsPerBallStep = 256;
 constexpr double kRestingSteps = 2.0;
 /// ... and below this [m/s] always (flat floors, where gravity adds nothing).
 constexpr double kRestingSpeedFloor = 1e-9;
-/// A resting contact removes the closing part of the motion and this fraction more, so
-/// that what is left separates by more than round-off and is not seen as closing again.
-constexpr double kSeparationBias = 1e-12;
 }  // namespace
 
 /// A ball's straight motion inside the current step, in the step fraction x shared by all
@@ -44,33 +41,38 @@ struct World::Motion
   std::uint32_t events = 0;      ///< events of this ball in this step
   bool frozen = false;
   /// Unit directions this ball may not move along for the rest of the step: toward a
-  /// wall or a blocked ball it rests on. A ball in a corner or a pile has several.
-  std::array<Vec3, 4> blocked;
+  /// wall it leans on, or toward a ball that cannot give way. A ball in a corner or in a
+  /// pile at rest has several.
+  std::array<Vec3, 8> blocked;
   std::uint8_t blocked_count = 0;
 
-  /// Removes from `w` its part along any blocked direction, and `bias` more of it, so
-  /// that what is left separates by more than round-off.
-  void block(Vec3& w, double bias) const
+  /// `w` without its parts along the blocked directions: the nearest vector with
+  /// <w, d> <= 0 for every blocked d, by cyclic projection; zero (which always qualifies)
+  /// when that does not settle.
+  Vec3 allowed(Vec3 w) const
   {
-    for (int pass = 0; pass < 2; ++pass)  // a second pass for corners that are not square
+    if (blocked_count == 0)
+      return w;
+    const double scale = w.norm();
+    for (int pass = 0; pass < 16; ++pass)
+    {
+      bool changed = false;
       for (std::uint8_t k = 0; k < blocked_count; ++k)
       {
         const double into = w.dot(blocked[k]);
         if (into > 0)
-          w -= (into * (1 + bias)) * blocked[k];
+        {
+          w -= into * blocked[k];
+          changed = true;
+        }
       }
-  }
-  /// The part of an impulse direction `d` (the ball's velocity changes along +d) that
-  /// the blocked directions let through.
-  Vec3 allowed(Vec3 d) const
-  {
-    for (std::uint8_t k = 0; k < blocked_count; ++k)
-    {
-      const double into = d.dot(blocked[k]);
-      if (into > 0)
-        d -= into * blocked[k];
+      if (!changed)
+        return w;
     }
-    return d;
+    for (std::uint8_t k = 0; k < blocked_count; ++k)
+      if (w.dot(blocked[k]) > 1e-14 * scale)
+        return Vec3::Zero();
+    return w;
   }
   void addBlocked(const Vec3& direction)
   {
@@ -282,7 +284,7 @@ void World::commitToFloor()
   }
   // Resting contacts keep no closing speed into the step that follows.
   for (std::size_t i = 0; i < balls_.size(); ++i)
-    motions_[i].block(balls_[i].velocity, 0.0);
+    balls_[i].velocity = motions_[i].allowed(balls_[i].velocity);
   for (const RestingContact& contact : resting_)
   {
     Ball& a = balls_[contact.ball];
@@ -432,11 +434,10 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
     m.v0 = m.b = Vec3::Zero();
     return;
   }
-  m.v0 = velocity;
-  m.block(m.v0, 0.0);
+  m.v0 = m.allowed(velocity);
   const double rest = 1 - x;
   m.b = rest > 0 ? Vec3((predictedEnd(i, position, m.v0, rest * dt_) - position) / rest) : Vec3(dt_ * m.v0);
-  m.block(m.b, kSeparationBias);
+  m.b = m.allowed(m.b);
 }
 
 void World::countEvent(std::size_t i)
@@ -541,9 +542,13 @@ void World::resolveBallBall(const Event& event)
   if (resting)
   {
     // A ball that cannot give way along the contact blocks the other's approach for the
-    // rest of the step, so piles against a wall settle in one event per contact.
-    const bool a_fixed = inv_a * ta.squaredNorm() < 1e-12 * inv_b * tb.squaredNorm();
-    const bool b_fixed = inv_b * tb.squaredNorm() < 1e-12 * inv_a * ta.squaredNorm();
+    // rest of the step, and two balls that are both all but still (a pile at rest) block
+    // each other, so that piles settle in one event per contact instead of passing
+    // vanishing impulses back and forth.
+    const double still = std::max(restingSpeed(na), restingSpeed(nb));
+    const bool both_still = va.norm() <= still && vb.norm() <= still;
+    const bool a_fixed = both_still || inv_a * ta.squaredNorm() < 1e-12 * inv_b * tb.squaredNorm();
+    const bool b_fixed = both_still || inv_b * tb.squaredNorm() < 1e-12 * inv_a * ta.squaredNorm();
     if (a_fixed && along_b.squaredNorm() > 0)
       mb.addBlocked(-along_b.normalized());
     if (b_fixed && along_a.squaredNorm() > 0)
@@ -557,7 +562,7 @@ void World::resolveBallBall(const Event& event)
     const double k = inv_a * ta.squaredNorm() + inv_b * tb.squaredNorm();
     if (into > 0 && k > 0)
     {
-      const double jb = into * (1 + kSeparationBias) / k;
+      const double jb = into / k;
       ma.b -= (jb * inv_a) * ta;
       mb.b += (jb * inv_b) * tb;
     }
