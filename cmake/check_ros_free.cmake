@@ -1,12 +1,17 @@
-# Fails when any of FILES includes a ROS header: the core is Eigen and the standard library only.
-separate_arguments(file_list UNIX_COMMAND "${FILES}")
+# Fails when a file of the core includes a ROS (or yaml-cpp) header: the core is Eigen
+# and the standard library only. Run as: cmake -DROOT=<package dir> -P check_ros_free.cmake
+file(GLOB_RECURSE files "${ROOT}/include/ball_collision_sim/core/*" "${ROOT}/src/core/*")
+if(NOT files)
+  message(FATAL_ERROR "check_ros_free: no core files under ${ROOT}")
+endif()
 set(bad "")
-foreach(f IN LISTS file_list)
+foreach(f IN LISTS files)
   file(STRINGS "${f}" hits REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"](ros/|ros\\.h|tf2|tf/|rosbag|std_msgs|geometry_msgs|visualization_msgs|sensor_msgs|rosgraph_msgs|xmlrpcpp|XmlRpc|ball_collision_sim/ros/|yaml-cpp)")
   if(hits)
     list(APPEND bad "${f}: ${hits}")
   endif()
 endforeach()
 if(bad)
-  message(FATAL_ERROR "the core must not include ROS (or yaml-cpp) headers:\n${bad}")
+  list(JOIN bad "\n" text)
+  message(FATAL_ERROR "the core must not include ROS (or yaml-cpp) headers:\n${text}")
 endif()
