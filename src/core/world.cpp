@@ -443,7 +443,7 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
 void World::countEvent(std::size_t i)
 {
   Motion& m = motions_[i];
-  ++m.epoch;
+  ++m.epoch;  // what was predicted for this ball before is stale now
   if (++m.events > kMaxEventsPerBallStep && !m.frozen)
   {
     m.frozen = true;
@@ -451,14 +451,27 @@ void World::countEvent(std::size_t i)
     m.b = Vec3::Zero();
     ++stats_.frozen_balls;
   }
+  // its new motion may reach cells it was not listed in
+  grid_.insert(static_cast<std::uint32_t>(i), currentBox(i));
 }
 
-void World::recordEvent(CollisionEvent event, double x)
+void World::recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,
+                        double impulse, double closing, bool resting, const Event& event)
 {
-  event.time = (static_cast<double>(stats_.steps) + x) * dt_;
-  events_.push_back(event);
+  CollisionEvent out;
+  out.kind = kind;
+  out.time = (static_cast<double>(stats_.steps) + event.x) * dt_;
+  out.ball = ball;
+  out.other = other;
+  out.feature = event.feature;
+  out.point = point;
+  out.normal = normal;
+  out.impulse = impulse;
+  out.approach_speed = closing;
+  out.resting = resting;
+  events_.push_back(out);
   ++stats_.events;
-  if (event.resting)
+  if (resting)
     ++stats_.resting_events;
 }
 
@@ -486,20 +499,9 @@ void World::resolveBallWall(const Event& event)
   if (resting)
     motions_[i].addBlocked(dir);  // leaning on the wall until the step ends
   startMotion(i, event.x, p, v);
-  CollisionEvent out;
-  out.kind = CollisionEvent::Kind::kBallWall;
-  out.ball = ball.id;
-  out.other = wall.id;
-  out.feature = event.feature;
-  out.point = p + ball.radius * n;
-  out.normal = n;
-  out.impulse = impulse;
-  out.approach_speed = closing;
-  out.resting = resting;
-  recordEvent(out, event.x);
-
+  recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
+              event);
   countEvent(i);
-  grid_.insert(static_cast<std::uint32_t>(i), currentBox(i));
   detect(i, false);
 }
 
@@ -568,21 +570,9 @@ void World::resolveBallBall(const Event& event)
     }
     resting_.push_back({i, j, ta, tb});
   }
-  CollisionEvent out;
-  out.kind = CollisionEvent::Kind::kBallBall;
-  out.ball = a.id;
-  out.other = b.id;
-  out.point = pa + a.radius * n;
-  out.normal = n;
-  out.impulse = impulse;
-  out.approach_speed = closing;
-  out.resting = resting;
-  recordEvent(out, event.x);
-
+  recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, impulse, closing, resting, event);
   countEvent(i);
   countEvent(j);
-  grid_.insert(static_cast<std::uint32_t>(i), currentBox(i));
-  grid_.insert(static_cast<std::uint32_t>(j), currentBox(j));
   detect(i, false);
   detect(j, false);
 }

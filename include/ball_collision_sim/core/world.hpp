@@ -129,7 +129,8 @@ private:
   void resolveBallBall(const Event& event);
   void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity);
   void countEvent(std::size_t i);
-  void recordEvent(CollisionEvent event, double x);
+  void recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,
+                   double impulse, double closing, bool resting, const Event& event);
   Vec3 positionAt(std::size_t i, double x) const;
   Vec3 floorNormalAt(std::size_t i, const Vec3& position) const;
   Vec3 onFloorVelocity(const Motion& m, double x, const Vec3& position, const Vec3& normal) const;
