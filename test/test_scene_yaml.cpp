@@ -107,6 +107,9 @@ tf_max_balls: 100
   EXPECT_EQ(scene.frame_id, "map");
   EXPECT_EQ(scene.dt, 0.005);
   EXPECT_EQ(scene.node.real_time_factor, 0.5);
+  EXPECT_EQ(scene.node.marker_rate, 30);
+  EXPECT_EQ(scene.node.tf_rate, 50.5);
+  EXPECT_EQ(scene.node.tf_max_balls, 100);
   expectVec(scene.gravity, 0.1, -0.2, -9.5);
   EXPECT_EQ(scene.restitution, 0.9);
 
@@ -262,10 +265,15 @@ TEST(SceneYaml, AcceptsAndIgnoresNodeOnlyKeys)
   std::string text;
   for (const auto key : ball_collision_sim::yaml::kNodeOnlyKeys)
   {
-    text += std::string(key) + ": 10\n";
+    text += std::string(key) + (key == "publish_collisions" || key == "start_paused" ? ": false\n" : ": 10\n");
   }
-  EXPECT_NO_THROW(parseScene(text));
+  const auto scene = parseScene(text);
+  EXPECT_EQ(scene.node.marker_rate, 10);
+  EXPECT_EQ(scene.node.tf_max_balls, 10);
+  EXPECT_FALSE(scene.node.publish_collisions);
   EXPECT_EQ(errorOf("tf_rate: fast"), "t.yaml: tf_rate: expected a number, got fast");
+  EXPECT_EQ(errorOf("start_paused: 1"), "t.yaml: start_paused: expected true or false, got 1");
+  EXPECT_EQ(errorOf("tf_max_balls: 2.5"), "t.yaml: tf_max_balls: expected an integer, got 2.5");
 }
 
 struct ErrorCase
@@ -281,8 +289,9 @@ TEST(SceneYaml, EachMistakeGivesOneLineNamingTheKeyAndTheReason)
     {"balls:\n  - {position: [0, 0, 0], radius: 1}\n  - {position: [1, 0, 0], radius: 1}\n"
      "  - {position: [2, 0, 0], radius: 1}\n  - {position: [3, 0, 0], radus: 1}\n",
      "t.yaml: balls[3].radus: unknown key (expected one of: position, velocity, radius, mass)"},
-    {"dtt: 0.1", "t.yaml: dtt: unknown key (expected one of: frame_id, dt, real_time_factor, gravity, restitution, "
-                 "floor, walls, balls, random_balls, marker_rate, tf_rate, tf_max_balls)"},
+    {"dtt: 0.1", "t.yaml: dtt: unknown key (expected one of: frame_id, dt, gravity, restitution, floor, walls, "
+                 "balls, random_balls, real_time_factor, marker_rate, tf_rate, tf_max_balls, state_rate, "
+                 "publish_collisions, start_paused, click_radius, click_mass)"},
     {"floor: {type: plane, control_points: []}",
      "t.yaml: floor.control_points: unknown key (expected one of: type, point, u, v)"},
     {"random_balls: {count: 1, region: {min: [0, 0], max: [1, 1], mid: [0, 0]}}",

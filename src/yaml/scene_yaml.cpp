@@ -523,14 +523,50 @@ core::RandomBallsDef readRandomBalls(const YAML::Node& node, const std::string& 
   return random;
 }
 
+bool readBool(const YAML::Node& node, const std::string& key)
+{
+  if (node.IsScalar() && node.Tag() == kPlainTag)
+  {
+    if (node.Scalar() == "true")
+      return true;
+    if (node.Scalar() == "false")
+      return false;
+  }
+  fail(key, "expected true or false, got " + describe(node));
+}
+
+// The node's own settings: kept in the scene so that one reader and one validate()
+// serve the node and the offline tool.
+void readNodeSettings(const MapFields& fields, core::NodeSettings& node)
+{
+  auto number = [&](const char* name, double& out) {
+    if (const YAML::Node* value = fields.find(name))
+      out = readNumber(*value, name);
+  };
+  auto flag = [&](const char* name, bool& out) {
+    if (const YAML::Node* value = fields.find(name))
+      out = readBool(*value, name);
+  };
+  number("real_time_factor", node.real_time_factor);
+  number("marker_rate", node.marker_rate);
+  number("tf_rate", node.tf_rate);
+  number("state_rate", node.state_rate);
+  number("click_radius", node.click_radius);
+  number("click_mass", node.click_mass);
+  if (const YAML::Node* value = fields.find("tf_max_balls"))
+    node.tf_max_balls = readInt(*value, "tf_max_balls");
+  flag("publish_collisions", node.publish_collisions);
+  flag("start_paused", node.start_paused);
+}
+
 core::Scene readScene(const YAML::Node& root)
 {
   if (!root.IsMap())
   {
     fail("", "the scene must be a YAML map, got " + (root.IsNull() ? std::string("an empty document") : describe(root)));
   }
-  std::vector<std::string_view> allowed{"frame_id", "dt",    "real_time_factor", "gravity",     "restitution",
-                                        "floor",    "walls", "balls",            "random_balls"};
+  std::vector<std::string_view> allowed{"frame_id", "dt",    "gravity", "restitution",
+                                        "floor",    "walls", "balls",   "random_balls"};
   allowed.insert(allowed.end(), kNodeOnlyKeys.begin(), kNodeOnlyKeys.end());
   const MapFields fields(root, "", allowed);
 
@@ -542,10 +578,6 @@ core::Scene readScene(const YAML::Node& root)
   if (const YAML::Node* dt = fields.find("dt"))
   {
     scene.dt = readNumber(*dt, "dt");
-  }
-  if (const YAML::Node* factor = fields.find("real_time_factor"))
-  {
-    scene.node.real_time_factor = readNumber(*factor, "real_time_factor");
   }
   if (const YAML::Node* gravity = fields.find("gravity"))
   {
@@ -573,14 +605,7 @@ core::Scene readScene(const YAML::Node& root)
   {
     scene.random_balls = readRandomBalls(*random, "random_balls");
   }
-  // Node-only keys are type-checked now so that a typo'd value fails here, not in the node.
-  for (const std::string_view name : kNodeOnlyKeys)
-  {
-    if (const YAML::Node* value = fields.find(name))
-    {
-      readNumber(*value, std::string(name));
-    }
-  }
+  readNodeSettings(fields, scene.node);
   return scene;
 }
 

@@ -75,6 +75,14 @@ struct RandomBallsDef
 struct NodeSettings
 {
   double real_time_factor = 1.0;  ///< simulated / wall time; 0 = as fast as possible
+  double marker_rate = 30.0;      ///< markers per second of wall time [Hz]; 0 = none
+  double tf_rate = 30.0;          ///< tf frames per second of wall time [Hz]; 0 = none
+  int tf_max_balls = 500;         ///< only the first this many balls get a tf frame
+  double state_rate = 0.0;        ///< ball_states per simulated second [Hz]; 0 = every step
+  bool publish_collisions = true; ///< one message per handled collision
+  bool start_paused = false;      ///< wait for ~pause false (or ~step) before moving
+  double click_radius = 0.1;      ///< radius of balls added from rviz clicks [m]
+  double click_mass = 1.0;        ///< mass of balls added from rviz clicks [kg]
 };
 
 /// Everything a simulation starts from. Defaults are the documented YAML defaults.

@@ -17,13 +17,11 @@ struct SceneError : std::runtime_error
   using std::runtime_error::runtime_error;
 };
 
-/// Top-level keys that only the ROS node reads. The reader accepts them (they must be
-/// numbers) and ignores them, because core::Scene has no place for them yet; wiring one
-/// into NodeSettings means reading it in scene_yaml.cpp and removing it from here.
-inline constexpr std::array<std::string_view, 3> kNodeOnlyKeys{
-  "marker_rate",   // markers published per second [Hz]
-  "tf_rate",       // tf frames published per second [Hz]
-  "tf_max_balls",  // at most this many balls get a tf frame
+/// Top-level keys that only the ROS node uses (core::NodeSettings); the offline tool
+/// reads and checks them like every other key, and ignores them.
+inline constexpr std::array<std::string_view, 9> kNodeOnlyKeys{
+  "real_time_factor", "marker_rate", "tf_rate", "tf_max_balls", "state_rate",
+  "publish_collisions", "start_paused", "click_radius", "click_mass",
 };
 
 /// Reads a scene from YAML text (design.md section 5). Every key is checked: an unknown
