@@ -1,0 +1,37 @@
+#pragma once
+
+#include "ball_collision_sim/core/ball.hpp"
+#include "ball_collision_sim/core/collision_event.hpp"
+#include "ball_collision_sim/core/scene.hpp"
+
+#include <ball_collision_sim/AddBall.h>
+#include <ball_collision_sim/AddWall.h>
+#include <ball_collision_sim/BallState.h>
+#include <ball_collision_sim/CollisionEvent.h>
+#include <geometry_msgs/Point.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <geometry_msgs/Vector3.h>
+#include <ros/time.h>
+
+#include <string>
+
+namespace ball_collision_sim::bridge
+{
+geometry_msgs::Point toPoint(const core::Vec3& v);
+geometry_msgs::Vector3 toVector3(const core::Vec3& v);
+core::Vec3 toVec3(const geometry_msgs::Point& p);
+core::Vec3 toVec3(const geometry_msgs::Vector3& v);
+
+/// The tf frame of a ball: "ball_<id>".
+std::string ballFrame(int id);
+
+ball_collision_sim::BallState toMsg(const core::Ball& ball);
+/// Stamped with the exact time of impact.
+ball_collision_sim::CollisionEvent toMsg(const core::CollisionEvent& event, const std::string& frame_id);
+/// frame_id -> ball_<id>, with the ball's rolling orientation.
+geometry_msgs::TransformStamped toTransform(const core::Ball& ball, const std::string& frame_id,
+                                           const ros::Time& stamp);
+
+core::BallDef fromMsg(const ball_collision_sim::AddBall::Request& request);
+core::WallDef fromMsg(const ball_collision_sim::AddWall::Request& request);
+}  // namespace ball_collision_sim::bridge

@@ -1,0 +1,21 @@
+#pragma once
+
+#include "ball_collision_sim/core/scene.hpp"
+
+#include <ros/node_handle.h>
+#include <xmlrpcpp/XmlRpcValue.h>
+
+#include <string>
+
+namespace ball_collision_sim::bridge
+{
+/// A parameter tree as YAML text (flow style), so that the parameter server and YAML
+/// files go through one reader: the same keys, types, defaults and messages. Reals keep
+/// a decimal point so that they stay reals.
+std::string toYaml(XmlRpc::XmlRpcValue& value);
+
+/// The scene under the namespace of `nh` (where the launch file's
+/// <rosparam command="load"> put it), read and validated. Throws yaml::SceneError with
+/// one line naming the parameter and the reason.
+core::Scene loadSceneParams(const ros::NodeHandle& nh);
+}  // namespace ball_collision_sim::bridge

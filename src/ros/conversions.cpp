@@ -1,0 +1,122 @@
+#include "ball_collision_sim/ros/conversions.hpp"
+
+namespace ball_collision_sim::bridge
+{
+geometry_msgs::Point toPoint(const core::Vec3& v)
+{
+  geometry_msgs::Point p;
+  p.x = v.x();
+  p.y = v.y();
+  p.z = v.z();
+  return p;
+}
+
+geometry_msgs::Vector3 toVector3(const core::Vec3& v)
+{
+  geometry_msgs::Vector3 out;
+  out.x = v.x();
+  out.y = v.y();
+  out.z = v.z();
+  return out;
+}
+
+core::Vec3 toVec3(const geometry_msgs::Point& p)
+{
+  return core::Vec3(p.x, p.y, p.z);
+}
+
+core::Vec3 toVec3(const geometry_msgs::Vector3& v)
+{
+  return core::Vec3(v.x, v.y, v.z);
+}
+
+std::string ballFrame(int id)
+{
+  return "ball_" + std::to_string(id);
+}
+
+namespace
+{
+geometry_msgs::Quaternion toQuaternion(const core::Quat& q)
+{
+  geometry_msgs::Quaternion out;
+  out.x = q.x();
+  out.y = q.y();
+  out.z = q.z();
+  out.w = q.w();
+  return out;
+}
+}  // namespace
+
+ball_collision_sim::BallState toMsg(const core::Ball& ball)
+{
+  ball_collision_sim::BallState msg;
+  msg.id = ball.id;
+  msg.radius = ball.radius;
+  msg.mass = ball.mass;
+  msg.pose.position = toPoint(ball.position);
+  msg.pose.orientation = toQuaternion(ball.orientation);
+  msg.twist.linear = toVector3(ball.velocity);
+  msg.twist.angular = toVector3(ball.angular_velocity);
+  return msg;
+}
+
+ball_collision_sim::CollisionEvent toMsg(const core::CollisionEvent& event, const std::string& frame_id)
+{
+  ball_collision_sim::CollisionEvent msg;
+  msg.header.stamp = ros::Time(event.time);
+  msg.header.frame_id = frame_id;
+  msg.kind = event.kind == core::CollisionEvent::Kind::kBallBall ? msg.BALL_BALL : msg.BALL_WALL;
+  msg.ball = event.ball;
+  msg.other = event.other;
+  switch (event.feature)
+  {
+    case core::WallFeature::kFace:
+      msg.feature = msg.FACE;
+      break;
+    case core::WallFeature::kEdge:
+      msg.feature = msg.EDGE;
+      break;
+    case core::WallFeature::kCorner:
+      msg.feature = msg.CORNER;
+      break;
+  }
+  msg.point = toPoint(event.point);
+  msg.normal = toVector3(event.normal);
+  msg.impulse = event.impulse;
+  msg.approach_speed = event.approach_speed;
+  msg.resting = event.resting;
+  return msg;
+}
+
+geometry_msgs::TransformStamped toTransform(const core::Ball& ball, const std::string& frame_id,
+                                           const ros::Time& stamp)
+{
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = frame_id;
+  t.child_frame_id = ballFrame(ball.id);
+  t.transform.translation = toVector3(ball.position);
+  t.transform.rotation = toQuaternion(ball.orientation);
+  return t;
+}
+
+core::BallDef fromMsg(const ball_collision_sim::AddBall::Request& request)
+{
+  core::BallDef def;
+  def.position = toVec3(request.position);
+  def.velocity = toVec3(request.velocity);
+  def.radius = request.radius;
+  def.mass = request.mass;
+  return def;
+}
+
+core::WallDef fromMsg(const ball_collision_sim::AddWall::Request& request)
+{
+  core::WallDef def;
+  def.point = toVec3(request.point);
+  def.u = toVec3(request.u);
+  def.v = toVec3(request.v);
+  return def;
+}
+}  // namespace ball_collision_sim::bridge

@@ -1,0 +1,325 @@
+#include "ball_collision_sim/ros/simulator_node.hpp"
+
+#include "ball_collision_sim/ros/conversions.hpp"
+#include "ball_collision_sim/ros/markers.hpp"
+#include "ball_collision_sim/ros/scene_param.hpp"
+
+#include <ball_collision_sim/BallStateArray.h>
+#include <ball_collision_sim/CollisionEvent.h>
+#include <rosgraph_msgs/Clock.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace ball_collision_sim::bridge
+{
+namespace
+{
+/// Most steps one service call may ask for: a bound on how long the node stays busy.
+constexpr std::uint32_t kMaxStepsPerCall = 1000000;
+/// Wall time one timer callback may spend stepping before it lets services in [s].
+constexpr double kStepBudget = 0.05;
+}  // namespace
+
+SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : world_(loadSceneParams(pnh))
+    , settings_(world_.scene().node)
+    , frame_id_(world_.scene().frame_id)
+    , paused_(settings_.start_paused)
+    , nh_(nh)
+    , pnh_(pnh)
+{
+  const double dt = world_.dt();
+  state_every_ = settings_.state_rate > 0
+                     ? static_cast<std::uint64_t>(std::max(1.0, std::round(1.0 / (settings_.state_rate * dt))))
+                     : 1;
+
+  markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>(
+      "markers", 10, [this](const ros::SingleSubscriberPublisher& s) { onMarkerSubscriber(s); });
+  states_pub_ = pnh_.advertise<BallStateArray>("ball_states", 100);
+  collisions_pub_ = pnh_.advertise<ball_collision_sim::CollisionEvent>("collisions", 1000);
+  clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+
+  services_.push_back(pnh_.advertiseService("add_ball", &SimulatorNode::onAddBall, this));
+  services_.push_back(pnh_.advertiseService("add_wall", &SimulatorNode::onAddWall, this));
+  services_.push_back(pnh_.advertiseService("remove_ball", &SimulatorNode::onRemoveBall, this));
+  services_.push_back(pnh_.advertiseService("remove_wall", &SimulatorNode::onRemoveWall, this));
+  services_.push_back(pnh_.advertiseService("reset", &SimulatorNode::onReset, this));
+  services_.push_back(pnh_.advertiseService("pause", &SimulatorNode::onPause, this));
+  services_.push_back(pnh_.advertiseService("step", &SimulatorNode::onStep, this));
+  clicked_sub_ = nh_.subscribe("/clicked_point", 10, &SimulatorNode::onClickedPoint, this);
+
+  rosgraph_msgs::Clock clock;
+  clock.clock = ros::Time(world_.time());
+  clock_pub_.publish(clock);
+  anchorClock();
+  // The timer only wakes the loop; how many steps are due comes from the wall clock,
+  // and each step is the scene's fixed dt whatever the timer's jitter.
+  const double factor = settings_.real_time_factor;
+  const double period = factor > 0 ? std::clamp(dt / factor, 1e-3, 0.05) : 1e-3;
+  timer_ = nh_.createWallTimer(ros::WallDuration(period), &SimulatorNode::onTimer, this);
+  ROS_INFO("ball_sim: %zu balls, %zu walls, dt = %g s, real time factor %g%s", world_.balls().size(),
+           world_.walls().size(), dt, factor, paused_ ? ", paused" : "");
+}
+
+void SimulatorNode::anchorClock()
+{
+  anchor_wall_ = ros::WallTime::now();
+  anchor_steps_ = world_.stats().steps;
+}
+
+void SimulatorNode::onTimer(const ros::WallTimerEvent&)
+{
+  if (paused_)
+    return;
+  const ros::WallTime start = ros::WallTime::now();
+  const double factor = settings_.real_time_factor;
+  if (factor > 0)
+  {
+    const double due_time = (start - anchor_wall_).toSec() * factor;
+    const auto due = anchor_steps_ + static_cast<std::uint64_t>(std::floor(due_time / world_.dt() + 1e-9));
+    // More than a second of wall time behind: give up on catching up and say so.
+    const double behind = static_cast<double>(due - std::min(due, world_.stats().steps)) * world_.dt() / factor;
+    if (behind > 1.0)
+    {
+      ROS_WARN_THROTTLE(5.0, "ball_sim: %.1f s behind real time; the scene is too heavy for real time factor %g",
+                        behind, factor);
+      anchorClock();
+    }
+    while (world_.stats().steps < due && (ros::WallTime::now() - start).toSec() < kStepBudget)
+      stepOnce();
+  }
+  else
+  {
+    do
+      stepOnce();
+    while ((ros::WallTime::now() - start).toSec() < kStepBudget);
+  }
+  publishView(false);
+}
+
+void SimulatorNode::stepOnce()
+{
+  world_.step();
+  const ros::Time stamp(world_.time());
+  rosgraph_msgs::Clock clock;
+  clock.clock = stamp;
+  clock_pub_.publish(clock);
+  if (settings_.publish_collisions && collisions_pub_.getNumSubscribers() > 0)
+    for (const core::CollisionEvent& event : world_.lastEvents())
+      collisions_pub_.publish(toMsg(event, frame_id_));
+  if (world_.stats().steps % state_every_ == 0 && states_pub_.getNumSubscribers() > 0)
+    publishStates(stamp);
+}
+
+void SimulatorNode::publishStates(const ros::Time& stamp)
+{
+  BallStateArray msg;
+  msg.header.stamp = stamp;
+  msg.header.frame_id = frame_id_;
+  msg.balls.reserve(world_.balls().size());
+  for (const core::Ball& ball : world_.balls())
+    msg.balls.push_back(toMsg(ball));
+  states_pub_.publish(msg);
+}
+
+void SimulatorNode::publishView(bool force)
+{
+  const ros::WallTime now = ros::WallTime::now();
+  const ros::Time stamp(world_.time());
+  const auto due = [&](double rate, const ros::WallTime& last) {
+    return rate > 0 && (force || (now - last).toSec() >= 1.0 / rate);
+  };
+  if (due(settings_.marker_rate, last_markers_))
+  {
+    publishBalls(stamp);
+    last_markers_ = now;
+  }
+  if (due(settings_.tf_rate, last_tf_))
+  {
+    publishTransforms(stamp);
+    last_tf_ = now;
+  }
+}
+
+void SimulatorNode::publishBalls(const ros::Time& stamp)
+{
+  if (markers_pub_.getNumSubscribers() == 0)
+    return;
+  visualization_msgs::MarkerArray msg;
+  std::vector<int> ids;
+  ids.reserve(world_.balls().size());
+  for (const core::Ball& ball : world_.balls())
+    ids.push_back(ball.id);
+  // ids are sorted: balls keep their order and new ones come last
+  for (const int id : shown_balls_)
+    if (!std::binary_search(ids.begin(), ids.end(), id))
+      msg.markers.push_back(deleteMarker(kBallsNs, id, frame_id_));
+  for (const core::Ball& ball : world_.balls())
+    msg.markers.push_back(ballMarker(ball, frame_id_, stamp));
+  shown_balls_ = std::move(ids);
+  markers_pub_.publish(msg);
+}
+
+void SimulatorNode::publishTransforms(const ros::Time& stamp)
+{
+  const auto count = std::min<std::size_t>(world_.balls().size(), static_cast<std::size_t>(settings_.tf_max_balls));
+  if (count == 0)
+    return;
+  std::vector<geometry_msgs::TransformStamped> transforms;
+  transforms.reserve(count);
+  for (std::size_t i = 0; i < count; ++i)
+    transforms.push_back(toTransform(world_.balls()[i], frame_id_, stamp));
+  tf_broadcaster_.sendTransform(transforms);
+}
+
+void SimulatorNode::publishStatic()
+{
+  visualization_msgs::MarkerArray msg;
+  if (world_.floor())
+    msg.markers.push_back(floorMarker(*world_.floor(), frame_id_));
+  for (const core::Wall& wall : world_.walls())
+    msg.markers.push_back(wallMarker(wall, frame_id_));
+  if (!msg.markers.empty())
+    markers_pub_.publish(msg);
+}
+
+void SimulatorNode::onMarkerSubscriber(const ros::SingleSubscriberPublisher& subscriber)
+{
+  // A newcomer gets the floor and walls, which are otherwise sent only when they change.
+  visualization_msgs::MarkerArray msg;
+  if (world_.floor())
+    msg.markers.push_back(floorMarker(*world_.floor(), frame_id_));
+  for (const core::Wall& wall : world_.walls())
+    msg.markers.push_back(wallMarker(wall, frame_id_));
+  const ros::Time stamp(world_.time());
+  for (const core::Ball& ball : world_.balls())
+    msg.markers.push_back(ballMarker(ball, frame_id_, stamp));
+  subscriber.publish(msg);
+}
+
+// ---- services ------------------------------------------------------------------------
+
+bool SimulatorNode::onAddBall(AddBall::Request& req, AddBall::Response& res)
+{
+  const core::AddResult result = world_.addBall(fromMsg(req));
+  res.success = result.ok;
+  res.id = result.id;
+  res.message = result.ok ? "added ball " + std::to_string(result.id) : result.error;
+  if (result.ok)
+    publishView(true);
+  return true;
+}
+
+bool SimulatorNode::onAddWall(AddWall::Request& req, AddWall::Response& res)
+{
+  const core::AddResult result = world_.addWall(fromMsg(req));
+  res.success = result.ok;
+  res.id = result.id;
+  res.message = result.ok ? "added wall " + std::to_string(result.id) : result.error;
+  if (result.ok)
+    publishStatic();
+  return true;
+}
+
+bool SimulatorNode::onRemoveBall(RemoveObject::Request& req, RemoveObject::Response& res)
+{
+  res.success = world_.removeBall(req.id);
+  res.message = res.success ? "removed ball " + std::to_string(req.id) : "id: no ball has id " + std::to_string(req.id);
+  if (res.success)
+    publishView(true);
+  return true;
+}
+
+bool SimulatorNode::onRemoveWall(RemoveObject::Request& req, RemoveObject::Response& res)
+{
+  res.success = world_.removeWall(req.id);
+  res.message = res.success ? "removed wall " + std::to_string(req.id) : "id: no wall has id " + std::to_string(req.id);
+  if (res.success)
+  {
+    visualization_msgs::MarkerArray msg;
+    msg.markers.push_back(deleteMarker(kWallsNs, req.id, frame_id_));
+    markers_pub_.publish(msg);
+  }
+  return true;
+}
+
+bool SimulatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
+{
+  world_.reset();
+  anchorClock();
+  visualization_msgs::MarkerArray clear;
+  clear.markers.push_back(deleteAllMarker(frame_id_));
+  markers_pub_.publish(clear);
+  shown_balls_.clear();
+  publishStatic();
+  rosgraph_msgs::Clock clock;
+  clock.clock = ros::Time(world_.time());
+  clock_pub_.publish(clock);
+  publishView(true);
+  res.success = true;
+  res.message = "back to the scene as loaded: " + std::to_string(world_.balls().size()) + " balls, " +
+                std::to_string(world_.walls().size()) + " walls";
+  return true;
+}
+
+bool SimulatorNode::onPause(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res)
+{
+  if (paused_ && !req.data)
+    anchorClock();  // resume from now, without catching up the paused time
+  paused_ = req.data;
+  res.success = true;
+  res.message = (paused_ ? "paused at t = " : "running from t = ") + std::to_string(world_.time()) + " s";
+  return true;
+}
+
+bool SimulatorNode::onStep(Step::Request& req, Step::Response& res)
+{
+  res.time = world_.time();
+  if (!paused_)
+  {
+    res.success = false;
+    res.message = "steps: stepping works only while paused (call pause with data: true first)";
+    return true;
+  }
+  if (req.steps < 1 || req.steps > kMaxStepsPerCall)
+  {
+    res.success = false;
+    res.message = "steps: must be in 1.." + std::to_string(kMaxStepsPerCall) + " (got " + std::to_string(req.steps) + ")";
+    return true;
+  }
+  for (std::uint32_t k = 0; k < req.steps; ++k)
+    stepOnce();
+  publishView(true);
+  res.success = true;
+  res.time = world_.time();
+  res.message = "at t = " + std::to_string(res.time) + " s";
+  return true;
+}
+
+void SimulatorNode::onClickedPoint(const geometry_msgs::PointStamped& msg)
+{
+  if (!msg.header.frame_id.empty() && msg.header.frame_id != frame_id_)
+  {
+    ROS_WARN("ball_sim: clicked point in frame '%s' ignored: set rviz's fixed frame to '%s'",
+             msg.header.frame_id.c_str(), frame_id_.c_str());
+    return;
+  }
+  core::BallDef def;
+  def.position = toVec3(msg.point);
+  def.radius = settings_.click_radius;
+  def.mass = settings_.click_mass;
+  // The click lands on the drawn floor (or, without one, on the grid): lift the centre
+  // by a radius; with a floor the core then puts it exactly on the surface.
+  const double g = world_.gravity().norm();
+  def.position += def.radius * (g > 0 ? core::Vec3(-world_.gravity() / g) : core::Vec3::UnitZ());
+  const core::AddResult result = world_.addBall(def);
+  if (!result.ok)
+  {
+    ROS_WARN("ball_sim: no ball added at the clicked point: %s", result.error.c_str());
+    return;
+  }
+  ROS_INFO("ball_sim: added ball %d at the clicked point", result.id);
+  publishView(true);
+}
+}  // namespace ball_collision_sim::bridge
