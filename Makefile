@@ -1,7 +1,12 @@
 # The package's two everyday commands, for a fresh Debian 12 machine:
 #   make demo   installs what is needed, builds, and runs the demo
 #   make test   installs what is needed, builds, and runs every test
-BUILD ?= build
+# Debian's python3 first: ROS's scripts (`#!/usr/bin/env python3`) need its rospkg,
+# which a python3 earlier in PATH (pyenv, venv) lacks.
+export PATH := /usr/bin:$(PATH)
+
+# Not `build/`: rosrun ignores executables under <package>/build/.
+BUILD ?= .build
 BUILD_ABS := $(abspath $(BUILD))
 JOBS ?= 2
 DURATION ?= 10

@@ -5,9 +5,12 @@
 int main(int argc, char** argv)
 {
   ros::init(argc, argv, "ball_sim");
+  // Held out here: when the last handle goes, roscpp shuts down and with it the logging
+  // that must report a bad scene.
+  ros::NodeHandle nh, pnh("~");
   try
   {
-    ball_collision_sim::bridge::SimulatorNode node(ros::NodeHandle(), ros::NodeHandle("~"));
+    ball_collision_sim::bridge::SimulatorNode node(nh, pnh);
     ros::spin();
   }
   catch (const ball_collision_sim::yaml::SceneError& e)

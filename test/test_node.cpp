@@ -1,0 +1,440 @@
+// The simulator node through its real interfaces (run by rostest with test/node.test):
+// services with good and bad requests, markers, tf, stepping, reset, collisions, and the
+// parameter-server reader against the YAML reader.
+#include "ball_collision_sim/core/world.hpp"
+#include "ball_collision_sim/ros/scene_param.hpp"
+#include "ball_collision_sim/yaml/scene_yaml.hpp"
+
+#include <ball_collision_sim/AddBall.h>
+#include <ball_collision_sim/AddWall.h>
+#include <ball_collision_sim/BallStateArray.h>
+#include <ball_collision_sim/CollisionEvent.h>
+#include <ball_collision_sim/RemoveObject.h>
+#include <ball_collision_sim/Step.h>
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
+#include <std_srvs/SetBool.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+namespace bcs = ball_collision_sim;
+
+namespace
+{
+// The scene of test/data/node_scene.yaml.
+constexpr double kDt = 0.01;
+constexpr double kImpactTime = (1.263 - 0.25) / 2.0;  // gap over closing speed [s]
+
+/// Collects messages of one topic.
+template <class Msg>
+class Inbox
+{
+public:
+  explicit Inbox(const std::string& topic)
+  {
+    ros::NodeHandle nh;
+    sub_ = nh.subscribe<Msg>(topic, 1000, [this](const boost::shared_ptr<const Msg>& msg) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      msgs_.push_back(*msg);
+    });
+  }
+  std::vector<Msg> take()
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<Msg> out;
+    out.swap(msgs_);
+    return out;
+  }
+  /// Waits until `pred(all messages so far)` holds or the timeout passes.
+  template <class Pred>
+  bool waitFor(Pred pred, double timeout = 5.0)
+  {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (ros::WallTime::now() < end)
+    {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (pred(msgs_))
+          return true;
+      }
+      ros::WallDuration(0.01).sleep();
+    }
+    return false;
+  }
+  bool connected() const { return sub_.getNumPublishers() > 0; }
+
+private:
+  ros::Subscriber sub_;
+  std::mutex mutex_;
+  std::vector<Msg> msgs_;
+};
+
+template <class Msg>
+void waitConnected(const Inbox<Msg>& inbox)
+{
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(5.0);
+  while (!inbox.connected() && ros::WallTime::now() < end)
+    ros::WallDuration(0.01).sleep();
+  ros::WallDuration(0.2).sleep();  // let the connection settle before publishing starts
+}
+
+template <class Srv>
+Srv call(const std::string& name, Srv srv)
+{
+  EXPECT_TRUE(ros::service::call(name, srv)) << name << " failed as a call";
+  return srv;
+}
+
+bcs::Step::Response step(std::uint32_t n)
+{
+  bcs::Step srv;
+  srv.request.steps = n;
+  return call("/ball_sim/step", srv).response;
+}
+
+void pause(bool on)
+{
+  std_srvs::SetBool srv;
+  srv.request.data = on;
+  EXPECT_TRUE(call("/ball_sim/pause", srv).response.success);
+}
+
+void reset()
+{
+  std_srvs::Trigger srv;
+  EXPECT_TRUE(call("/ball_sim/reset", srv).response.success);
+}
+
+bcs::AddBall::Response addBall(double x, double y, double vx, double vy, double r, double m)
+{
+  bcs::AddBall srv;
+  srv.request.position.x = x;
+  srv.request.position.y = y;
+  srv.request.position.z = std::min(r, 0.1);
+  srv.request.velocity.x = vx;
+  srv.request.velocity.y = vy;
+  srv.request.radius = r;
+  srv.request.mass = m;
+  return call("/ball_sim/add_ball", srv).response;
+}
+
+bcs::AddWall::Response addWall(double px, double py, double ux, double uy, double vx, double vy, double vz)
+{
+  bcs::AddWall srv;
+  srv.request.point.x = px;
+  srv.request.point.y = py;
+  srv.request.u.x = ux;
+  srv.request.u.y = uy;
+  srv.request.v.x = vx;
+  srv.request.v.y = vy;
+  srv.request.v.z = vz;
+  return call("/ball_sim/add_wall", srv).response;
+}
+
+bcs::RemoveObject::Response remove(const std::string& what, int id)
+{
+  bcs::RemoveObject srv;
+  srv.request.id = id;
+  return call("/ball_sim/remove_" + what, srv).response;
+}
+
+/// A fresh, paused world at t = 0.
+void fresh()
+{
+  pause(true);
+  reset();
+}
+
+/// The ball states after stepping n steps from now.
+bcs::BallStateArray statesAfter(std::uint32_t n)
+{
+  Inbox<bcs::BallStateArray> states("/ball_sim/ball_states");
+  waitConnected(states);
+  const double t = step(n).time;
+  std::vector<bcs::BallStateArray> got;
+  EXPECT_TRUE(states.waitFor([&](const auto& all) { return !all.empty() && std::abs(all.back().header.stamp.toSec() - t) < 1e-6; }));
+  got = states.take();
+  return got.empty() ? bcs::BallStateArray() : got.back();
+}
+}  // namespace
+
+TEST(Node, PauseThenStepAdvancesExactlyNSteps)
+{
+  fresh();
+  Inbox<rosgraph_msgs::Clock> clock("/clock");
+  waitConnected(clock);
+  const auto r = step(7);
+  EXPECT_TRUE(r.success) << r.message;
+  EXPECT_NEAR(r.time, 7 * kDt, 1e-12);
+  ASSERT_TRUE(clock.waitFor([](const auto& all) { return all.size() >= 7; }));
+  const auto ticks = clock.take();
+  EXPECT_NEAR(ticks.back().clock.toSec(), 7 * kDt, 1e-9);
+  // paused: the clock does not move by itself
+  ros::WallDuration(0.3).sleep();
+  EXPECT_TRUE(clock.take().empty());
+  EXPECT_NEAR(step(5).time, 12 * kDt, 1e-12);
+}
+
+TEST(Node, StepIsRefusedWhileRunningOrOutOfRange)
+{
+  fresh();
+  auto r = step(0);
+  EXPECT_FALSE(r.success);
+  EXPECT_EQ(r.message.rfind("steps", 0), 0u) << r.message;
+  r = step(2000000);
+  EXPECT_FALSE(r.success);
+  pause(false);
+  r = step(1);
+  EXPECT_FALSE(r.success);
+  EXPECT_EQ(r.message.rfind("steps", 0), 0u) << r.message;
+  pause(true);
+}
+
+TEST(Node, HeadOnCollisionAtTheAnalyticTime)
+{
+  fresh();
+  Inbox<bcs::CollisionEvent> collisions("/ball_sim/collisions");
+  waitConnected(collisions);
+  step(60);
+  ASSERT_TRUE(collisions.waitFor([](const auto& all) { return !all.empty(); }));
+  ros::WallDuration(0.2).sleep();
+  const auto events = collisions.take();
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, bcs::CollisionEvent::BALL_BALL);
+  EXPECT_EQ(events[0].ball, 0);
+  EXPECT_EQ(events[0].other, 1);
+  EXPECT_NEAR(events[0].header.stamp.toSec(), kImpactTime, 1e-9);
+  EXPECT_EQ(events[0].header.frame_id, "world");
+  // 1 kg at 1.5 m/s meets 3 kg at -0.5 m/s: the impulse is 2 m1 m2 / (m1 + m2) * 2 m/s
+  EXPECT_NEAR(events[0].impulse, 2 * 3.0 / 4.0 * 2.0, 1e-12);
+}
+
+TEST(Node, AddedBallHasATfFrameWhereThePhysicsPutsIt)
+{
+  fresh();
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  ros::WallDuration(0.5).sleep();
+  const auto added = addBall(-1, 0.6, 0.8, -0.3, 0.1, 1);
+  ASSERT_TRUE(added.success) << added.message;
+  EXPECT_EQ(added.id, 2);
+  step(25);
+  const ros::Time t(25 * kDt);
+  std::string error;
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(5.0);
+  while (!buffer.canTransform("world", "ball_2", t, &error) && ros::WallTime::now() < end)
+    ros::WallDuration(0.02).sleep();
+  ASSERT_TRUE(buffer.canTransform("world", "ball_2", t, &error)) << error;
+  const auto tf = buffer.lookupTransform("world", "ball_2", t);
+  EXPECT_NEAR(tf.transform.translation.x, -1 + 0.8 * 0.25, 1e-9);
+  EXPECT_NEAR(tf.transform.translation.y, 0.6 - 0.3 * 0.25, 1e-9);
+  EXPECT_NEAR(tf.transform.translation.z, 0.1, 1e-12);
+  // rolled: turned by distance / radius
+  const double turned = 2 * std::acos(std::min(1.0, std::abs(tf.transform.rotation.w)));
+  EXPECT_NEAR(turned, std::hypot(0.8, 0.3) * 0.25 / 0.1, 1e-9);
+}
+
+TEST(Node, GoodRequestsChangeTheWorld)
+{
+  fresh();
+  const auto ball = addBall(1.2, 0.5, 0, 0, 0.1, 2);
+  ASSERT_TRUE(ball.success) << ball.message;
+  const auto wall = addWall(0.5, -1, 0, 0.8, 0, 0, 0.3);
+  ASSERT_TRUE(wall.success) << wall.message;
+  EXPECT_EQ(wall.id, 4);
+  EXPECT_EQ(statesAfter(1).balls.size(), 3u);
+  EXPECT_TRUE(remove("wall", wall.id).success);
+  EXPECT_FALSE(remove("wall", wall.id).success);
+  EXPECT_TRUE(remove("ball", ball.id).success);
+  const auto r = remove("ball", ball.id);
+  EXPECT_FALSE(r.success);
+  EXPECT_EQ(r.message.rfind("id", 0), 0u) << r.message;
+  EXPECT_EQ(statesAfter(1).balls.size(), 2u);
+}
+
+TEST(Node, BadRequestsNameTheFieldAndChangeNothing)
+{
+  fresh();
+  const auto reference = statesAfter(30);
+  fresh();
+  const double nan = std::nan(""), inf = std::numeric_limits<double>::infinity();
+  struct Case
+  {
+    bcs::AddBall::Response response;
+    const char* field;
+  };
+  const Case balls[] = {
+      {addBall(nan, 0.5, 0, 0, 0.1, 1), "position"}, {addBall(1, 0.5, inf, 0, 0.1, 1), "velocity"},
+      {addBall(1, 0.5, 0, 0, 0, 1), "radius"},       {addBall(1, 0.5, 0, 0, -0.1, 1), "radius"},
+      {addBall(1, 0.5, 0, 0, 0.1, 0), "mass"},       {addBall(1, 0.5, 0, 0, 1e300, 1), "radius"},
+      {addBall(0.5, 0, 0, 0, 0.1, 1), "position"},   // overlaps ball 1
+      {addBall(1.95, 0.5, 0, 0, 0.1, 1), "position"},  // overlaps a wall
+      {addBall(5, 0.5, 0, 0, 0.1, 1), "position"},     // off the floor
+  };
+  for (const Case& c : balls)
+  {
+    EXPECT_FALSE(c.response.success) << c.field;
+    EXPECT_EQ(c.response.message.rfind(c.field, 0), 0u) << c.response.message;
+  }
+  const auto parallel = addWall(0, 0, 1, 0, 2, 0, 0);
+  EXPECT_FALSE(parallel.success);
+  EXPECT_EQ(parallel.message.rfind("v", 0), 0u) << parallel.message;
+  const auto zero = addWall(0, 0, 0, 0, 0, 0, 1);
+  EXPECT_FALSE(zero.success);
+  EXPECT_EQ(zero.message.rfind("u", 0), 0u) << zero.message;
+  const auto through = addWall(-0.763, -1, 0, 2, 0, 0, 0.3);  // across ball 0
+  EXPECT_FALSE(through.success);
+  EXPECT_EQ(through.message.rfind("point", 0), 0u) << through.message;
+  EXPECT_FALSE(remove("ball", 42).success);
+  EXPECT_FALSE(remove("wall", -1).success);
+  // the world is exactly as if nothing had been asked
+  const auto after = statesAfter(30);
+  ASSERT_EQ(after.balls.size(), reference.balls.size());
+  for (std::size_t i = 0; i < after.balls.size(); ++i)
+  {
+    EXPECT_EQ(after.balls[i].pose.position.x, reference.balls[i].pose.position.x);
+    EXPECT_EQ(after.balls[i].pose.position.y, reference.balls[i].pose.position.y);
+    EXPECT_EQ(after.balls[i].twist.linear.x, reference.balls[i].twist.linear.x);
+  }
+}
+
+TEST(Node, ResetRestoresTheLoadedScene)
+{
+  fresh();
+  const auto first = statesAfter(1);
+  addBall(1.2, 0.5, 0, 0, 0.1, 2);
+  step(80);
+  reset();
+  const auto again = statesAfter(1);
+  ASSERT_EQ(again.balls.size(), 2u);
+  ASSERT_EQ(first.balls.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i)
+  {
+    EXPECT_EQ(again.balls[i].id, first.balls[i].id);
+    EXPECT_EQ(again.balls[i].pose.position.x, first.balls[i].pose.position.x);
+    EXPECT_EQ(again.balls[i].twist.linear.x, first.balls[i].twist.linear.x);
+  }
+  EXPECT_NEAR(again.header.stamp.toSec(), kDt, 1e-9);
+}
+
+TEST(Node, MarkersShowFloorWallsAndOneStableIdPerBall)
+{
+  fresh();
+  Inbox<visualization_msgs::MarkerArray> markers("/ball_sim/markers");
+  waitConnected(markers);
+  // a new subscriber is sent the whole scene
+  ASSERT_TRUE(markers.waitFor([](const auto& all) { return !all.empty(); }));
+  auto arrays = markers.take();
+  int floors = 0, walls = 0;
+  std::vector<int> ball_ids;
+  for (const auto& array : arrays)
+    for (const auto& m : array.markers)
+    {
+      if (m.ns == "floor")
+      {
+        ++floors;
+        EXPECT_EQ(m.type, visualization_msgs::Marker::TRIANGLE_LIST);
+        EXPECT_FALSE(m.points.empty());
+        EXPECT_EQ(m.points.size() % 3, 0u);
+      }
+      if (m.ns == "walls")
+        ++walls;
+      if (m.ns == "balls")
+      {
+        ball_ids.push_back(m.id);
+        EXPECT_EQ(m.type, visualization_msgs::Marker::SPHERE);
+        EXPECT_NEAR(m.scale.x, 0.25, 1e-12);
+        EXPECT_EQ(m.header.frame_id, "world");
+      }
+    }
+  EXPECT_EQ(floors, 1);
+  EXPECT_EQ(walls, 4);
+  EXPECT_EQ(ball_ids, (std::vector<int>{0, 1}));
+  // a step moves the balls under the same ids, and sends no floor again
+  step(10);
+  ASSERT_TRUE(markers.waitFor([](const auto& all) { return !all.empty(); }));
+  arrays = markers.take();
+  for (const auto& m : arrays.back().markers)
+  {
+    EXPECT_EQ(m.ns, "balls");
+    if (m.id == 0)
+    {
+      EXPECT_NEAR(m.pose.position.x, -0.763 + 1.5 * 0.1, 1e-9);
+    }
+  }
+  // removing a ball deletes its marker; reset clears everything first
+  const auto added = addBall(1.2, 0.5, 0, 0, 0.1, 2);
+  remove("ball", added.id);
+  ASSERT_TRUE(markers.waitFor([&](const auto& all) {
+    for (const auto& a : all)
+      for (const auto& m : a.markers)
+        if (m.ns == "balls" && m.id == added.id && m.action == visualization_msgs::Marker::DELETE)
+          return true;
+    return false;
+  }));
+  markers.take();
+  reset();
+  ASSERT_TRUE(markers.waitFor([](const auto& all) { return !all.empty(); }));
+  EXPECT_EQ(markers.take().front().markers.front().action, visualization_msgs::Marker::DELETEALL);
+}
+
+// The parameter-server reader and the YAML reader give the same scene from one file.
+TEST(SceneParams, SameSceneAsTheYamlReader)
+{
+  for (const char* name : {"default", "billiards", "bowl", "newtons_cradle", "random_gas"})
+  {
+    const bcs::core::Scene from_params = bcs::bridge::loadSceneParams(ros::NodeHandle(std::string("/scenes/") + name));
+    const bcs::core::Scene from_yaml =
+        bcs::yaml::loadValidScene(std::string(BCS_CONFIG_DIR) + "/" + name + ".yaml");
+    EXPECT_EQ(from_params.dt, from_yaml.dt) << name;
+    EXPECT_EQ(from_params.gravity, from_yaml.gravity) << name;
+    EXPECT_EQ(from_params.restitution, from_yaml.restitution) << name;
+    EXPECT_EQ(from_params.walls.size(), from_yaml.walls.size()) << name;
+    EXPECT_EQ(from_params.node.real_time_factor, from_yaml.node.real_time_factor) << name;
+    // every ball, explicit or random, to the bit
+    EXPECT_EQ(bcs::core::World(from_params).stateHash(), bcs::core::World(from_yaml).stateHash()) << name;
+  }
+}
+
+// A bad scene stops the node at start with one message naming the key, exit code 1.
+TEST(SceneParams, BadSceneStopsTheNode)
+{
+  const std::string command = std::string(BCS_SIMULATOR_NODE_EXE) + " __name:=bad_sim 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[512];
+  while (fgets(buffer, sizeof(buffer), pipe))
+    output += buffer;
+  const int status = pclose(pipe);
+  ASSERT_TRUE(WIFEXITED(status)) << output;
+  EXPECT_EQ(WEXITSTATUS(status), 1) << output;
+  EXPECT_NE(output.find("FATAL"), std::string::npos) << output;
+  EXPECT_NE(output.find("balls[0].radius: must be > 0"), std::string::npos) << output;
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_node");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  if (!ros::service::waitForService("/ball_sim/step", ros::Duration(20.0)))
+  {
+    ADD_FAILURE() << "the node's services did not come up";
+    return 1;
+  }
+  const int result = RUN_ALL_TESTS();
+  ros::shutdown();
+  return result;
+}

@@ -45,9 +45,10 @@ public:
   {
     if (!finite(key, value))
       return false;
-    if (value.norm() <= limit)
+    // stableNorm: 1e300 must read as 1e300, not overflow to inf
+    if (value.stableNorm() <= limit)
       return true;
-    fail(key, "length must be <= " + formatNumber(limit) + " " + unit + " (got " + formatNumber(value.norm()) + ")");
+    fail(key, "length must be <= " + formatNumber(limit) + " " + unit + " (got " + formatNumber(value.stableNorm()) + ")");
     return false;
   }
   /// finite and in (0, limit]
@@ -263,6 +264,8 @@ std::vector<SceneIssue> validate(const Scene& scene)
       check.fail(key, "must be in [0, 1e6] Hz (got " + formatNumber(rate) + ")");
   if (node.tf_max_balls < 0)
     check.fail("tf_max_balls", "must be >= 0 (got " + std::to_string(node.tf_max_balls) + ")");
+  if (check.finite("status_period", node.status_period) && node.status_period < 0)
+    check.fail("status_period", "must be >= 0 s (0 = no status line)");
   check.positive("click_radius", node.click_radius, kMaxLength, "m");
   check.positive("click_mass", node.click_mass, kMaxMass, "kg");
   const bool gravity_ok = check.bounded("gravity", scene.gravity, 1e6, "m/s^2");

@@ -58,6 +58,12 @@ SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   const double factor = settings_.real_time_factor;
   const double period = factor > 0 ? std::clamp(dt / factor, 1e-3, 0.05) : 1e-3;
   timer_ = nh_.createWallTimer(ros::WallDuration(period), &SimulatorNode::onTimer, this);
+  if (settings_.status_period > 0)
+  {
+    status_wall_ = ros::WallTime::now();
+    status_timer_ =
+        nh_.createWallTimer(ros::WallDuration(settings_.status_period), &SimulatorNode::onStatus, this);
+  }
   ROS_INFO("ball_sim: %zu balls, %zu walls, dt = %g s, real time factor %g%s", world_.balls().size(),
            world_.walls().size(), dt, factor, paused_ ? ", paused" : "");
 }
@@ -96,6 +102,21 @@ void SimulatorNode::onTimer(const ros::WallTimerEvent&)
     while ((ros::WallTime::now() - start).toSec() < kStepBudget);
   }
   publishView(false);
+}
+
+void SimulatorNode::onStatus(const ros::WallTimerEvent&)
+{
+  const ros::WallTime now = ros::WallTime::now();
+  const double wall = (now - status_wall_).toSec();
+  const double simulated = world_.time() - status_time_;
+  // events count since the last reset; after one, start over
+  const std::uint64_t events = world_.stats().events >= status_events_ ? world_.stats().events - status_events_ : 0;
+  ROS_INFO("t = %.2f s | real-time factor %.2f | %zu balls | %.1f collisions/s%s", world_.time(),
+           wall > 0 ? std::max(0.0, simulated) / wall : 0.0, world_.balls().size(),
+           simulated > 0 ? static_cast<double>(events) / simulated : 0.0, paused_ ? " | paused" : "");
+  status_wall_ = now;
+  status_time_ = world_.time();
+  status_events_ = world_.stats().events;
 }
 
 void SimulatorNode::stepOnce()

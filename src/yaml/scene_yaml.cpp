@@ -553,6 +553,7 @@ void readNodeSettings(const MapFields& fields, core::NodeSettings& node)
   number("state_rate", node.state_rate);
   number("click_radius", node.click_radius);
   number("click_mass", node.click_mass);
+  number("status_period", node.status_period);
   if (const YAML::Node* value = fields.find("tf_max_balls"))
     node.tf_max_balls = readInt(*value, "tf_max_balls");
   flag("publish_collisions", node.publish_collisions);

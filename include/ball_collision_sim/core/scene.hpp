@@ -83,6 +83,7 @@ struct NodeSettings
   bool start_paused = false;      ///< wait for ~pause false (or ~step) before moving
   double click_radius = 0.1;      ///< radius of balls added from rviz clicks [m]
   double click_mass = 1.0;        ///< mass of balls added from rviz clicks [kg]
+  double status_period = 0.0;     ///< a status line every this many wall seconds [s]; 0 = none
 };
 
 /// Everything a simulation starts from. Defaults are the documented YAML defaults.

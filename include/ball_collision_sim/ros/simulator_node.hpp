@@ -32,6 +32,7 @@ public:
 
 private:
   void onTimer(const ros::WallTimerEvent& event);
+  void onStatus(const ros::WallTimerEvent& event);
   /// One physics step and what is published every step.
   void stepOnce();
   /// Markers and tf, when their wall-clock rates allow (or always, after an edit).
@@ -69,6 +70,10 @@ private:
   std::vector<ros::ServiceServer> services_;
   ros::Subscriber clicked_sub_;
   ros::WallTimer timer_;
+  ros::WallTimer status_timer_;
+  ros::WallTime status_wall_;
+  double status_time_ = 0.0;         ///< simulated time at the last status line [s]
+  std::uint64_t status_events_ = 0;  ///< events counted at the last status line
 
   ros::WallTime anchor_wall_;
   std::uint64_t anchor_steps_ = 0;
