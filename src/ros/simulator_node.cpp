@@ -194,13 +194,19 @@ void SimulatorNode::publishTransforms(const ros::Time& stamp)
   tf_broadcaster_.sendTransform(transforms);
 }
 
-void SimulatorNode::publishStatic()
+visualization_msgs::MarkerArray SimulatorNode::staticMarkers() const
 {
   visualization_msgs::MarkerArray msg;
   if (world_.floor())
     msg.markers.push_back(floorMarker(*world_.floor(), frame_id_));
   for (const core::Wall& wall : world_.walls())
     msg.markers.push_back(wallMarker(wall, frame_id_));
+  return msg;
+}
+
+void SimulatorNode::publishStatic()
+{
+  const visualization_msgs::MarkerArray msg = staticMarkers();
   if (!msg.markers.empty())
     markers_pub_.publish(msg);
 }
@@ -208,11 +214,7 @@ void SimulatorNode::publishStatic()
 void SimulatorNode::onMarkerSubscriber(const ros::SingleSubscriberPublisher& subscriber)
 {
   // A newcomer gets the floor and walls, which are otherwise sent only when they change.
-  visualization_msgs::MarkerArray msg;
-  if (world_.floor())
-    msg.markers.push_back(floorMarker(*world_.floor(), frame_id_));
-  for (const core::Wall& wall : world_.walls())
-    msg.markers.push_back(wallMarker(wall, frame_id_));
+  visualization_msgs::MarkerArray msg = staticMarkers();
   const ros::Time stamp(world_.time());
   for (const core::Ball& ball : world_.balls())
     msg.markers.push_back(ballMarker(ball, frame_id_, stamp));

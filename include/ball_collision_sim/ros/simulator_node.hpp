@@ -37,6 +37,8 @@ private:
   void stepOnce();
   /// Markers and tf, when their wall-clock rates allow (or always, after an edit).
   void publishView(bool force);
+  /// The floor and the walls.
+  visualization_msgs::MarkerArray staticMarkers() const;
   void publishStatic();
   void publishBalls(const ros::Time& stamp);
   void publishTransforms(const ros::Time& stamp);
