@@ -11,6 +11,7 @@
 #include <ball_collision_sim/CollisionEvent.h>
 #include <ball_collision_sim/RemoveObject.h>
 #include <ball_collision_sim/Step.h>
+#include <geometry_msgs/PointStamped.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
@@ -386,6 +387,38 @@ TEST(Node, MarkersShowFloorWallsAndOneStableIdPerBall)
   reset();
   ASSERT_TRUE(markers.waitFor([](const auto& all) { return !all.empty(); }));
   EXPECT_EQ(markers.take().front().markers.front().action, visualization_msgs::Marker::DELETEALL);
+}
+
+// rviz's "Publish Point" adds a ball on the floor under the click.
+TEST(Node, ClickedPointAddsABallOnTheFloor)
+{
+  fresh();
+  ros::NodeHandle nh;
+  ros::Publisher clicks = nh.advertise<geometry_msgs::PointStamped>("/clicked_point", 1);
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(5.0);
+  while (clicks.getNumSubscribers() == 0 && ros::WallTime::now() < end)
+    ros::WallDuration(0.01).sleep();
+  geometry_msgs::PointStamped click;
+  click.header.frame_id = "world";
+  click.point.x = 1.3;
+  click.point.y = -0.4;
+  click.point.z = 0.0;  // on the floor's surface
+  clicks.publish(click);
+  bcs::BallStateArray states;
+  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(5.0);
+  do
+    states = statesAfter(1);
+  while (states.balls.size() < 3 && ros::WallTime::now() < until);
+  ASSERT_EQ(states.balls.size(), 3u);
+  EXPECT_EQ(states.balls[2].id, 2);
+  EXPECT_NEAR(states.balls[2].pose.position.x, 1.3, 1e-12);
+  EXPECT_NEAR(states.balls[2].pose.position.y, -0.4, 1e-12);
+  EXPECT_NEAR(states.balls[2].pose.position.z, 0.1, 1e-12);  // click_radius above the floor
+  // a click in another frame is ignored
+  click.header.frame_id = "map";
+  clicks.publish(click);
+  ros::WallDuration(0.5).sleep();
+  EXPECT_EQ(statesAfter(1).balls.size(), 3u);
 }
 
 // The parameter-server reader and the YAML reader give the same scene from one file.
