@@ -5,7 +5,10 @@
 #include "simulate_options.hpp"
 
 #include "ball_collision_sim/core/world.hpp"
+#include "ball_collision_sim/ros/run_bag.hpp"
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
+
+#include <rosbag/exceptions.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -13,9 +16,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <csignal>
 #include <cstring>
 #include <exception>
+#include <fstream>
 #include <memory>
+#include <sstream>
+#include <unistd.h>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -29,6 +36,62 @@ using ball_collision_sim::tools::SimulateOptions;
 
 constexpr int kExitInternalError = 1;
 constexpr int kExitBadInput = 2;
+constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report it
+
+volatile std::sig_atomic_t g_interrupted = 0;
+
+void onInterrupt(int)
+{
+  g_interrupted = 1;
+}
+
+/// A progress bar on stderr, only when stderr is a terminal: done, ETA, and how much
+/// faster than real time the run goes. At most ten updates a second.
+class Progress
+{
+public:
+  Progress(std::uint64_t total_steps, double dt)
+      : enabled_(isatty(fileno(stderr)) != 0 && total_steps > 0), total_(total_steps), dt_(dt)
+  {
+  }
+  void update(std::uint64_t step, double wall_seconds)
+  {
+    if (!enabled_ || (wall_seconds - last_ < 0.1 && step != total_))
+      return;
+    last_ = wall_seconds;
+    const double done = static_cast<double>(step) / static_cast<double>(total_);
+    constexpr int kWidth = 30;
+    const int filled = static_cast<int>(done * kWidth);
+    const double eta = done > 0 ? wall_seconds * (1 - done) / done : 0.0;
+    const double ratio = wall_seconds > 0 ? static_cast<double>(step) * dt_ / wall_seconds : 0.0;
+    std::fprintf(stderr, "\r[%.*s%.*s] %3.0f%%  t = %.2f / %.2f s  ETA %.1f s  %.1fx real time ", filled,
+                 "##############################", kWidth - filled, "..............................", 100 * done,
+                 static_cast<double>(step) * dt_, static_cast<double>(total_) * dt_, eta, ratio);
+    std::fflush(stderr);
+    shown_ = true;
+  }
+  /// Ends the bar's line so that what follows starts on a fresh one.
+  void finish()
+  {
+    if (shown_)
+      std::fputc('\n', stderr);
+  }
+
+private:
+  bool enabled_;
+  std::uint64_t total_;
+  double dt_;
+  double last_ = -1.0;
+  bool shown_ = false;
+};
+
+std::string readText(const std::string& path)
+{
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 // Steps are counted in floating point first; beyond this a run could never finish and the
 // count would lose integer precision.
@@ -106,11 +169,6 @@ private:
 
 int run(const SimulateOptions& options)
 {
-  if (!options.bag_path.empty())
-  {
-    return reportBadInput("--bag: writing rosbags is not built yet (planned); use --csv");
-  }
-
   Scene scene;
   try
   {
@@ -155,22 +213,52 @@ int run(const SimulateOptions& options)
     }
   }
 
+  std::unique_ptr<ball_collision_sim::bridge::RunBag> bag;
+  if (!options.bag_path.empty())
+  {
+    try
+    {
+      bag = std::make_unique<ball_collision_sim::bridge::RunBag>(options.bag_path, *world,
+                                                                 readText(options.scene_path), options.marker_rate);
+    }
+    catch (const rosbag::BagException& e)
+    {
+      return reportBadInput(options.bag_path + ": cannot write the bag (" + e.what() + ")");
+    }
+  }
+
   const double energy_start = world->energy().total();
   if (csv.isOpen())
   {
     csv.writeSample(*world);
   }
+  // Ctrl-C ends the loop, and the outputs are closed as if the run had been that long.
+  std::signal(SIGINT, onInterrupt);
+  Progress progress(steps, world->dt());
   const auto wall_start = std::chrono::steady_clock::now();
-  for (std::uint64_t step = 1; step <= steps; ++step)
+  const auto wallSeconds = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  };
+  for (std::uint64_t step = 1; step <= steps && !g_interrupted; ++step)
   {
     world->step();
     if (csv.isOpen() && step % options.sample_every == 0)
     {
       csv.writeSample(*world);
     }
+    if (bag)
+    {
+      bag->afterStep(*world);
+    }
+    progress.update(step, wallSeconds());
   }
+  progress.finish();
   const std::string csv_error = csv.close();
-  const double wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  const double wall_seconds = wallSeconds();
+  if (bag)
+  {
+    bag->close();
+  }
   if (!csv_error.empty())
   {
     std::fprintf(stderr, "simulate: error: %s\n", csv_error.c_str());
@@ -181,12 +269,22 @@ int run(const SimulateOptions& options)
               static_cast<unsigned long long>(world->stats().steps),
               static_cast<unsigned long long>(world->stats().events), wall_seconds, energy_start,
               world->energy().total(), world->lostBalls());
-  return std::fflush(stdout) == 0 ? 0 : kExitInternalError;
+  if (std::fflush(stdout) != 0)
+  {
+    return kExitInternalError;
+  }
+  if (g_interrupted)
+  {
+    std::fprintf(stderr, "simulate: interrupted at t = %.17g s; outputs hold the run so far\n", world->time());
+    return kExitInterrupted;
+  }
+  return 0;
 }
 }  // namespace
 
 int main(int argc, char** argv)
 {
+  ros::Time::init();  // rosbag stamps need ros::Time, without a master
   const std::vector<std::string> args(argv + 1, argv + argc);
   const ball_collision_sim::tools::ParsedOptions parsed = ball_collision_sim::tools::parseSimulateOptions(args);
   if (!parsed.ok())

@@ -49,7 +49,8 @@ bool isHelp(const std::string& arg)
 
 std::string simulateUsage()
 {
-  return "usage: simulate SCENE.yaml --duration SECONDS [--bag OUT.bag] [--csv OUT.csv] [--sample-every N]\n"
+  return "usage: simulate SCENE.yaml --duration SECONDS [--bag OUT.bag] [--marker-rate HZ] [--csv OUT.csv]\n"
+         "                [--sample-every N]\n"
          "\n"
          "Runs a scene as fast as the machine allows and prints a one-line summary on stdout:\n"
          "  summary: steps=S events=E wall_s=W energy_start=A energy_end=B balls_lost=L\n"
@@ -58,10 +59,14 @@ std::string simulateUsage()
          "  --duration SECONDS  simulated time to run; ceil(SECONDS / dt) steps\n"
          "  --csv OUT.csv       write t,id,x,y,z,vx,vy,vz for every ball at t = 0 and per sample\n"
          "  --sample-every N    a CSV sample after every N-th step (default 1)\n"
-         "  --bag OUT.bag       rosbag output (planned, not built yet)\n"
+         "  --bag OUT.bag       write the node's topics (/clock, /tf, /ball_sim/...) stamped with\n"
+         "                      simulated time; Ctrl-C closes a valid bag of the run so far\n"
+         "  --marker-rate HZ    markers per simulated second in the bag (default 30; 0: the first only)\n"
          "  -h, --help          print this help\n"
          "\n"
-         "Exit status: 0 done, 2 bad command line or bad scene, 1 internal error.\n";
+         "On a terminal, a progress bar with ETA goes to stderr.\n"
+         "Exit status: 0 done, 2 bad command line or bad scene, 1 internal error,\n"
+         "130 stopped by Ctrl-C (the outputs hold the run so far).\n";
 }
 
 ParsedOptions parseSimulateOptions(const std::vector<std::string>& args)
@@ -85,6 +90,7 @@ ParsedOptions parseSimulateOptions(const std::vector<std::string>& args)
 
   bool have_duration = false;
   bool have_sample_every = false;
+  bool have_marker_rate = false;
   bool options_ended = false;
   for (std::size_t i = 0; i < args.size(); ++i)
   {
@@ -114,7 +120,8 @@ ParsedOptions parseSimulateOptions(const std::vector<std::string>& args)
       flag = arg.substr(0, equals);
       value = arg.substr(equals + 1);
     }
-    if (flag != "--duration" && flag != "--bag" && flag != "--csv" && flag != "--sample-every")
+    if (flag != "--duration" && flag != "--bag" && flag != "--csv" && flag != "--sample-every" &&
+        flag != "--marker-rate")
     {
       parsed.error = "unknown option " + quoted(flag);
       return parsed;
@@ -151,6 +158,22 @@ ParsedOptions parseSimulateOptions(const std::vector<std::string>& args)
         return parsed;
       }
       options.duration = *seconds;
+    }
+    else if (flag == "--marker-rate")
+    {
+      if (have_marker_rate)
+      {
+        parsed.error = "--marker-rate: given twice";
+        return parsed;
+      }
+      have_marker_rate = true;
+      const std::optional<double> rate = parseNumber(*value);
+      if (!rate || !std::isfinite(*rate) || *rate < 0.0)
+      {
+        parsed.error = "--marker-rate: expected a rate >= 0 in Hz, got " + quoted(*value);
+        return parsed;
+      }
+      options.marker_rate = *rate;
     }
     else if (flag == "--sample-every")
     {

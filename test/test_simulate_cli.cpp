@@ -4,7 +4,19 @@
 #include "ball_collision_sim/core/scene.hpp"
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
 
+#include <ball_collision_sim/BallStateArray.h>
 #include <gtest/gtest.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <rosgraph_msgs/Clock.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <fcntl.h>
+#include <csignal>
+#include <map>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -198,13 +210,80 @@ TEST_F(SimulateCli, BadCommandLinesExitTwoWithAUsageHint)
   }
 }
 
-TEST_F(SimulateCli, BagIsNotBuiltYet)
+TEST_F(SimulateCli, BagHoldsTheNodesTopicsStampedWithSimulatedTime)
 {
-  const RunResult result = run({kGoodScene, "--duration", "1", "--bag", path("x.bag")});
+  const RunResult result = run({kGoodScene, "--duration", "0.5", "--bag", path("x.bag"), "--marker-rate", "10"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_FALSE(fs::exists(path("x.bag.active")));
+  rosbag::Bag bag(path("x.bag"), rosbag::bagmode::Read);
+  std::map<std::string, int> counts;
+  double last_clock = -1, last_states = -1;
+  int marker_sets = 0;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag))
+  {
+    ++counts[m.getTopic()];
+    if (const auto clock = m.instantiate<rosgraph_msgs::Clock>())
+    {
+      EXPECT_GE(clock->clock.toSec(), last_clock);
+      last_clock = clock->clock.toSec();
+    }
+    if (const auto states = m.instantiate<ball_collision_sim::BallStateArray>())
+    {
+      EXPECT_NEAR(states->header.stamp.toSec(), last_states < 0 ? 0.0 : last_states + 0.01, 1e-9);
+      last_states = states->header.stamp.toSec();
+      EXPECT_EQ(states->header.frame_id, "world");
+    }
+    if (const auto markers = m.instantiate<visualization_msgs::MarkerArray>())
+      if (!markers->markers.empty() && markers->markers[0].ns == "balls")
+        ++marker_sets;
+  }
+  // a state per step and the start; markers at 10 Hz of simulated time and at the start
+  EXPECT_EQ(counts["/ball_sim/ball_states"], 51);
+  EXPECT_EQ(counts["/clock"], 51);
+  EXPECT_EQ(marker_sets, 6);
+  EXPECT_EQ(counts["/ball_sim/scene"], 1);
+  EXPECT_GT(counts["/tf"], 0);
+  EXPECT_NEAR(last_clock, 0.5, 1e-9);
+}
+
+TEST_F(SimulateCli, UnwritableBagIsABadCommandLine)
+{
+  const RunResult result = run({kGoodScene, "--duration", "1", "--bag", path("no/such/dir/x.bag")});
   EXPECT_EQ(result.exit_code, 2);
-  EXPECT_EQ(result.out, "");
-  EXPECT_EQ(result.err, "simulate: error: --bag: writing rosbags is not built yet (planned); use --csv\n");
-  EXPECT_FALSE(fs::exists(path("x.bag")));
+  EXPECT_TRUE(contains(result.err, "no/such/dir/x.bag")) << result.err;
+}
+
+// Ctrl-C during a long run: exit 130, and a valid bag of the run so far under the final
+// name, nothing left under the temporary one.
+TEST_F(SimulateCli, InterruptClosesAValidBag)
+{
+  const std::string bag_path = path("long.bag");
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0)
+  {
+    const int devnull = open("/dev/null", O_WRONLY);
+    dup2(devnull, 1);
+    dup2(devnull, 2);
+    execl(BCS_SIMULATE_EXE, BCS_SIMULATE_EXE, kGoodScene.c_str(), "--duration", "1e6", "--bag", bag_path.c_str(),
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // wait until the run is under way
+  for (int k = 0; k < 200 && !fs::exists(bag_path + ".active"); ++k)
+    usleep(10000);
+  usleep(500000);
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_FALSE(fs::exists(bag_path + ".active"));
+  ASSERT_TRUE(fs::exists(bag_path));
+  rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
+  rosbag::View states(bag, rosbag::TopicQuery("/ball_sim/ball_states"));
+  EXPECT_GT(states.size(), 10u);
+  EXPECT_LT(states.getEndTime().toSec(), 1e6);
 }
 
 TEST_F(SimulateCli, HelpGoesToStdoutAndExitsZero)

@@ -77,16 +77,19 @@ std::string toYaml(XmlRpc::XmlRpcValue& value)
   }
 }
 
-core::Scene loadSceneParams(const ros::NodeHandle& nh)
+core::Scene loadSceneParams(const ros::NodeHandle& nh, std::string* yaml_text)
 {
   const std::string source = "parameter server (" + nh.getNamespace() + ")";
   XmlRpc::XmlRpcValue tree;
   if (!nh.getParam(nh.getNamespace(), tree) || tree.getType() != XmlRpc::XmlRpcValue::TypeStruct)
     throw yaml::SceneError(source + ": no scene there (load one with <rosparam command=\"load\" file=\"SCENE.yaml\"/>)");
-  const core::Scene scene = yaml::parseScene(toYaml(tree), source);
+  const std::string text = toYaml(tree);
+  const core::Scene scene = yaml::parseScene(text, source);
   const std::vector<core::SceneIssue> issues = core::validate(scene);
   if (!issues.empty())
     throw yaml::SceneError(source + ": " + core::joinIssues(issues));
+  if (yaml_text)
+    *yaml_text = text;
   return scene;
 }
 }  // namespace ball_collision_sim::bridge

@@ -2,11 +2,13 @@
 
 #include "ball_collision_sim/ros/conversions.hpp"
 #include "ball_collision_sim/ros/markers.hpp"
+#include "ball_collision_sim/ros/outputs.hpp"
 #include "ball_collision_sim/ros/scene_param.hpp"
 
 #include <ball_collision_sim/BallStateArray.h>
 #include <ball_collision_sim/CollisionEvent.h>
 #include <rosgraph_msgs/Clock.h>
+#include <std_msgs/String.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,7 +24,7 @@ constexpr double kStepBudget = 0.05;
 }  // namespace
 
 SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-    : world_(loadSceneParams(pnh))
+    : world_(loadSceneParams(pnh, &scene_yaml_))
     , settings_(world_.scene().node)
     , frame_id_(world_.scene().frame_id)
     , paused_(settings_.start_paused)
@@ -30,15 +32,17 @@ SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     , pnh_(pnh)
 {
   const double dt = world_.dt();
-  state_every_ = settings_.state_rate > 0
-                     ? static_cast<std::uint64_t>(std::max(1.0, std::round(1.0 / (settings_.state_rate * dt))))
-                     : 1;
+  state_every_ = stepsPer(settings_.state_rate, dt);
 
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>(
       "markers", 10, [this](const ros::SingleSubscriberPublisher& s) { onMarkerSubscriber(s); });
   states_pub_ = pnh_.advertise<BallStateArray>("ball_states", 100);
   collisions_pub_ = pnh_.advertise<ball_collision_sim::CollisionEvent>("collisions", 1000);
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  scene_pub_ = pnh_.advertise<std_msgs::String>("scene", 1, true);
+  std_msgs::String scene;
+  scene.data = scene_yaml_;
+  scene_pub_.publish(scene);
 
   services_.push_back(pnh_.advertiseService("add_ball", &SimulatorNode::onAddBall, this));
   services_.push_back(pnh_.advertiseService("add_wall", &SimulatorNode::onAddWall, this));
@@ -135,13 +139,7 @@ void SimulatorNode::stepOnce()
 
 void SimulatorNode::publishStates(const ros::Time& stamp)
 {
-  BallStateArray msg;
-  msg.header.stamp = stamp;
-  msg.header.frame_id = frame_id_;
-  msg.balls.reserve(world_.balls().size());
-  for (const core::Ball& ball : world_.balls())
-    msg.balls.push_back(toMsg(ball));
-  states_pub_.publish(msg);
+  states_pub_.publish(statesMessage(world_, frame_id_, stamp));
 }
 
 void SimulatorNode::publishView(bool force)
@@ -176,37 +174,23 @@ void SimulatorNode::publishBalls(const ros::Time& stamp)
   for (const int id : shown_balls_)
     if (!std::binary_search(ids.begin(), ids.end(), id))
       msg.markers.push_back(deleteMarker(kBallsNs, id, frame_id_));
-  for (const core::Ball& ball : world_.balls())
-    msg.markers.push_back(ballMarker(ball, frame_id_, stamp));
+  const visualization_msgs::MarkerArray balls = ballMarkers(world_, frame_id_, stamp);
+  msg.markers.insert(msg.markers.end(), balls.markers.begin(), balls.markers.end());
   shown_balls_ = std::move(ids);
   markers_pub_.publish(msg);
 }
 
 void SimulatorNode::publishTransforms(const ros::Time& stamp)
 {
-  const auto count = std::min<std::size_t>(world_.balls().size(), static_cast<std::size_t>(settings_.tf_max_balls));
-  if (count == 0)
-    return;
-  std::vector<geometry_msgs::TransformStamped> transforms;
-  transforms.reserve(count);
-  for (std::size_t i = 0; i < count; ++i)
-    transforms.push_back(toTransform(world_.balls()[i], frame_id_, stamp));
-  tf_broadcaster_.sendTransform(transforms);
-}
-
-visualization_msgs::MarkerArray SimulatorNode::staticMarkers() const
-{
-  visualization_msgs::MarkerArray msg;
-  if (world_.floor())
-    msg.markers.push_back(floorMarker(*world_.floor(), frame_id_));
-  for (const core::Wall& wall : world_.walls())
-    msg.markers.push_back(wallMarker(wall, frame_id_));
-  return msg;
+  const tf2_msgs::TFMessage msg =
+      transformsMessage(world_, frame_id_, stamp, static_cast<std::size_t>(settings_.tf_max_balls));
+  if (!msg.transforms.empty())
+    tf_broadcaster_.sendTransform(msg.transforms);
 }
 
 void SimulatorNode::publishStatic()
 {
-  const visualization_msgs::MarkerArray msg = staticMarkers();
+  const visualization_msgs::MarkerArray msg = staticMarkers(world_, frame_id_);
   if (!msg.markers.empty())
     markers_pub_.publish(msg);
 }
@@ -214,10 +198,9 @@ void SimulatorNode::publishStatic()
 void SimulatorNode::onMarkerSubscriber(const ros::SingleSubscriberPublisher& subscriber)
 {
   // A newcomer gets the floor and walls, which are otherwise sent only when they change.
-  visualization_msgs::MarkerArray msg = staticMarkers();
-  const ros::Time stamp(world_.time());
-  for (const core::Ball& ball : world_.balls())
-    msg.markers.push_back(ballMarker(ball, frame_id_, stamp));
+  visualization_msgs::MarkerArray msg = staticMarkers(world_, frame_id_);
+  const visualization_msgs::MarkerArray balls = ballMarkers(world_, frame_id_, ros::Time(world_.time()));
+  msg.markers.insert(msg.markers.end(), balls.markers.begin(), balls.markers.end());
   subscriber.publish(msg);
 }
 
@@ -280,6 +263,8 @@ bool SimulatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
   clock.clock = ros::Time(world_.time());
   clock_pub_.publish(clock);
   publishView(true);
+  if (states_pub_.getNumSubscribers() > 0)
+    publishStates(clock.clock);
   res.success = true;
   res.message = "back to the scene as loaded: " + std::to_string(world_.balls().size()) + " balls, " +
                 std::to_string(world_.walls().size()) + " walls";

@@ -17,5 +17,6 @@ std::string toYaml(XmlRpc::XmlRpcValue& value);
 /// The scene under the namespace of `nh` (where the launch file's
 /// <rosparam command="load"> put it), read and validated. Throws yaml::SceneError with
 /// one line naming the parameter and the reason.
-core::Scene loadSceneParams(const ros::NodeHandle& nh);
+/// @param yaml_text if given, receives the scene as the YAML text that was read
+core::Scene loadSceneParams(const ros::NodeHandle& nh, std::string* yaml_text = nullptr);
 }  // namespace ball_collision_sim::bridge

@@ -37,8 +37,6 @@ private:
   void stepOnce();
   /// Markers and tf, when their wall-clock rates allow (or always, after an edit).
   void publishView(bool force);
-  /// The floor and the walls.
-  visualization_msgs::MarkerArray staticMarkers() const;
   void publishStatic();
   void publishBalls(const ros::Time& stamp);
   void publishTransforms(const ros::Time& stamp);
@@ -56,6 +54,7 @@ private:
   void onClickedPoint(const geometry_msgs::PointStamped& msg);
   void onMarkerSubscriber(const ros::SingleSubscriberPublisher& subscriber);
 
+  std::string scene_yaml_;  ///< the scene as read, published on ~scene
   core::World world_;
   const core::NodeSettings settings_;
   const std::string frame_id_;
@@ -68,6 +67,7 @@ private:
   ros::Publisher states_pub_;
   ros::Publisher collisions_pub_;
   ros::Publisher clock_pub_;
+  ros::Publisher scene_pub_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   std::vector<ros::ServiceServer> services_;
   ros::Subscriber clicked_sub_;

@@ -1,0 +1,59 @@
+#include "ball_collision_sim/ros/outputs.hpp"
+
+#include "ball_collision_sim/ros/conversions.hpp"
+#include "ball_collision_sim/ros/markers.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ball_collision_sim::bridge
+{
+BallStateArray statesMessage(const core::World& world, const std::string& frame_id, const ros::Time& stamp)
+{
+  BallStateArray msg;
+  msg.header.stamp = stamp;
+  msg.header.frame_id = frame_id;
+  msg.balls.reserve(world.balls().size());
+  for (const core::Ball& ball : world.balls())
+    msg.balls.push_back(toMsg(ball));
+  return msg;
+}
+
+tf2_msgs::TFMessage transformsMessage(const core::World& world, const std::string& frame_id, const ros::Time& stamp,
+                                      std::size_t max_balls)
+{
+  tf2_msgs::TFMessage msg;
+  const std::size_t count = std::min(world.balls().size(), max_balls);
+  msg.transforms.reserve(count);
+  for (std::size_t i = 0; i < count; ++i)
+    msg.transforms.push_back(toTransform(world.balls()[i], frame_id, stamp));
+  return msg;
+}
+
+visualization_msgs::MarkerArray ballMarkers(const core::World& world, const std::string& frame_id,
+                                            const ros::Time& stamp)
+{
+  visualization_msgs::MarkerArray msg;
+  msg.markers.reserve(world.balls().size());
+  for (const core::Ball& ball : world.balls())
+    msg.markers.push_back(ballMarker(ball, frame_id, stamp));
+  return msg;
+}
+
+visualization_msgs::MarkerArray staticMarkers(const core::World& world, const std::string& frame_id)
+{
+  visualization_msgs::MarkerArray msg;
+  if (world.floor())
+    msg.markers.push_back(floorMarker(*world.floor(), frame_id));
+  for (const core::Wall& wall : world.walls())
+    msg.markers.push_back(wallMarker(wall, frame_id));
+  return msg;
+}
+
+std::uint64_t stepsPer(double rate, double dt)
+{
+  if (!(rate > 0))
+    return 1;
+  return static_cast<std::uint64_t>(std::max(1.0, std::round(1.0 / (rate * dt))));
+}
+}  // namespace ball_collision_sim::bridge

@@ -1,0 +1,86 @@
+#include "ball_collision_sim/ros/run_bag.hpp"
+
+#include "ball_collision_sim/ros/conversions.hpp"
+#include "ball_collision_sim/ros/outputs.hpp"
+
+#include <rosgraph_msgs/Clock.h>
+#include <std_msgs/String.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+namespace ball_collision_sim::bridge
+{
+RunBag::RunBag(const std::string& path, const core::World& world, const std::string& scene_yaml, double marker_rate)
+    : path_(path)
+    , active_path_(path + ".active")
+    , frame_id_(world.scene().frame_id)
+    , state_every_(stepsPer(world.scene().node.state_rate, world.dt()))
+    , tf_every_(stepsPer(world.scene().node.tf_rate, world.dt()))
+    , marker_every_(marker_rate > 0 ? stepsPer(marker_rate, world.dt()) : 0)
+    , tf_max_balls_(static_cast<std::size_t>(world.scene().node.tf_max_balls))
+{
+  bag_.open(active_path_, rosbag::bagmode::Write);
+  const ros::Time stamp(world.time());
+  std_msgs::String scene;
+  scene.data = scene_yaml;
+  write("/ball_sim/scene", stamp, scene);
+  rosgraph_msgs::Clock clock;
+  clock.clock = stamp;
+  write("/clock", stamp, clock);
+  write("/ball_sim/markers", stamp, staticMarkers(world, frame_id_));
+  write("/ball_sim/ball_states", stamp, statesMessage(world, frame_id_, stamp));
+  writeView(world, stamp);
+}
+
+RunBag::~RunBag()
+{
+  if (!closed_)
+    bag_.close();
+}
+
+template <class Msg>
+void RunBag::write(const std::string& topic, const ros::Time& stamp, const Msg& msg)
+{
+  // A bag cannot hold time 0: the start is written at the first representable instant.
+  bag_.write(topic, std::max(stamp, ros::TIME_MIN), msg);
+}
+
+void RunBag::writeView(const core::World& world, const ros::Time& stamp)
+{
+  if (world.stats().steps % tf_every_ == 0 && tf_max_balls_ > 0)
+    write("/tf", stamp, transformsMessage(world, frame_id_, stamp, tf_max_balls_));
+  if (world.stats().steps == 0 || (marker_every_ > 0 && world.stats().steps % marker_every_ == 0))
+    write("/ball_sim/markers", stamp, ballMarkers(world, frame_id_, stamp));
+}
+
+void RunBag::afterStep(const core::World& world)
+{
+  const ros::Time stamp(world.time());
+  rosgraph_msgs::Clock clock;
+  clock.clock = stamp;
+  write("/clock", stamp, clock);
+  for (const core::CollisionEvent& event : world.lastEvents())
+  {
+    const auto msg = toMsg(event, frame_id_);
+    write("/ball_sim/collisions", msg.header.stamp, msg);
+  }
+  if (world.stats().steps % state_every_ == 0)
+    write("/ball_sim/ball_states", stamp, statesMessage(world, frame_id_, stamp));
+  writeView(world, stamp);
+}
+
+void RunBag::close()
+{
+  if (closed_)
+    return;
+  bag_.close();
+  closed_ = true;
+  if (std::rename(active_path_.c_str(), path_.c_str()) != 0)
+    throw std::runtime_error(path_ + ": cannot move the finished bag there from " + active_path_ + " (" +
+                             std::strerror(errno) + ")");
+}
+}  // namespace ball_collision_sim::bridge
