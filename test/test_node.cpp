@@ -13,6 +13,8 @@
 #include <ball_collision_sim/Step.h>
 #include <geometry_msgs/PointStamped.h>
 #include <gtest/gtest.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 #include <std_srvs/SetBool.h>
@@ -23,6 +25,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <unistd.h>
 #include <mutex>
 #include <string>
 #include <sys/wait.h>
@@ -387,6 +391,54 @@ TEST(Node, MarkersShowFloorWallsAndOneStableIdPerBall)
   reset();
   ASSERT_TRUE(markers.waitFor([](const auto& all) { return !all.empty(); }));
   EXPECT_EQ(markers.take().front().markers.front().action, visualization_msgs::Marker::DELETEALL);
+}
+
+// The node's ball states (paused, stepped through the service, recorded to a bag) are
+// the offline tool's, to the last bit.
+TEST(Node, StatesMatchTheOfflineToolsBagBitForBit)
+{
+  const std::string dir = "/tmp/bcs_test_node_" + std::to_string(getpid());
+  std::system(("mkdir -p " + dir).c_str());
+  const std::string offline = dir + "/offline.bag", recorded = dir + "/node.bag";
+  const std::string command = std::string(BCS_SIMULATE_EXE) + " " + BCS_TEST_DATA_DIR +
+                              "/node_scene.yaml --duration 0.8 --bag " + offline + " > /dev/null";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+
+  fresh();
+  Inbox<bcs::BallStateArray> states("/ball_sim/ball_states");
+  waitConnected(states);
+  reset();  // publishes the states at t = 0
+  step(80);
+  ASSERT_TRUE(states.waitFor([](const auto& all) { return all.size() >= 81; }));
+  {
+    rosbag::Bag bag(recorded, rosbag::bagmode::Write);
+    for (const auto& msg : states.take())
+      bag.write("/ball_sim/ball_states", std::max(msg.header.stamp, ros::TIME_MIN), msg);
+  }
+
+  auto read = [](const std::string& path) {
+    std::vector<bcs::BallStateArray> out;
+    rosbag::Bag bag(path, rosbag::bagmode::Read);
+    for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/ball_sim/ball_states")))
+      out.push_back(*m.instantiate<bcs::BallStateArray>());
+    return out;
+  };
+  auto a = read(offline), b = read(recorded);
+  ASSERT_EQ(a.size(), 81u);
+  ASSERT_EQ(b.size(), a.size());
+  for (std::size_t k = 0; k < a.size(); ++k)
+  {
+    ASSERT_EQ(a[k].header.stamp, b[k].header.stamp) << k;
+    ASSERT_EQ(a[k].balls.size(), b[k].balls.size()) << k;
+    // serialised, the two messages are the same bytes (but for the sequence number
+    // that roscpp's publisher stamps on every header)
+    a[k].header.seq = b[k].header.seq = 0;
+    const ros::SerializedMessage x = ros::serialization::serializeMessage(a[k]);
+    const ros::SerializedMessage y = ros::serialization::serializeMessage(b[k]);
+    ASSERT_EQ(x.num_bytes, y.num_bytes) << k;
+    EXPECT_EQ(std::memcmp(x.buf.get(), y.buf.get(), x.num_bytes), 0) << "step " << k;
+  }
+  std::system(("rm -rf " + dir).c_str());
 }
 
 // rviz's "Publish Point" adds a ball on the floor under the click.
