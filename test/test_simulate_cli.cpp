@@ -246,6 +246,40 @@ TEST_F(SimulateCli, BagHoldsTheNodesTopicsStampedWithSimulatedTime)
   EXPECT_NEAR(last_clock, 0.5, 1e-9);
 }
 
+namespace
+{
+/// The value of `key=` in a line of key=value fields.
+double field(const std::string& line, const std::string& key)
+{
+  const std::size_t at = line.find(" " + key + "=");
+  EXPECT_NE(at, std::string::npos) << key << " in " << line;
+  return at == std::string::npos ? std::nan("") : std::stod(line.substr(at + key.size() + 2));
+}
+}  // namespace
+
+// plot_run reads a bag that simulate wrote: every plot is written, and the energy it
+// computes from the ball states is the summary's.
+TEST_F(SimulateCli, PlotRunDrawsABagAndAgreesOnTheEnergy)
+{
+  const RunResult sim = run({std::string(BCS_CONFIG_DIR) + "/random_gas.yaml", "--duration", "2", "--bag", path("gas.bag")});
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const std::string summary = lines(sim.out).back();
+  const std::string command = "/usr/bin/python3 " + std::string(BCS_CONFIG_DIR) + "/../scripts/plot_run " +
+                              shellQuote(path("gas.bag")) + " --out " + shellQuote(path("plots")) + " > " +
+                              shellQuote(path("plot.txt")) + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << readFile(path("plot.txt"));
+  const std::string out = lines(readFile(path("plot.txt"))).back();
+  for (const char* name : {"energy.png", "momentum.png", "collisions.png", "trajectories.png", "speeds.png"})
+  {
+    ASSERT_TRUE(fs::exists(path("plots") + "/" + name)) << name;
+    EXPECT_GT(fs::file_size(path("plots") + "/" + name), 5000u) << name;
+  }
+  const double e0 = field(summary, "energy_start"), e1 = field(summary, "energy_end");
+  EXPECT_NEAR(field(out, "energy_start"), e0, 1e-12 * std::abs(e0)) << out;
+  EXPECT_NEAR(field(out, "energy_end"), e1, 1e-12 * std::abs(e1)) << out;
+  EXPECT_EQ(field(out, "samples"), field(summary, "steps") + 1);  // a state per step and the start
+}
+
 TEST_F(SimulateCli, UnwritableBagIsABadCommandLine)
 {
   const RunResult result = run({kGoodScene, "--duration", "1", "--bag", path("no/such/dir/x.bag")});
