@@ -280,6 +280,25 @@ TEST_F(SimulateCli, PlotRunDrawsABagAndAgreesOnTheEnergy)
   EXPECT_EQ(field(out, "samples"), field(summary, "steps") + 1);  // a state per step and the start
 }
 
+// On a terminal a progress bar goes to stderr; into a file or pipe, nothing of it.
+TEST_F(SimulateCli, ProgressBarOnlyOnATerminal)
+{
+  const RunResult plain = run({std::string(BCS_CONFIG_DIR) + "/random_gas.yaml", "--duration", "2"});
+  ASSERT_EQ(plain.exit_code, 0);
+  EXPECT_EQ(plain.err, "");
+  // `script` gives the tool a terminal
+  const std::string command = "script -qec " +
+                              shellQuote(std::string(BCS_SIMULATE_EXE) + " " + BCS_CONFIG_DIR +
+                                         "/random_gas.yaml --duration 2") +
+                              " /dev/null > " + shellQuote(path("tty.txt")) + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::string shown = readFile(path("tty.txt"));
+  EXPECT_TRUE(contains(shown, "ETA")) << shown;
+  EXPECT_TRUE(contains(shown, "real time")) << shown;
+  EXPECT_TRUE(contains(shown, "100%")) << shown;
+  EXPECT_TRUE(contains(shown, "summary: steps=400")) << shown;
+}
+
 TEST_F(SimulateCli, UnwritableBagIsABadCommandLine)
 {
   const RunResult result = run({kGoodScene, "--duration", "1", "--bag", path("no/such/dir/x.bag")});
