@@ -125,4 +125,89 @@ void UniformGrid::insert(std::uint32_t item, const Aabb& box)
         h = static_cast<std::uint32_t>(entries_.size() - 1);
       }
 }
+
+void StepGrid::build(const std::vector<Aabb>& boxes, const Vec3& up)
+{
+  const std::size_t n = boxes.size();
+  // Grid axes: drop the one most nearly along "up", where balls on a floor barely spread.
+  int drop = 0;
+  up.cwiseAbs().maxCoeff(&drop);
+  ax_ = drop == 0 ? 1 : 0;
+  ay_ = drop == 2 ? 1 : 2;
+  cx_.resize(n);
+  cy_.resize(n);
+  moved_.assign(n, 0);
+  moved_list_.clear();
+  std::size_t buckets = 16;
+  shift_ = 60;
+  while (buckets < 2 * n)
+  {
+    buckets *= 2;
+    --shift_;
+  }
+  starts_.assign(buckets + 1, 0);
+  entries_.resize(n);
+  if (n == 0)
+    return;
+
+  // Cells a little wider than the widest box, leaving out boxes far wider than the
+  // median (a rare fast or large ball): they are listed as moved instead of making
+  // every cell huge.
+  extents_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    extents_[i] = std::max(boxes[i].max[ax_] - boxes[i].min[ax_], boxes[i].max[ay_] - boxes[i].min[ay_]);
+  sorted_extents_ = extents_;
+  std::nth_element(sorted_extents_.begin(), sorted_extents_.begin() + n / 2, sorted_extents_.end());
+  const double outlier = 4 * sorted_extents_[n / 2];
+  double widest = 0;
+  for (const double e : extents_)
+    if (e <= outlier)
+      widest = std::max(widest, e);
+  cell_ = widest * (1 + 1e-9) + 1e-12;
+  inv_cell_ = 1.0 / cell_;
+  moved_grid_.reset(cell_, n / 8 + 16);
+
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    cx_[i] = index(std::floor(0.5 * (boxes[i].min[ax_] + boxes[i].max[ax_]) * inv_cell_));
+    cy_[i] = index(std::floor(0.5 * (boxes[i].min[ay_] + boxes[i].max[ay_]) * inv_cell_));
+    ++starts_[bucketOf(cx_[i], cy_[i]) + 1];
+  }
+  for (std::size_t b = 0; b < buckets; ++b)  // counting sort by bucket
+    starts_[b + 1] += starts_[b];
+  next_.assign(starts_.begin(), starts_.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
+    entries_[next_[bucketOf(cx_[i], cy_[i])]++] = Entry{static_cast<std::uint32_t>(i), cx_[i], cy_[i]};
+  for (std::size_t i = 0; i < n; ++i)
+    if (extents_[i] > widest)
+      update(static_cast<std::uint32_t>(i), boxes[i]);
+}
+
+std::size_t StepGrid::bucketOf(std::int64_t cx, std::int64_t cy) const
+{
+  // Fibonacci hashing of the two cell indices
+  const std::uint64_t h =
+      static_cast<std::uint64_t>(cx) * 0x9e3779b97f4a7c15ULL ^ static_cast<std::uint64_t>(cy) * 0xc2b2ae3d27d4eb4fULL;
+  return static_cast<std::size_t>((h ^ (h >> 29)) >> shift_);
+}
+
+bool StepGrid::fits(std::uint32_t i, const Aabb& box) const
+{
+  // strictly within half a cell of the item's own cell
+  const double lo_x = (static_cast<double>(cx_[i]) - 0.5) * cell_, hi_x = (static_cast<double>(cx_[i]) + 1.5) * cell_;
+  const double lo_y = (static_cast<double>(cy_[i]) - 0.5) * cell_, hi_y = (static_cast<double>(cy_[i]) + 1.5) * cell_;
+  return box.min[ax_] > lo_x && box.max[ax_] < hi_x && box.min[ay_] > lo_y && box.max[ay_] < hi_y;
+}
+
+void StepGrid::update(std::uint32_t i, const Aabb& box)
+{
+  if (!moved_[i])
+  {
+    if (fits(i, box))
+      return;
+    moved_[i] = 1;
+    moved_list_.push_back(i);
+  }
+  moved_grid_.insert(i, box);
+}
 }  // namespace ball_collision_sim::core

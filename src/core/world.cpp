@@ -219,21 +219,11 @@ Aabb World::currentBox(std::size_t i) const
 
 void World::buildBroadPhase()
 {
-  const std::size_t n = balls_.size();
-  seen_.assign(n, 0);
-  seen_stamp_ = 0;
   heap_.clear();
-  if (n == 0)
-    return;
-  // Cells as large as a typical swept box: most balls then touch one to eight cells,
-  // and the rare fast or large ball spans many or goes to the grid's oversized list.
-  extents_.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    extents_[i] = motions_[i].b.cwiseAbs().maxCoeff() + 2 * balls_[i].radius;
-  std::nth_element(extents_.begin(), extents_.begin() + n / 2, extents_.end());
-  grid_.reset(std::max(extents_[n / 2], 1e-9), n);
-  for (std::size_t i = 0; i < n; ++i)
-    grid_.insert(static_cast<std::uint32_t>(i), currentBox(i));
+  boxes_.resize(balls_.size());
+  for (std::size_t i = 0; i < balls_.size(); ++i)
+    boxes_[i] = currentBox(i);
+  grid_.build(boxes_, up());
 }
 
 void World::findFirstImpacts()
@@ -329,25 +319,13 @@ void World::pushEvent(const Event& event)
 void World::detect(std::size_t i, bool only_higher)
 {
   detectWalls(i);
-  if (++seen_stamp_ == 0)
-  {
-    std::fill(seen_.begin(), seen_.end(), 0);
-    seen_stamp_ = 1;
-  }
-  auto visit = [&](std::uint32_t j) {
-    if (j == i || seen_[j] == seen_stamp_)
-      return;
-    seen_[j] = seen_stamp_;
-    if (only_higher && j < i)
-      return;  // the pair is found from j's side
-    detectBall(i, j);
-  };
-  const Aabb box = currentBox(i);
-  if (grid_.oversized(box))
-    for (std::size_t j = 0; j < balls_.size(); ++j)
-      visit(static_cast<std::uint32_t>(j));
-  else
-    grid_.query(box, visit);
+  const Aabb& box = boxes_[i];
+  grid_.query(static_cast<std::uint32_t>(i), box, [&](std::uint32_t j) {
+    if (j == i || (only_higher && j < i))
+      return;  // with only_higher, the pair is found from j's side
+    if (box.overlaps(boxes_[j]))
+      detectBall(i, j);
+  });
 }
 
 void World::detectWalls(std::size_t i)
@@ -355,7 +333,7 @@ void World::detectWalls(std::size_t i)
   const Motion& m = motions_[i];
   if (m.frozen)
     return;
-  const Aabb box = currentBox(i);
+  const Aabb& box = boxes_[i];
   for (std::size_t w = 0; w < walls_.size(); ++w)
   {
     const Wall& wall = walls_[w];
@@ -451,8 +429,9 @@ void World::countEvent(std::size_t i)
     m.b = Vec3::Zero();
     ++stats_.frozen_balls;
   }
-  // its new motion may reach cells it was not listed in
-  grid_.insert(static_cast<std::uint32_t>(i), currentBox(i));
+  // its new motion may reach beyond where the grid has it
+  boxes_[i] = currentBox(i);
+  grid_.update(static_cast<std::uint32_t>(i), boxes_[i]);
 }
 
 void World::recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,

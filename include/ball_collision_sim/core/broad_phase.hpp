@@ -2,6 +2,8 @@
 
 #include "ball_collision_sim/core/types.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -78,5 +80,103 @@ void UniformGrid::query(const Aabb& box, F&& f) const
       for (std::int64_t iz = z0; iz <= z1; ++iz)
         for (std::uint32_t e = find(key(ix, iy, iz)); e != kEmpty; e = entries_[e].next)
           f(entries_[e].item);
+}
+
+/// The broad phase of one step. Items (balls) are binned by the centre of their swept box
+/// in a grid of square cells across the two world axes most nearly perpendicular to
+/// "up", cells a little wider than the widest binned box: a binned item's box then lies
+/// strictly within half a cell of its own cell, and two overlapping boxes sit in the same
+/// or neighbouring cells. An item whose box leaves that reach during the step (after a
+/// bounce), or that was too large to bin, is listed again in a UniformGrid of every cell
+/// its box touches.
+class StepGrid
+{
+public:
+  /// Bins the items' boxes; `up` picks the grid's two axes.
+  void build(const std::vector<Aabb>& boxes, const Vec3& up);
+  /// Item i's box is now `box` (its motion changed during the step).
+  void update(std::uint32_t i, const Aabb& box);
+  /// Calls f(j) for every item j whose box may overlap `box`, the box of item `asker`
+  /// (j may be the asker; an item that left its reach may come more than once).
+  template <class F>
+  void query(std::uint32_t asker, const Aabb& box, F&& f) const;
+
+private:
+  struct Entry
+  {
+    std::uint32_t item;
+    std::int64_t cx;
+    std::int64_t cy;
+  };
+  /// A whole number of cells as an index, clamped so that far-away items cannot overflow
+  /// (they then share cells, which costs time, never a pair).
+  static std::int64_t index(double cells) { return static_cast<std::int64_t>(std::clamp(cells, -1e15, 1e15)); }
+  std::size_t bucketOf(std::int64_t cx, std::int64_t cy) const;
+  bool fits(std::uint32_t i, const Aabb& box) const;
+  template <class F>
+  void scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, F&& f) const;
+
+  int ax_ = 0;  ///< the grid's axes
+  int ay_ = 1;
+  double cell_ = 1.0;
+  double inv_cell_ = 1.0;
+  int shift_ = 60;
+  std::vector<std::int64_t> cx_;        ///< per item: its cell
+  std::vector<std::int64_t> cy_;
+  std::vector<std::uint8_t> moved_;     ///< per item: listed in `moved_grid_` instead
+  std::vector<std::uint32_t> starts_;   ///< bucket b holds entries_[starts_[b] .. starts_[b + 1])
+  std::vector<Entry> entries_;
+  std::vector<std::uint32_t> next_;
+  std::vector<double> extents_;
+  std::vector<double> sorted_extents_;
+  UniformGrid moved_grid_;
+  std::vector<std::uint32_t> moved_list_;
+};
+
+template <class F>
+void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, F&& f) const
+{
+  for (std::int64_t ix = x0; ix <= x1; ++ix)
+    for (std::int64_t iy = y0; iy <= y1; ++iy)
+    {
+      const std::size_t b = bucketOf(ix, iy);
+      for (std::uint32_t k = starts_[b]; k < starts_[b + 1]; ++k)
+      {
+        const Entry& e = entries_[k];
+        if (e.cx == ix && e.cy == iy && !moved_[e.item])
+          f(e.item);
+      }
+    }
+}
+
+template <class F>
+void StepGrid::query(std::uint32_t asker, const Aabb& box, F&& f) const
+{
+  if (!moved_list_.empty())
+  {
+    if (moved_grid_.oversized(box))
+      for (std::uint32_t j : moved_list_)  // too many cells to look up: all that moved
+        f(j);
+    else
+      moved_grid_.query(box, f);
+  }
+  if (!moved_[asker])
+  {
+    scanCells(cx_[asker] - 1, cx_[asker] + 1, cy_[asker] - 1, cy_[asker] + 1, f);
+    return;
+  }
+  // Cells c whose reach ((c - 1/2) h, (c + 3/2) h) meets the box.
+  const std::int64_t x0 = index(std::floor(box.min[ax_] * inv_cell_ - 1.5));
+  const std::int64_t x1 = index(std::floor(box.max[ax_] * inv_cell_ + 0.5));
+  const std::int64_t y0 = index(std::floor(box.min[ay_] * inv_cell_ - 1.5));
+  const std::int64_t y1 = index(std::floor(box.max[ay_] * inv_cell_ + 0.5));
+  if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) > static_cast<double>(cx_.size()) + 16)
+  {
+    for (std::uint32_t j = 0; j < cx_.size(); ++j)  // a huge box: every binned item
+      if (!moved_[j])
+        f(j);
+    return;
+  }
+  scanCells(x0, x1, y0, y1, f);
 }
 }  // namespace ball_collision_sim::core

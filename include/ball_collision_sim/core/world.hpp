@@ -149,10 +149,8 @@ private:
   // per-step work space, kept between steps to avoid allocation
   std::vector<Motion> motions_;
   std::vector<Event> heap_;
-  UniformGrid grid_;
-  std::vector<std::uint32_t> seen_;
-  std::uint32_t seen_stamp_ = 0;
-  std::vector<double> extents_;
+  StepGrid grid_;
+  std::vector<Aabb> boxes_;  ///< each ball's swept box for the rest of the step
   std::vector<Vec3> floor_normals_;
   std::vector<CollisionEvent> events_;
   std::vector<RestingContact> resting_;
