@@ -138,17 +138,14 @@ void StepGrid::build(const std::vector<Aabb>& boxes, const Vec3& up)
   cy_.resize(n);
   moved_.assign(n, 0);
   moved_list_.clear();
-  std::size_t buckets = 16;
-  shift_ = 60;
-  while (buckets < 2 * n)
-  {
-    buckets *= 2;
-    --shift_;
-  }
-  starts_.assign(buckets + 1, 0);
   entries_.resize(n);
+  dense_ = false;
   if (n == 0)
+  {
+    starts_.assign(2, 0);
+    shift_ = 63;
     return;
+  }
 
   // Cells a little wider than the widest box, leaving out boxes far wider than the
   // median (a rare fast or large ball): they are listed as moved instead of making
@@ -167,20 +164,48 @@ void StepGrid::build(const std::vector<Aabb>& boxes, const Vec3& up)
   inv_cell_ = 1.0 / cell_;
   moved_grid_.reset(cell_, n / 8 + 16);
 
+  std::int64_t max_x = 0, max_y = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
     cx_[i] = index(std::floor(0.5 * (boxes[i].min[ax_] + boxes[i].max[ax_]) * inv_cell_));
     cy_[i] = index(std::floor(0.5 * (boxes[i].min[ay_] + boxes[i].max[ay_]) * inv_cell_));
-    ++starts_[bucketOf(cx_[i], cy_[i]) + 1];
+    min_x_ = i == 0 ? cx_[i] : std::min(min_x_, cx_[i]);
+    min_y_ = i == 0 ? cy_[i] : std::min(min_y_, cy_[i]);
+    max_x = i == 0 ? cx_[i] : std::max(max_x, cx_[i]);
+    max_y = i == 0 ? cy_[i] : std::max(max_y, cy_[i]);
   }
-  for (std::size_t b = 0; b < buckets; ++b)  // counting sort by bucket
+  // A dense array of cells when the items are not spread too thin, else hashed buckets.
+  width_ = max_x - min_x_ + 3;
+  height_ = max_y - min_y_ + 3;
+  dense_ = static_cast<double>(width_) * static_cast<double>(height_) <= 4.0 * static_cast<double>(n) + 1024;
+  std::size_t slots = 16;
+  shift_ = 60;
+  if (dense_)
+    slots = static_cast<std::size_t>(width_ * height_);
+  else
+    while (slots < 2 * n)
+    {
+      slots *= 2;
+      --shift_;
+    }
+  starts_.assign(slots + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    ++starts_[slotOf(cx_[i], cy_[i]) + 1];
+  for (std::size_t b = 0; b < slots; ++b)  // counting sort by slot
     starts_[b + 1] += starts_[b];
   next_.assign(starts_.begin(), starts_.end() - 1);
   for (std::size_t i = 0; i < n; ++i)
-    entries_[next_[bucketOf(cx_[i], cy_[i])]++] = Entry{static_cast<std::uint32_t>(i), cx_[i], cy_[i]};
+    entries_[next_[slotOf(cx_[i], cy_[i])]++] = Entry{static_cast<std::uint32_t>(i), cx_[i], cy_[i]};
   for (std::size_t i = 0; i < n; ++i)
     if (extents_[i] > widest)
       update(static_cast<std::uint32_t>(i), boxes[i]);
+}
+
+std::size_t StepGrid::slotOf(std::int64_t cx, std::int64_t cy) const
+{
+  if (dense_)
+    return static_cast<std::size_t>((cx - min_x_ + 1) + width_ * (cy - min_y_ + 1));
+  return bucketOf(cx, cy);
 }
 
 std::size_t StepGrid::bucketOf(std::int64_t cx, std::int64_t cy) const

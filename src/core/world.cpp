@@ -40,49 +40,67 @@ struct World::Motion
   std::uint32_t epoch = 0;       ///< bumped at every event of this ball
   std::uint32_t events = 0;      ///< events of this ball in this step
   bool frozen = false;
-  /// Unit directions this ball may not move along for the rest of the step: toward a
-  /// wall it leans on, or toward a ball that cannot give way. A ball in a corner or in a
-  /// pile at rest has several.
-  std::array<Vec3, 8> blocked;
-  std::uint8_t blocked_count = 0;
+  std::int32_t blocked = -1;     ///< its BlockedSet this step, if any
+};
+
+/// Unit directions a ball may not move along for the rest of the step: toward a wall it
+/// leans on, or toward a ball that cannot give way. A ball in a corner or in a pile at
+/// rest has several; most balls have none, and no set.
+struct World::BlockedSet
+{
+  std::array<Vec3, 8> directions;
+  std::uint8_t count = 0;
 
   /// `w` without its parts along the blocked directions: the nearest vector with
   /// <w, d> <= 0 for every blocked d, by cyclic projection; zero (which always qualifies)
   /// when that does not settle.
   Vec3 allowed(Vec3 w) const
   {
-    if (blocked_count == 0)
-      return w;
     const double scale = w.norm();
     for (int pass = 0; pass < 16; ++pass)
     {
       bool changed = false;
-      for (std::uint8_t k = 0; k < blocked_count; ++k)
+      for (std::uint8_t k = 0; k < count; ++k)
       {
-        const double into = w.dot(blocked[k]);
+        const double into = w.dot(directions[k]);
         if (into > 0)
         {
-          w -= into * blocked[k];
+          w -= into * directions[k];
           changed = true;
         }
       }
       if (!changed)
         return w;
     }
-    for (std::uint8_t k = 0; k < blocked_count; ++k)
-      if (w.dot(blocked[k]) > 1e-14 * scale)
+    for (std::uint8_t k = 0; k < count; ++k)
+      if (w.dot(directions[k]) > 1e-14 * scale)
         return Vec3::Zero();
     return w;
   }
-  void addBlocked(const Vec3& direction)
+  void add(const Vec3& direction)
   {
-    for (std::uint8_t k = 0; k < blocked_count; ++k)
-      if (blocked[k].dot(direction) > 1 - 1e-12)
+    for (std::uint8_t k = 0; k < count; ++k)
+      if (directions[k].dot(direction) > 1 - 1e-12)
         return;
-    if (blocked_count < blocked.size())
-      blocked[blocked_count++] = direction;
+    if (count < directions.size())
+      directions[count++] = direction;
   }
 };
+
+Vec3 World::allowed(const Motion& m, const Vec3& w) const
+{
+  return m.blocked < 0 ? w : blocked_sets_[static_cast<std::size_t>(m.blocked)].allowed(w);
+}
+
+void World::addBlocked(Motion& m, const Vec3& direction)
+{
+  if (m.blocked < 0)
+  {
+    m.blocked = static_cast<std::int32_t>(blocked_sets_.size());
+    blocked_sets_.emplace_back();
+  }
+  blocked_sets_[static_cast<std::size_t>(m.blocked)].add(direction);
+}
 
 /// A predicted impact; stale once either ball's epoch has moved on.
 struct World::Event
@@ -177,6 +195,7 @@ void World::step()
 {
   events_.clear();
   resting_.clear();
+  blocked_sets_.clear();
   predictMotions();            // each ball's free motion over the step, on the floor
   buildBroadPhase();           // swept boxes into a uniform grid
   findFirstImpacts();          // exact times of impact of nearby pairs and walls
@@ -274,7 +293,7 @@ void World::commitToFloor()
   }
   // Resting contacts keep no closing speed into the step that follows.
   for (std::size_t i = 0; i < balls_.size(); ++i)
-    balls_[i].velocity = motions_[i].allowed(balls_[i].velocity);
+    balls_[i].velocity = allowed(motions_[i], balls_[i].velocity);
   for (const RestingContact& contact : resting_)
   {
     Ball& a = balls_[contact.ball];
@@ -301,8 +320,11 @@ void World::commitToFloor()
     const double axis_norm = axis.norm();
     if (axis_norm > 0)
     {
-      const double angle = (d - d.dot(normal) * normal).norm() / ball.radius;
-      ball.orientation = (Eigen::AngleAxisd(angle, axis / axis_norm) * ball.orientation).normalized();
+      const double half = 0.5 * (d - d.dot(normal) * normal).norm() / ball.radius;
+      double sin_half = 0, cos_half = 1;
+      sincos(half, &sin_half, &cos_half);
+      const Vec3 k = (sin_half / axis_norm) * axis;
+      ball.orientation = (Quat(cos_half, k.x(), k.y(), k.z()) * ball.orientation).normalized();
     }
     ball.angular_velocity = normal.cross(ball.velocity) / ball.radius;
   }
@@ -412,10 +434,10 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
     m.v0 = m.b = Vec3::Zero();
     return;
   }
-  m.v0 = m.allowed(velocity);
+  m.v0 = allowed(m, velocity);
   const double rest = 1 - x;
   m.b = rest > 0 ? Vec3((predictedEnd(i, position, m.v0, rest * dt_) - position) / rest) : Vec3(dt_ * m.v0);
-  m.b = m.allowed(m.b);
+  m.b = allowed(m, m.b);
 }
 
 void World::countEvent(std::size_t i)
@@ -476,7 +498,7 @@ void World::resolveBallWall(const Event& event)
   v -= (impulse * inv_mass) * dir;
 
   if (resting)
-    motions_[i].addBlocked(dir);  // leaning on the wall until the step ends
+    addBlocked(motions_[i], dir);  // leaning on the wall until the step ends
   startMotion(i, event.x, p, v);
   recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
               event);
@@ -509,8 +531,8 @@ void World::resolveBallBall(const Event& event)
   // part toward what it leans on (that part of the impulse goes into the wall).
   const Vec3 along_a = floor_ ? tangentPart(n, na) : n;
   const Vec3 along_b = floor_ ? tangentPart(n, nb) : n;
-  const Vec3 ta = -ma.allowed(-along_a);
-  const Vec3 tb = mb.allowed(along_b);
+  const Vec3 ta = -allowed(ma, -along_a);
+  const Vec3 tb = allowed(mb, along_b);
   const double inv_a = ma.frozen ? 0.0 : 1.0 / a.mass;
   const double inv_b = mb.frozen ? 0.0 : 1.0 / b.mass;
   const double closing = va.dot(ta) - vb.dot(tb);
@@ -531,9 +553,9 @@ void World::resolveBallBall(const Event& event)
     const bool a_fixed = both_still || inv_a * ta.squaredNorm() < 1e-12 * inv_b * tb.squaredNorm();
     const bool b_fixed = both_still || inv_b * tb.squaredNorm() < 1e-12 * inv_a * ta.squaredNorm();
     if (a_fixed && along_b.squaredNorm() > 0)
-      mb.addBlocked(-along_b.normalized());
+      addBlocked(mb, -along_b.normalized());
     if (b_fixed && along_a.squaredNorm() > 0)
-      ma.addBlocked(along_a.normalized());
+      addBlocked(ma, along_a.normalized());
   }
   startMotion(i, event.x, pa, va);
   startMotion(j, event.x, pb, vb);

@@ -115,6 +115,7 @@ private:
   bool fits(std::uint32_t i, const Aabb& box) const;
   template <class F>
   void scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, F&& f) const;
+  std::size_t slotOf(std::int64_t cx, std::int64_t cy) const;
 
   int ax_ = 0;  ///< the grid's axes
   int ay_ = 1;
@@ -129,6 +130,13 @@ private:
   std::vector<std::uint32_t> next_;
   std::vector<double> extents_;
   std::vector<double> sorted_extents_;
+  /// Dense mode: cells in a row-major array over the items' cells with a border of one;
+  /// otherwise hashed buckets (items spread far apart).
+  bool dense_ = false;
+  std::int64_t min_x_ = 0;
+  std::int64_t min_y_ = 0;
+  std::int64_t width_ = 0;
+  std::int64_t height_ = 0;
   UniformGrid moved_grid_;
   std::vector<std::uint32_t> moved_list_;
 };
@@ -136,6 +144,25 @@ private:
 template <class F>
 void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, F&& f) const
 {
+  if (dense_)
+  {
+    // rows of neighbouring cells are runs of the sorted entries
+    x0 = std::max(x0, min_x_ - 1);
+    x1 = std::min(x1, min_x_ + width_ - 2);
+    y0 = std::max(y0, min_y_ - 1);
+    y1 = std::min(y1, min_y_ + height_ - 2);
+    if (x0 > x1)
+      return;
+    for (std::int64_t iy = y0; iy <= y1; ++iy)
+    {
+      const std::size_t first = slotOf(x0, iy);
+      const std::size_t last = first + static_cast<std::size_t>(x1 - x0) + 1;
+      for (std::uint32_t k = starts_[first]; k < starts_[last]; ++k)
+        if (!moved_[entries_[k].item])
+          f(entries_[k].item);
+    }
+    return;
+  }
   for (std::int64_t ix = x0; ix <= x1; ++ix)
     for (std::int64_t iy = y0; iy <= y1; ++iy)
     {

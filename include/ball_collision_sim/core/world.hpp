@@ -93,6 +93,7 @@ public:
 
 private:
   struct Motion;
+  struct BlockedSet;
   struct Event;
   struct EventLater
   {
@@ -132,6 +133,9 @@ private:
   void recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,
                    double impulse, double closing, bool resting, const Event& event);
   Vec3 positionAt(std::size_t i, double x) const;
+  /// `w` less its parts along the directions the ball may not move this step.
+  Vec3 allowed(const Motion& m, const Vec3& w) const;
+  void addBlocked(Motion& m, const Vec3& direction);
   Vec3 floorNormalAt(std::size_t i, const Vec3& position) const;
   Vec3 onFloorVelocity(const Motion& m, double x, const Vec3& position, const Vec3& normal) const;
   double restingSpeed(const Vec3& floor_normal) const;
@@ -154,5 +158,6 @@ private:
   std::vector<Vec3> floor_normals_;
   std::vector<CollisionEvent> events_;
   std::vector<RestingContact> resting_;
+  std::vector<BlockedSet> blocked_sets_;
 };
 }  // namespace ball_collision_sim::core
