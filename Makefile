@@ -11,7 +11,7 @@ BUILD_ABS := $(abspath $(BUILD))
 JOBS ?= 2
 DURATION ?= 10
 
-.PHONY: deps build test demo clean
+.PHONY: deps build test demo bench clean
 
 deps:
 	bash scripts/install_deps
@@ -27,6 +27,10 @@ test: build
 
 demo: build
 	bash scripts/demo $(BUILD) $(DURATION)
+
+bench: build
+	cmake --build $(BUILD) -j$(JOBS) --target benchmarks
+	bash bench/run_bench $(BUILD)
 
 clean:
 	rm -rf $(BUILD)

@@ -1,0 +1,51 @@
+// Google Benchmark of the core's step on the benchmark scenes. Reports ns per ball-step;
+// run through bench/run_bench, which keeps the results as CSV per machine.
+#include "scenes.hpp"
+
+#include "ball_collision_sim/core/world.hpp"
+
+#include <benchmark/benchmark.h>
+
+namespace
+{
+using ball_collision_sim::core::World;
+
+/// Steps the world once per iteration after a short warm-up.
+void runSteps(benchmark::State& state, World world)
+{
+  for (int k = 0; k < 10; ++k)
+    world.step();
+  const double balls = static_cast<double>(world.balls().size());
+  const double k0 = world.energy().kinetic;
+  const double e0 = world.energy().total();
+  for (auto _ : state)
+    world.step();
+  // items are ball-steps: ns per ball-step = 1e9 / items_per_second
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(balls));
+  state.counters["events_per_ball_step"] =
+      static_cast<double>(world.stats().events) / (static_cast<double>(world.stats().steps) * balls);
+  state.counters["kinetic_end_over_start"] = world.energy().kinetic / k0;
+  state.counters["energy_end_over_start"] = world.energy().total() / e0;
+  state.counters["balls_lost"] = world.lostBalls();
+}
+
+void BM_S1Billiards(benchmark::State& state)
+{
+  runSteps(state, World(ball_collision_sim::bench::billiards(static_cast<int>(state.range(0)))));
+}
+BENCHMARK(BM_S1Billiards)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+void BM_S2Bullets(benchmark::State& state)
+{
+  runSteps(state, World(ball_collision_sim::bench::bullets()));
+}
+BENCHMARK(BM_S2Bullets)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+
+void BM_S3Bowl(benchmark::State& state)
+{
+  runSteps(state, World(ball_collision_sim::bench::bowl(static_cast<int>(state.range(0)))));
+}
+BENCHMARK(BM_S3Bowl)->Arg(1000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+}  // namespace
+
+BENCHMARK_MAIN();

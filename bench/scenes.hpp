@@ -1,0 +1,118 @@
+#pragma once
+// The benchmark scenes, built in code so that this package and the peer engines get the
+// very same balls. The YAML files beside this one describe the same scenes for users.
+
+#include "ball_collision_sim/core/scene.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+
+namespace ball_collision_sim::bench
+{
+using core::BallDef;
+using core::Scene;
+using core::Vec3;
+
+/// Four walls of height h around [0, side]^2 on the plane z = 0.
+inline void addSquareBox(Scene& s, double side, double h)
+{
+  s.walls = {{Vec3(0, 0, 0), Vec3(side, 0, 0), Vec3(0, 0, h), {}},
+             {Vec3(0, side, 0), Vec3(side, 0, 0), Vec3(0, 0, h), {}},
+             {Vec3(0, 0, 0), Vec3(0, side, 0), Vec3(0, 0, h), {}},
+             {Vec3(side, 0, 0), Vec3(0, side, 0), Vec3(0, 0, h), {}}};
+}
+
+/// Uniform in [lo, hi] from the generator's bits (the same on every machine).
+inline double uniform(std::mt19937_64& rng, double lo, double hi)
+{
+  return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
+
+/// S1 billiards: n balls of radius 0.05 m and 1 kg on a flat floor, gravity normal to it,
+/// in a square box sized for a 30 % area fraction; velocity components uniform in
+/// [-2, 2] m/s; restitution 1; dt 0.01 s. Balls start on a jittered grid, clear of each
+/// other and of the walls.
+inline Scene billiards(int n, std::uint64_t seed = 1)
+{
+  constexpr double r = 0.05;
+  const double side = std::sqrt(n * M_PI * r * r / 0.3);
+  Scene s;
+  core::FloorDef f;
+  f.point = Vec3(0, 0, 0);
+  f.u = Vec3(side, 0, 0);
+  f.v = Vec3(0, side, 0);
+  s.floor = f;
+  s.dt = 0.01;
+  s.restitution = 1.0;
+  addSquareBox(s, side, 0.2);
+  const int per_row = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  const double pitch = side / per_row;
+  const double jitter = 0.49 * (pitch - 2 * r);
+  std::mt19937_64 rng(seed);
+  for (int k = 0; k < n; ++k)
+  {
+    BallDef b;
+    b.radius = r;
+    b.mass = 1.0;
+    b.position = Vec3((k % per_row + 0.5) * pitch + uniform(rng, -jitter, jitter),
+                      (k / per_row + 0.5) * pitch + uniform(rng, -jitter, jitter), r);
+    b.velocity = Vec3(uniform(rng, -2, 2), uniform(rng, -2, 2), 0);
+    s.balls.push_back(b);
+  }
+  return s;
+}
+
+/// S2 bullets: 100 balls of radius 0.02 m at 200 m/s in a 2 m box of thin walls; 1 s.
+inline Scene bullets(std::uint64_t seed = 2)
+{
+  constexpr int n = 100;
+  constexpr double r = 0.02, side = 2.0;
+  Scene s;
+  core::FloorDef f;
+  f.point = Vec3(0, 0, 0);
+  f.u = Vec3(side, 0, 0);
+  f.v = Vec3(0, side, 0);
+  s.floor = f;
+  s.dt = 0.01;
+  addSquareBox(s, side, 0.2);
+  std::mt19937_64 rng(seed);
+  const double pitch = side / 10;
+  for (int k = 0; k < n; ++k)
+  {
+    BallDef b;
+    b.radius = r;
+    b.position = Vec3((k % 10 + 0.5) * pitch, (k / 10 + 0.5) * pitch, r);
+    const double angle = uniform(rng, 0, 2 * M_PI);
+    b.velocity = Vec3(200 * std::cos(angle), 200 * std::sin(angle), 0);
+    s.balls.push_back(b);
+  }
+  return s;
+}
+
+/// S3 bowl: n balls on the paraboloid z = (x^2 + y^2) / 8 over [-2, 2]^2 (a biquadratic),
+/// inside walls; speeds up to 1 m/s.
+inline Scene bowl(int n, std::uint64_t seed = 3)
+{
+  Scene s;
+  core::FloorDef f;
+  f.type = core::FloorDef::Type::kBiquadratic;
+  const double c[3] = {-2, 0, 2}, h[3] = {0.5, -0.5, 0.5};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      f.control_points[i][j] = Vec3(c[i], c[j], h[i] + h[j]);
+  s.floor = f;
+  s.dt = 0.01;
+  s.walls = {{Vec3(-2, -2, 0), Vec3(4, 0, 0), Vec3(0, 0, 1.5), {}},
+             {Vec3(-2, 2, 0), Vec3(4, 0, 0), Vec3(0, 0, 1.5), {}},
+             {Vec3(-2, -2, 0), Vec3(0, 4, 0), Vec3(0, 0, 1.5), {}},
+             {Vec3(2, -2, 0), Vec3(0, 4, 0), Vec3(0, 0, 1.5), {}}};
+  core::RandomBallsDef rb;
+  rb.count = n;
+  rb.seed = seed;
+  rb.radius = {0.03, 0.03};
+  rb.speed = {0, 1};
+  s.random_balls = rb;
+  return s;
+}
+}  // namespace ball_collision_sim::bench
