@@ -258,6 +258,10 @@ TEST(Node, GoodRequestsChangeTheWorld)
   ASSERT_TRUE(wall.success) << wall.message;
   EXPECT_EQ(wall.id, 4);
   EXPECT_EQ(statesAfter(1).balls.size(), 3u);
+  // a third ball is the most this node takes (max_balls: 3 in its scene)
+  const auto over = addBall(-1.2, 0.5, 0, 0, 0.1, 1);
+  EXPECT_FALSE(over.success);
+  EXPECT_EQ(over.message.rfind("max_balls", 0), 0u) << over.message;
   EXPECT_TRUE(remove("wall", wall.id).success);
   EXPECT_FALSE(remove("wall", wall.id).success);
   EXPECT_TRUE(remove("ball", ball.id).success);

@@ -206,8 +206,23 @@ void SimulatorNode::onMarkerSubscriber(const ros::SingleSubscriberPublisher& sub
 
 // ---- services ------------------------------------------------------------------------
 
+std::string SimulatorNode::roomForABall() const
+{
+  if (world_.balls().size() < static_cast<std::size_t>(settings_.max_balls))
+    return "";
+  return "max_balls: the world already holds " + std::to_string(world_.balls().size()) +
+         " balls, the most this node takes (parameter max_balls)";
+}
+
 bool SimulatorNode::onAddBall(AddBall::Request& req, AddBall::Response& res)
 {
+  if (const std::string full = roomForABall(); !full.empty())
+  {
+    res.success = false;
+    res.id = -1;
+    res.message = full;
+    return true;
+  }
   const core::AddResult result = world_.addBall(fromMsg(req));
   res.success = result.ok;
   res.id = result.id;
@@ -321,7 +336,8 @@ void SimulatorNode::onClickedPoint(const geometry_msgs::PointStamped& msg)
   // by a radius; with a floor the core then puts it exactly on the surface.
   const double g = world_.gravity().norm();
   def.position += def.radius * (g > 0 ? core::Vec3(-world_.gravity() / g) : core::Vec3::UnitZ());
-  const core::AddResult result = world_.addBall(def);
+  const std::string full = roomForABall();
+  const core::AddResult result = full.empty() ? world_.addBall(def) : core::AddResult{false, -1, full};
   if (!result.ok)
   {
     ROS_WARN("ball_sim: no ball added at the clicked point: %s", result.error.c_str());

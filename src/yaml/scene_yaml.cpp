@@ -556,6 +556,8 @@ void readNodeSettings(const MapFields& fields, core::NodeSettings& node)
   number("status_period", node.status_period);
   if (const YAML::Node* value = fields.find("tf_max_balls"))
     node.tf_max_balls = readInt(*value, "tf_max_balls");
+  if (const YAML::Node* value = fields.find("max_balls"))
+    node.max_balls = readInt(*value, "max_balls");
   flag("publish_collisions", node.publish_collisions);
   flag("start_paused", node.start_paused);
 }

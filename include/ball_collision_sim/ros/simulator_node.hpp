@@ -43,6 +43,8 @@ private:
   void publishStates(const ros::Time& stamp);
   /// Restarts the wall-clock anchor that real time is kept against.
   void anchorClock();
+  /// Why no ball may be added now (max_balls reached), or "".
+  std::string roomForABall() const;
 
   bool onAddBall(AddBall::Request& req, AddBall::Response& res);
   bool onAddWall(AddWall::Request& req, AddWall::Response& res);
