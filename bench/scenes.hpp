@@ -14,13 +14,22 @@ using core::BallDef;
 using core::Scene;
 using core::Vec3;
 
-/// Four walls of height h around [0, side]^2 on the plane z = 0.
-inline void addSquareBox(Scene& s, double side, double h)
+/// A flat floor [0, side]^2 at z = 0 (gravity normal to it), walls of height h around
+/// it, dt 0.01 s.
+inline Scene squareBox(double side, double h)
 {
+  Scene s;
+  core::FloorDef f;
+  f.point = Vec3(0, 0, 0);
+  f.u = Vec3(side, 0, 0);
+  f.v = Vec3(0, side, 0);
+  s.floor = f;
+  s.dt = 0.01;
   s.walls = {{Vec3(0, 0, 0), Vec3(side, 0, 0), Vec3(0, 0, h), {}},
              {Vec3(0, side, 0), Vec3(side, 0, 0), Vec3(0, 0, h), {}},
              {Vec3(0, 0, 0), Vec3(0, side, 0), Vec3(0, 0, h), {}},
              {Vec3(side, 0, 0), Vec3(0, side, 0), Vec3(0, 0, h), {}}};
+  return s;
 }
 
 /// Uniform in [lo, hi] from the generator's bits (the same on every machine).
@@ -37,15 +46,8 @@ inline Scene billiards(int n, std::uint64_t seed = 1)
 {
   constexpr double r = 0.05;
   const double side = std::sqrt(n * M_PI * r * r / 0.3);
-  Scene s;
-  core::FloorDef f;
-  f.point = Vec3(0, 0, 0);
-  f.u = Vec3(side, 0, 0);
-  f.v = Vec3(0, side, 0);
-  s.floor = f;
-  s.dt = 0.01;
+  Scene s = squareBox(side, 0.2);
   s.restitution = 1.0;
-  addSquareBox(s, side, 0.2);
   const int per_row = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   const double pitch = side / per_row;
   const double jitter = 0.49 * (pitch - 2 * r);
@@ -68,14 +70,7 @@ inline Scene bullets(std::uint64_t seed = 2)
 {
   constexpr int n = 100;
   constexpr double r = 0.02, side = 2.0;
-  Scene s;
-  core::FloorDef f;
-  f.point = Vec3(0, 0, 0);
-  f.u = Vec3(side, 0, 0);
-  f.v = Vec3(0, side, 0);
-  s.floor = f;
-  s.dt = 0.01;
-  addSquareBox(s, side, 0.2);
+  Scene s = squareBox(side, 0.2);
   std::mt19937_64 rng(seed);
   const double pitch = side / 10;
   for (int k = 0; k < n; ++k)
