@@ -11,7 +11,7 @@ BUILD_ABS := $(abspath $(BUILD))
 JOBS ?= 2
 DURATION ?= 10
 
-.PHONY: deps build test demo bench clean
+.PHONY: deps build test demo bench peers clean
 
 deps:
 	bash scripts/install_deps
@@ -31,6 +31,13 @@ demo: build
 bench: build
 	cmake --build $(BUILD) -j$(JOBS) --target benchmarks
 	bash bench/run_bench $(BUILD)
+
+# The same scenes in ODE, Bullet and Box2D beside this package, in one run.
+peers: build
+	bash scripts/install_deps --peers
+	cmake -S . -B $(BUILD) > /dev/null
+	cmake --build $(BUILD) -j$(JOBS) --target compare_peers
+	$(BUILD)/devel/lib/ball_collision_sim/compare_peers --out bench/results/$$(hostname -s)-peers.csv
 
 clean:
 	rm -rf $(BUILD)
