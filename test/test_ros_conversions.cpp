@@ -1,6 +1,7 @@
 // Conversions between the core and ROS messages, and the parameter tree's YAML text.
 #include "ball_collision_sim/ros/conversions.hpp"
 #include "ball_collision_sim/ros/markers.hpp"
+#include "ball_collision_sim/ros/outputs.hpp"
 #include "ball_collision_sim/ros/scene_param.hpp"
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
 
@@ -107,4 +108,33 @@ TEST(Markers, FloorMeshFollowsTheSurfaceAndWallsShowBothSides)
   EXPECT_EQ(w.id, 5);
   EXPECT_EQ(w.points.size(), 12u);
   EXPECT_LT(w.color.a, 1.0f);
+}
+
+TEST(Markers, ManyBallsAreDrawnAsOneSphereListPerRadius)
+{
+  core::Scene scene;
+  core::FloorDef floor;
+  scene.floor = floor;  // the default 4 m x 4 m plane at z = 0
+  for (int k = 0; k < 5; ++k)
+  {
+    core::BallDef b;
+    b.radius = k % 2 ? 0.1 : 0.2;
+    b.position = core::Vec3(-1.5 + 0.7 * k, 0, b.radius);
+    scene.balls.push_back(b);
+  }
+  const core::World world(scene);
+  const auto single = bridge::ballMarkers(world, "world", ros::Time(1.0), 5);
+  ASSERT_EQ(single.markers.size(), 5u);
+  EXPECT_EQ(single.markers[3].type, visualization_msgs::Marker::SPHERE);
+  EXPECT_EQ(single.markers[3].id, 3);
+
+  const auto lists = bridge::ballMarkers(world, "world", ros::Time(1.0), 4);
+  ASSERT_EQ(lists.markers.size(), 2u);  // radii 0.1 and 0.2
+  EXPECT_EQ(lists.markers[0].type, visualization_msgs::Marker::SPHERE_LIST);
+  EXPECT_EQ(lists.markers[0].ns, bridge::kBallListsNs);
+  EXPECT_NEAR(lists.markers[0].scale.x, 0.2, 1e-15);
+  EXPECT_EQ(lists.markers[0].points.size(), 2u);
+  EXPECT_EQ(lists.markers[1].points.size(), 3u);
+  EXPECT_EQ(lists.markers[1].colors.size(), 3u);
+  EXPECT_NEAR(lists.markers[1].points[1].x, -1.5 + 0.7 * 2, 1e-12);
 }

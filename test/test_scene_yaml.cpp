@@ -291,7 +291,8 @@ TEST(SceneYaml, EachMistakeGivesOneLineNamingTheKeyAndTheReason)
      "t.yaml: balls[3].radus: unknown key (expected one of: position, velocity, radius, mass)"},
     {"dtt: 0.1", "t.yaml: dtt: unknown key (expected one of: frame_id, dt, gravity, restitution, floor, walls, "
                  "balls, random_balls, real_time_factor, marker_rate, tf_rate, tf_max_balls, state_rate, "
-                 "publish_collisions, start_paused, click_radius, click_mass, status_period, max_balls)"},
+                 "publish_collisions, start_paused, click_radius, click_mass, status_period, max_balls, "
+                 "marker_list_threshold)"},
     {"floor: {type: plane, control_points: []}",
      "t.yaml: floor.control_points: unknown key (expected one of: type, point, u, v)"},
     {"random_balls: {count: 1, region: {min: [0, 0], max: [1, 1], mid: [0, 0]}}",

@@ -262,6 +262,8 @@ std::vector<SceneIssue> validate(const Scene& scene)
                                   std::pair{"state_rate", node.state_rate}})
     if (check.finite(key, rate) && !(rate >= 0 && rate <= 1e6))
       check.fail(key, "must be in [0, 1e6] Hz (got " + formatNumber(rate) + ")");
+  if (node.marker_list_threshold < 0)
+    check.fail("marker_list_threshold", "must be >= 0 (got " + std::to_string(node.marker_list_threshold) + ")");
   if (node.max_balls < 1)
     check.fail("max_balls", "must be >= 1 (got " + std::to_string(node.max_balls) + ")");
   if (node.tf_max_balls < 0)

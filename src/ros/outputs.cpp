@@ -3,6 +3,8 @@
 #include "ball_collision_sim/ros/conversions.hpp"
 #include "ball_collision_sim/ros/markers.hpp"
 
+#include <geometry_msgs/Pose.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -31,12 +33,43 @@ tf2_msgs::TFMessage transformsMessage(const core::World& world, const std::strin
 }
 
 visualization_msgs::MarkerArray ballMarkers(const core::World& world, const std::string& frame_id,
-                                            const ros::Time& stamp)
+                                            const ros::Time& stamp, std::size_t list_threshold)
 {
   visualization_msgs::MarkerArray msg;
-  msg.markers.reserve(world.balls().size());
+  if (world.balls().size() <= list_threshold)
+  {
+    msg.markers.reserve(world.balls().size());
+    for (const core::Ball& ball : world.balls())
+      msg.markers.push_back(ballMarker(ball, frame_id, stamp));
+    return msg;
+  }
+  // One list per distinct radius, in increasing radius.
+  std::vector<double> radii;
+  radii.reserve(world.balls().size());
   for (const core::Ball& ball : world.balls())
-    msg.markers.push_back(ballMarker(ball, frame_id, stamp));
+    radii.push_back(ball.radius);
+  std::sort(radii.begin(), radii.end());
+  radii.erase(std::unique(radii.begin(), radii.end()), radii.end());
+  msg.markers.resize(radii.size());
+  for (std::size_t k = 0; k < radii.size(); ++k)
+  {
+    visualization_msgs::Marker& m = msg.markers[k];
+    core::Ball shape;
+    shape.radius = radii[k];
+    m = ballMarker(shape, frame_id, stamp);
+    m.ns = kBallListsNs;
+    m.id = static_cast<int>(k);
+    m.type = visualization_msgs::Marker::SPHERE_LIST;
+    m.pose = geometry_msgs::Pose();
+    m.pose.orientation.w = 1.0;
+  }
+  for (const core::Ball& ball : world.balls())
+  {
+    visualization_msgs::Marker& m =
+        msg.markers[static_cast<std::size_t>(std::lower_bound(radii.begin(), radii.end(), ball.radius) - radii.begin())];
+    m.points.push_back(toPoint(ball.position));
+    m.colors.push_back(ballMarker(ball, frame_id, stamp).color);
+  }
   return msg;
 }
 

@@ -54,7 +54,8 @@ void RunBag::writeView(const core::World& world, const ros::Time& stamp)
   if (world.stats().steps % tf_every_ == 0 && tf_max_balls_ > 0)
     write("/tf", stamp, transformsMessage(world, frame_id_, stamp, tf_max_balls_));
   if (world.stats().steps == 0 || (marker_every_ > 0 && world.stats().steps % marker_every_ == 0))
-    write("/ball_sim/markers", stamp, ballMarkers(world, frame_id_, stamp));
+    write("/ball_sim/markers", stamp,
+          ballMarkers(world, frame_id_, stamp, static_cast<std::size_t>(world.scene().node.marker_list_threshold)));
 }
 
 void RunBag::afterStep(const core::World& world)

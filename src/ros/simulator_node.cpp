@@ -166,17 +166,26 @@ void SimulatorNode::publishBalls(const ros::Time& stamp)
   if (markers_pub_.getNumSubscribers() == 0)
     return;
   visualization_msgs::MarkerArray msg;
+  const auto threshold = static_cast<std::size_t>(settings_.marker_list_threshold);
+  const bool lists = world_.balls().size() > threshold;
   std::vector<int> ids;
-  ids.reserve(world_.balls().size());
-  for (const core::Ball& ball : world_.balls())
-    ids.push_back(ball.id);
-  // ids are sorted: balls keep their order and new ones come last
+  if (!lists)
+  {
+    ids.reserve(world_.balls().size());
+    for (const core::Ball& ball : world_.balls())
+      ids.push_back(ball.id);
+  }
+  // Delete what is no longer drawn: removed balls (ids are sorted: balls keep their order
+  // and new ones come last), and the markers of the other way of drawing.
   for (const int id : shown_balls_)
     if (!std::binary_search(ids.begin(), ids.end(), id))
       msg.markers.push_back(deleteMarker(kBallsNs, id, frame_id_));
-  const visualization_msgs::MarkerArray balls = ballMarkers(world_, frame_id_, stamp);
+  const visualization_msgs::MarkerArray balls = ballMarkers(world_, frame_id_, stamp, threshold);
+  for (int k = lists ? static_cast<int>(balls.markers.size()) : 0; k < shown_lists_; ++k)
+    msg.markers.push_back(deleteMarker(kBallListsNs, k, frame_id_));
   msg.markers.insert(msg.markers.end(), balls.markers.begin(), balls.markers.end());
   shown_balls_ = std::move(ids);
+  shown_lists_ = lists ? static_cast<int>(balls.markers.size()) : 0;
   markers_pub_.publish(msg);
 }
 
@@ -199,7 +208,8 @@ void SimulatorNode::onMarkerSubscriber(const ros::SingleSubscriberPublisher& sub
 {
   // A newcomer gets the floor and walls, which are otherwise sent only when they change.
   visualization_msgs::MarkerArray msg = staticMarkers(world_, frame_id_);
-  const visualization_msgs::MarkerArray balls = ballMarkers(world_, frame_id_, ros::Time(world_.time()));
+  const visualization_msgs::MarkerArray balls = ballMarkers(world_, frame_id_, ros::Time(world_.time()),
+                                                            static_cast<std::size_t>(settings_.marker_list_threshold));
   msg.markers.insert(msg.markers.end(), balls.markers.begin(), balls.markers.end());
   subscriber.publish(msg);
 }
@@ -273,6 +283,7 @@ bool SimulatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
   clear.markers.push_back(deleteAllMarker(frame_id_));
   markers_pub_.publish(clear);
   shown_balls_.clear();
+  shown_lists_ = 0;
   publishStatic();
   rosgraph_msgs::Clock clock;
   clock.clock = ros::Time(world_.time());

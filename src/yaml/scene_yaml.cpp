@@ -558,6 +558,8 @@ void readNodeSettings(const MapFields& fields, core::NodeSettings& node)
     node.tf_max_balls = readInt(*value, "tf_max_balls");
   if (const YAML::Node* value = fields.find("max_balls"))
     node.max_balls = readInt(*value, "max_balls");
+  if (const YAML::Node* value = fields.find("marker_list_threshold"))
+    node.marker_list_threshold = readInt(*value, "marker_list_threshold");
   flag("publish_collisions", node.publish_collisions);
   flag("start_paused", node.start_paused);
 }

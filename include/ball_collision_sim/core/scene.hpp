@@ -85,6 +85,7 @@ struct NodeSettings
   double click_mass = 1.0;        ///< mass of balls added from rviz clicks [kg]
   double status_period = 0.0;     ///< a status line every this many wall seconds [s]; 0 = none
   int max_balls = 100000;         ///< add_ball and clicks are refused past this many balls
+  int marker_list_threshold = 1000;  ///< past this many balls, one sphere list per radius
 };
 
 /// Everything a simulation starts from. Defaults are the documented YAML defaults.

@@ -15,6 +15,8 @@ namespace ball_collision_sim::bridge
 constexpr const char* kFloorNs = "floor";
 constexpr const char* kWallsNs = "walls";
 constexpr const char* kBallsNs = "balls";
+/// Many balls: one SPHERE_LIST per radius, id = the radius' rank.
+constexpr const char* kBallListsNs = "ball_lists";
 
 /// The floor as a triangle mesh of resolution x resolution quads, shaded by height.
 visualization_msgs::Marker floorMarker(const core::Floor& floor, const std::string& frame_id, int resolution = 24);

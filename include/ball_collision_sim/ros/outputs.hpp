@@ -20,9 +20,10 @@ BallStateArray statesMessage(const core::World& world, const std::string& frame_
 /// frame_id -> ball_<id> for the first `max_balls` balls.
 tf2_msgs::TFMessage transformsMessage(const core::World& world, const std::string& frame_id, const ros::Time& stamp,
                                       std::size_t max_balls);
-/// A sphere marker per ball.
+/// A sphere marker per ball, or, past `list_threshold` balls, one sphere list per radius
+/// (rviz draws a few lists far faster than thousands of markers).
 visualization_msgs::MarkerArray ballMarkers(const core::World& world, const std::string& frame_id,
-                                            const ros::Time& stamp);
+                                            const ros::Time& stamp, std::size_t list_threshold);
 /// The floor and the walls.
 visualization_msgs::MarkerArray staticMarkers(const core::World& world, const std::string& frame_id);
 

@@ -84,5 +84,6 @@ private:
   ros::WallTime last_markers_;
   ros::WallTime last_tf_;
   std::vector<int> shown_balls_;  ///< ball ids drawn last time, to delete the removed
+  int shown_lists_ = 0;           ///< sphere lists drawn last time (many balls)
 };
 }  // namespace ball_collision_sim::bridge
