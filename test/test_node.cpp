@@ -53,6 +53,10 @@ public:
       msgs_.push_back(*msg);
     });
   }
+  /// Unsubscribes first: roscpp waits for a callback in progress, which uses the members.
+  ~Inbox() { sub_.shutdown(); }
+  Inbox(const Inbox&) = delete;
+  Inbox& operator=(const Inbox&) = delete;
   std::vector<Msg> take()
   {
     std::lock_guard<std::mutex> lock(mutex_);
