@@ -10,6 +10,13 @@
 
 namespace ball_collision_sim::bridge
 {
+rosgraph_msgs::Clock clockMessage(const ros::Time& stamp)
+{
+  rosgraph_msgs::Clock msg;
+  msg.clock = stamp;
+  return msg;
+}
+
 BallStateArray statesMessage(const core::World& world, const std::string& frame_id, const ros::Time& stamp)
 {
   BallStateArray msg;

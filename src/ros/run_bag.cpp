@@ -3,7 +3,6 @@
 #include "ball_collision_sim/ros/conversions.hpp"
 #include "ball_collision_sim/ros/outputs.hpp"
 
-#include <rosgraph_msgs/Clock.h>
 #include <std_msgs/String.h>
 
 #include <algorithm>
@@ -28,9 +27,7 @@ RunBag::RunBag(const std::string& path, const core::World& world, const std::str
   std_msgs::String scene;
   scene.data = scene_yaml;
   write("/ball_sim/scene", stamp, scene);
-  rosgraph_msgs::Clock clock;
-  clock.clock = stamp;
-  write("/clock", stamp, clock);
+  write("/clock", stamp, clockMessage(stamp));
   write("/ball_sim/markers", stamp, staticMarkers(world, frame_id_));
   write("/ball_sim/ball_states", stamp, statesMessage(world, frame_id_, stamp));
   writeView(world, stamp);
@@ -61,9 +58,7 @@ void RunBag::writeView(const core::World& world, const ros::Time& stamp)
 void RunBag::afterStep(const core::World& world)
 {
   const ros::Time stamp(world.time());
-  rosgraph_msgs::Clock clock;
-  clock.clock = stamp;
-  write("/clock", stamp, clock);
+  write("/clock", stamp, clockMessage(stamp));
   for (const core::CollisionEvent& event : world.lastEvents())
   {
     const auto msg = toMsg(event, frame_id_);

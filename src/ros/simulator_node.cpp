@@ -7,7 +7,6 @@
 
 #include <ball_collision_sim/BallStateArray.h>
 #include <ball_collision_sim/CollisionEvent.h>
-#include <rosgraph_msgs/Clock.h>
 #include <std_msgs/String.h>
 
 #include <algorithm>
@@ -53,9 +52,7 @@ SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   services_.push_back(pnh_.advertiseService("step", &SimulatorNode::onStep, this));
   clicked_sub_ = nh_.subscribe("/clicked_point", 10, &SimulatorNode::onClickedPoint, this);
 
-  rosgraph_msgs::Clock clock;
-  clock.clock = ros::Time(world_.time());
-  clock_pub_.publish(clock);
+  clock_pub_.publish(clockMessage(ros::Time(world_.time())));
   anchorClock();
   // The timer only wakes the loop; how many steps are due comes from the wall clock,
   // and each step is the scene's fixed dt whatever the timer's jitter.
@@ -127,9 +124,7 @@ void SimulatorNode::stepOnce()
 {
   world_.step();
   const ros::Time stamp(world_.time());
-  rosgraph_msgs::Clock clock;
-  clock.clock = stamp;
-  clock_pub_.publish(clock);
+  clock_pub_.publish(clockMessage(stamp));
   if (settings_.publish_collisions && collisions_pub_.getNumSubscribers() > 0)
     for (const core::CollisionEvent& event : world_.lastEvents())
       collisions_pub_.publish(toMsg(event, frame_id_));
@@ -285,12 +280,11 @@ bool SimulatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
   shown_balls_.clear();
   shown_lists_ = 0;
   publishStatic();
-  rosgraph_msgs::Clock clock;
-  clock.clock = ros::Time(world_.time());
-  clock_pub_.publish(clock);
+  const ros::Time start(world_.time());
+  clock_pub_.publish(clockMessage(start));
   publishView(true);
   if (states_pub_.getNumSubscribers() > 0)
-    publishStates(clock.clock);
+    publishStates(start);
   res.success = true;
   res.message = "back to the scene as loaded: " + std::to_string(world_.balls().size()) + " balls, " +
                 std::to_string(world_.walls().size()) + " walls";

@@ -4,6 +4,7 @@
 
 #include <ball_collision_sim/BallStateArray.h>
 #include <ros/time.h>
+#include <rosgraph_msgs/Clock.h>
 #include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -14,6 +15,9 @@ namespace ball_collision_sim::bridge
 {
 // What the simulator puts out about its world, built in one place so that the node's
 // topics and the offline tool's rosbags carry the same messages.
+
+/// Simulated time for /clock.
+rosgraph_msgs::Clock clockMessage(const ros::Time& stamp);
 
 /// Every ball's state, stamped `stamp` in `frame_id`.
 BallStateArray statesMessage(const core::World& world, const std::string& frame_id, const ros::Time& stamp);
