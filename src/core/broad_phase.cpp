@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace ball_collision_sim::core
 {
@@ -126,9 +127,10 @@ void UniformGrid::insert(std::uint32_t item, const Aabb& box)
       }
 }
 
-void StepGrid::build(const std::vector<Aabb>& boxes, const Vec3& up)
+void StepGrid::build(const Vec3& up)
 {
-  const std::size_t n = boxes.size();
+  const std::size_t n = boxes_.size();
+  const std::vector<Aabb>& boxes = boxes_;
   // Grid axes: drop the one most nearly along "up", where balls on a floor barely spread.
   int drop = 0;
   up.cwiseAbs().maxCoeff(&drop);
@@ -136,9 +138,11 @@ void StepGrid::build(const std::vector<Aabb>& boxes, const Vec3& up)
   ay_ = drop == 2 ? 1 : 2;
   cx_.resize(n);
   cy_.resize(n);
+  slot_pos_.resize(n);
   moved_.assign(n, 0);
   moved_list_.clear();
   entries_.resize(n);
+  sorted_boxes_.resize(n);
   dense_ = false;
   if (n == 0)
   {
@@ -151,11 +155,13 @@ void StepGrid::build(const std::vector<Aabb>& boxes, const Vec3& up)
   // median (a rare fast or large ball): they are listed as moved instead of making
   // every cell huge.
   extents_.resize(n);
+  double sum = 0;
   for (std::size_t i = 0; i < n; ++i)
+  {
     extents_[i] = std::max(boxes[i].max[ax_] - boxes[i].min[ax_], boxes[i].max[ay_] - boxes[i].min[ay_]);
-  sorted_extents_ = extents_;
-  std::nth_element(sorted_extents_.begin(), sorted_extents_.begin() + n / 2, sorted_extents_.end());
-  const double outlier = 4 * sorted_extents_[n / 2];
+    sum += extents_[i];
+  }
+  const double outlier = 4 * sum / static_cast<double>(n);
   double widest = 0;
   for (const double e : extents_)
     if (e <= outlier)
@@ -195,7 +201,12 @@ void StepGrid::build(const std::vector<Aabb>& boxes, const Vec3& up)
     starts_[b + 1] += starts_[b];
   next_.assign(starts_.begin(), starts_.end() - 1);
   for (std::size_t i = 0; i < n; ++i)
-    entries_[next_[slotOf(cx_[i], cy_[i])]++] = Entry{static_cast<std::uint32_t>(i), cx_[i], cy_[i]};
+  {
+    const std::uint32_t k = next_[slotOf(cx_[i], cy_[i])]++;
+    entries_[k] = static_cast<std::uint32_t>(i);
+    sorted_boxes_[k] = boxes[i];
+    slot_pos_[i] = k;
+  }
   for (std::size_t i = 0; i < n; ++i)
     if (extents_[i] > widest)
       update(static_cast<std::uint32_t>(i), boxes[i]);
@@ -226,12 +237,19 @@ bool StepGrid::fits(std::uint32_t i, const Aabb& box) const
 
 void StepGrid::update(std::uint32_t i, const Aabb& box)
 {
+  boxes_[i] = box;
   if (!moved_[i])
   {
     if (fits(i, box))
+    {
+      sorted_boxes_[slot_pos_[i]] = box;
       return;
+    }
     moved_[i] = 1;
     moved_list_.push_back(i);
+    // out of the cells: an empty box there overlaps nothing
+    const double inf = std::numeric_limits<double>::infinity();
+    sorted_boxes_[slot_pos_[i]] = Aabb{Vec3::Constant(inf), Vec3::Constant(-inf)};
   }
   moved_grid_.insert(i, box);
 }

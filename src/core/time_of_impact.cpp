@@ -4,30 +4,6 @@
 
 namespace ball_collision_sim::core
 {
-std::optional<double> sphereSweep(const Vec3& d, const Vec3& e, double reach, double t_max)
-{
-  const double c = d.squaredNorm() - reach * reach;
-  const double h = e.dot(d);  // half the linear coefficient: one convention throughout
-  if (c <= 0)
-  {
-    // Touching (or overlapping by round-off): an impact now, if closing at all.
-    if (-h * t_max > kClosingSlop * reach * d.norm())
-      return 0.0;
-    return std::nullopt;
-  }
-  if (h >= 0)
-    return std::nullopt;  // not approaching
-  const double a = e.squaredNorm();
-  const double disc = h * h - a * c;
-  if (disc < 0)
-    return std::nullopt;  // passes by
-  // q > 0 because h < 0; c / q is the smaller root without cancellation.
-  const double t = c / (-h + std::sqrt(disc));
-  if (!(t <= t_max))
-    return std::nullopt;
-  return t;
-}
-
 namespace
 {
 /// The face: the plane at distance r on the ball's side, then the contact point must

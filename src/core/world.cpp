@@ -24,6 +24,24 @@ constexpr std::uint32_t kMaxEventsPerBallStep = 256;
 constexpr double kRestingSteps = 2.0;
 /// ... and below this [m/s] always (flat floors, where gravity adds nothing).
 constexpr double kRestingSpeedFloor = 1e-9;
+
+
+/// sin and cos of x; a short series where |x| is small, the usual way elsewhere.
+void sinCos(double x, double& s, double& c)
+{
+  if (std::abs(x) > 0.5)
+  {
+    s = std::sin(x);
+    c = std::cos(x);
+    return;
+  }
+  // Taylor series to x^17 and x^18: the first term left out is below 3e-23 for |x| <= 1/2.
+  const double x2 = x * x;
+  s = x * (1 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880 +
+      x2 * (-1.0 / 39916800 + x2 * (1.0 / 6227020800 + x2 * (-1.0 / 1307674368000 + x2 * (1.0 / 355687428096000)))))))));
+  c = 1 + x2 * (-1.0 / 2 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 + x2 * (-1.0 / 3628800 +
+      x2 * (1.0 / 479001600 + x2 * (-1.0 / 87178291200 + x2 * (1.0 / 20922789888000 + x2 * (-1.0 / 6402373705728000)))))))));
+}
 }  // namespace
 
 /// A ball's straight motion inside the current step, in the step fraction x shared by all
@@ -147,6 +165,17 @@ void World::load()
   floor_.reset();
   if (scene_.floor)
     floor_.emplace(*scene_.floor, gravity_);
+  const double g = gravity_.norm();
+  up_ = floor_ ? floor_->up() : g > 0 ? Vec3(-gravity_ / g) : Vec3(Vec3::UnitZ());
+  plane_ = floor_ && floor_->isPlane();
+  if (plane_)
+  {
+    plane_normal_ = floor_->planeNormal();
+    plane_offset_ = floor_->planeOffset();
+  }
+  plane_resting_speed_ = 0.0;
+  if (plane_)
+    plane_resting_speed_ = restingSpeed(plane_normal_);
   walls_.clear();
   next_wall_id_ = 0;
   for (const WallDef& def : scene_.walls)
@@ -162,14 +191,6 @@ void World::load()
 void World::reset()
 {
   load();
-}
-
-Vec3 World::up() const
-{
-  if (floor_)
-    return floor_->up();
-  const double g = gravity_.norm();
-  return g > 0 ? Vec3(-gravity_ / g) : Vec3(Vec3::UnitZ());
 }
 
 Ball World::makeBall(int id, const BallDef& def) const
@@ -195,8 +216,11 @@ void World::step()
   events_.clear();
   resting_.clear();
   blocked_sets_.clear();
-  predictMotions();            // each ball's free motion over the step, on the floor
-  buildBroadPhase();           // swept boxes into a uniform grid
+  wall_boxes_.resize(walls_.size());
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    wall_boxes_[w] = Aabb{walls_[w].box_min, walls_[w].box_max};
+  predictMotions();            // each ball's free motion over the step, on the floor, and its swept box
+  buildBroadPhase();           // the swept boxes into a uniform grid
   findFirstImpacts();          // exact times of impact of nearby pairs and walls
   resolveEventsInTimeOrder();  // earliest first; re-detect only the balls involved
   commitToFloor();             // every ball to the step's end, back on the floor
@@ -206,6 +230,7 @@ void World::step()
 void World::predictMotions()
 {
   motions_.resize(balls_.size());
+  std::vector<Aabb>& boxes = grid_.boxes(balls_.size());
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     const Ball& ball = balls_[i];
@@ -214,7 +239,9 @@ void World::predictMotions()
     m.p0 = m.start = ball.position;
     m.v0 = ball.velocity;
     m.uv = ball.uv;
-    m.b = predictedEnd(i, m.p0, m.v0, dt_) - m.p0;
+    const Vec3 end = predictedEnd(i, m.p0, m.v0, dt_);
+    m.b = end - m.p0;
+    boxes[i] = sweptBox(m.p0, end, ball.radius);
   }
 }
 
@@ -222,6 +249,8 @@ Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double spa
 {
   // seed (1): ds = dt v + dt^2 g / 2, then back onto the floor, seed (2)-(4)
   const Vec3 q = p + span * v + (0.5 * span * span) * gravity_;
+  if (plane_)
+    return q + (balls_[i].radius + plane_offset_ - plane_normal_.dot(q)) * plane_normal_;
   if (!floor_)
     return q;
   const FloorFoot foot = floor_->project(q, motions_[i].uv);
@@ -238,16 +267,14 @@ Aabb World::currentBox(std::size_t i) const
 void World::buildBroadPhase()
 {
   heap_.clear();
-  boxes_.resize(balls_.size());
-  for (std::size_t i = 0; i < balls_.size(); ++i)
-    boxes_[i] = currentBox(i);
-  grid_.build(boxes_, up());
+  grid_.build(up());  // on the swept boxes of the predicted motions
 }
 
 void World::findFirstImpacts()
 {
   for (std::size_t i = 0; i < balls_.size(); ++i)
-    detect(i, true);
+    detectWalls(i);
+  grid_.forEachPair([&](std::uint32_t i, std::uint32_t j) { detectBall(i, j); });
 }
 
 void World::resolveEventsInTimeOrder()
@@ -272,24 +299,38 @@ void World::resolveEventsInTimeOrder()
 
 void World::commitToFloor()
 {
-  floor_normals_.resize(balls_.size());
+  // Without resting contacts every ball is finished in one pass; with them, velocities
+  // are settled across the contacts first.
+  const bool settle = !resting_.empty() || !blocked_sets_.empty();
+  if (floor_ && !plane_)
+    floor_normals_.resize(balls_.size());
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     Motion& m = motions_[i];
     Ball& ball = balls_[i];
     Vec3 p = positionAt(i, 1.0);
-    Vec3 normal = up();
-    if (floor_)
+    Vec3 normal = up_;
+    if (plane_)
+    {
+      p += (ball.radius + plane_offset_ - plane_normal_.dot(p)) * plane_normal_;
+      ball.uv = floor_->planeParameters(p);
+      normal = plane_normal_;
+    }
+    else if (floor_)
     {
       const FloorFoot foot = floor_->project(p, m.uv);
       p = floor_->ballCentre(foot, ball.radius);
       ball.uv = foot.uv;
       normal = foot.normal;
+      floor_normals_[i] = normal;
     }
-    floor_normals_[i] = normal;
     ball.position = p;
     ball.velocity = m.frozen ? Vec3::Zero() : onFloorVelocity(m, 1.0, p, normal);
+    if (!settle)
+      roll(i, normal);
   }
+  if (!settle)
+    return;
   // Resting contacts keep no closing speed into the step that follows.
   for (std::size_t i = 0; i < balls_.size(); ++i)
     balls_[i].velocity = allowed(motions_[i], balls_[i].velocity);
@@ -309,24 +350,34 @@ void World::commitToFloor()
   }
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
+    const Vec3& normal = plane_ ? plane_normal_ : floor_ ? floor_normals_[i] : up_;
     Ball& ball = balls_[i];
-    const Vec3& normal = floor_normals_[i];
     if (floor_ && !resting_.empty())
       ball.velocity -= ball.velocity.dot(normal) * normal;
-    // Rolling without slip: turned by |d| / r about n x d.
-    const Vec3 d = ball.position - motions_[i].start;
-    const Vec3 axis = normal.cross(d);
-    const double axis_norm = axis.norm();
-    if (axis_norm > 0)
-    {
-      const double half = 0.5 * (d - d.dot(normal) * normal).norm() / ball.radius;
-      double sin_half = 0, cos_half = 1;
-      sincos(half, &sin_half, &cos_half);
-      const Vec3 k = (sin_half / axis_norm) * axis;
-      ball.orientation = (Quat(cos_half, k.x(), k.y(), k.z()) * ball.orientation).normalized();
-    }
-    ball.angular_velocity = normal.cross(ball.velocity) / ball.radius;
+    roll(i, normal);
   }
+}
+
+void World::roll(std::size_t i, const Vec3& normal)
+{
+  // Rolling without slip: turned by |d| / r about n x d, d the move along the floor
+  // (|n x d| is its length).
+  Ball& ball = balls_[i];
+  const Vec3 d = ball.position - motions_[i].start;
+  const Vec3 axis = normal.cross(d);
+  const double axis_norm = axis.norm();
+  if (axis_norm > 0)
+  {
+    double sin_half = 0, cos_half = 1;
+    sinCos(0.5 * axis_norm / ball.radius, sin_half, cos_half);
+    const Vec3 k = (sin_half / axis_norm) * axis;
+    Quat q = Quat(cos_half, k.x(), k.y(), k.z()) * ball.orientation;
+    // back to unit length: the product of unit quaternions is off by round-off only, so
+    // one Newton step of 1/sqrt does
+    q.coeffs() *= 1.5 - 0.5 * q.coeffs().squaredNorm();
+    ball.orientation = q;
+  }
+  ball.angular_velocity = normal.cross(ball.velocity) / ball.radius;
 }
 
 // ---- detection -----------------------------------------------------------------------
@@ -337,16 +388,10 @@ void World::pushEvent(const Event& event)
   std::push_heap(heap_.begin(), heap_.end(), EventLater{});
 }
 
-void World::detect(std::size_t i, bool only_higher)
+void World::detect(std::size_t i)
 {
   detectWalls(i);
-  const Aabb& box = boxes_[i];
-  grid_.query(static_cast<std::uint32_t>(i), box, [&](std::uint32_t j) {
-    if (j == i || (only_higher && j < i))
-      return;  // with only_higher, the pair is found from j's side
-    if (box.overlaps(boxes_[j]))
-      detectBall(i, j);
-  });
+  grid_.query(static_cast<std::uint32_t>(i), [&](std::uint32_t j) { detectBall(i, j); });
 }
 
 void World::detectWalls(std::size_t i)
@@ -354,12 +399,12 @@ void World::detectWalls(std::size_t i)
   const Motion& m = motions_[i];
   if (m.frozen)
     return;
-  const Aabb& box = boxes_[i];
-  for (std::size_t w = 0; w < walls_.size(); ++w)
+  const Aabb& box = grid_.box(static_cast<std::uint32_t>(i));
+  for (std::size_t w = 0; w < wall_boxes_.size(); ++w)
   {
-    const Wall& wall = walls_[w];
-    if (!box.overlaps(Aabb{wall.box_min, wall.box_max}))
+    if (!box.overlaps(wall_boxes_[w]))
       continue;
+    const Wall& wall = walls_[w];
     const auto hit = sweepWall(wall, m.p0, m.b, balls_[i].radius, 1 - m.x0);
     if (hit)
       pushEvent(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0,
@@ -393,10 +438,10 @@ Vec3 World::positionAt(std::size_t i, double x) const
 
 Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
 {
+  if (plane_)
+    return plane_normal_;
   if (!floor_)
-    return up();
-  if (floor_->isPlane())
-    return floor_->normal(Vec2::Zero());
+    return up_;
   return floor_->project(position, motions_[i].uv).normal;
 }
 
@@ -419,6 +464,8 @@ Vec3 World::onFloorVelocity(const Motion& m, double x, const Vec3& position, con
 
 double World::restingSpeed(const Vec3& floor_normal) const
 {
+  if (plane_ && plane_resting_speed_ > 0)
+    return plane_resting_speed_;
   const Vec3 along = floor_ ? tangentPart(gravity_, floor_normal) : gravity_;
   return kRestingSteps * dt_ * along.norm() + kRestingSpeedFloor;
 }
@@ -451,8 +498,7 @@ void World::countEvent(std::size_t i)
     ++stats_.frozen_balls;
   }
   // its new motion may reach beyond where the grid has it
-  boxes_[i] = currentBox(i);
-  grid_.update(static_cast<std::uint32_t>(i), boxes_[i]);
+  grid_.update(static_cast<std::uint32_t>(i), currentBox(i));
 }
 
 void World::recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,
@@ -502,7 +548,7 @@ void World::resolveBallWall(const Event& event)
   recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
               event);
   countEvent(i);
-  detect(i, false);
+  detect(i);
 }
 
 void World::resolveBallBall(const Event& event)
@@ -573,8 +619,8 @@ void World::resolveBallBall(const Event& event)
   recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, impulse, closing, resting, event);
   countEvent(i);
   countEvent(j);
-  detect(i, false);
-  detect(j, false);
+  detect(i);
+  detect(j);
 }
 
 // ---- queries -------------------------------------------------------------------------

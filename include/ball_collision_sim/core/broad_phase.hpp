@@ -16,7 +16,8 @@ struct Aabb
   Vec3 max;
   bool overlaps(const Aabb& o) const
   {
-    return (min.array() <= o.max.array()).all() && (o.min.array() <= max.array()).all();
+    return min.x() <= o.max.x() && o.min.x() <= max.x() && min.y() <= o.max.y() && o.min.y() <= max.y() &&
+           min.z() <= o.max.z() && o.min.z() <= max.z();
   }
 };
 
@@ -88,33 +89,42 @@ void UniformGrid::query(const Aabb& box, F&& f) const
 /// strictly within half a cell of its own cell, and two overlapping boxes sit in the same
 /// or neighbouring cells. An item whose box leaves that reach during the step (after a
 /// bounce), or that was too large to bin, is listed again in a UniformGrid of every cell
-/// its box touches.
+/// its box touches. The grid keeps each item's current box, and a copy in cell order so
+/// that a scan of neighbouring cells reads memory in sequence.
 class StepGrid
 {
 public:
-  /// Bins the items' boxes; `up` picks the grid's two axes.
-  void build(const std::vector<Aabb>& boxes, const Vec3& up);
+  /// The items' boxes, to be filled (n of them) before build().
+  std::vector<Aabb>& boxes(std::size_t n)
+  {
+    boxes_.resize(n);
+    return boxes_;
+  }
+  /// Bins the boxes; `up` picks the grid's two axes.
+  void build(const Vec3& up);
+  const Aabb& box(std::uint32_t i) const { return boxes_[i]; }
   /// Item i's box is now `box` (its motion changed during the step).
   void update(std::uint32_t i, const Aabb& box);
-  /// Calls f(j) for every item j whose box may overlap `box`, the box of item `asker`
-  /// (j may be the asker; an item that left its reach may come more than once).
+  /// Calls f(j) for every other item j whose box overlaps the box of item i; j may come
+  /// more than once.
   template <class F>
-  void query(std::uint32_t asker, const Aabb& box, F&& f) const;
+  void query(std::uint32_t i, F&& f) const;
+  /// Calls f(i, j) for every pair of items whose boxes overlap, at least once each pair
+  /// (i != j, in either order).
+  template <class F>
+  void forEachPair(F&& f) const;
 
 private:
-  struct Entry
-  {
-    std::uint32_t item;
-    std::int64_t cx;
-    std::int64_t cy;
-  };
   /// A whole number of cells as an index, clamped so that far-away items cannot overflow
   /// (they then share cells, which costs time, never a pair).
   static std::int64_t index(double cells) { return static_cast<std::int64_t>(std::clamp(cells, -1e15, 1e15)); }
+  static bool overlap(const Aabb& a, const Aabb& b) { return a.overlaps(b); }
   std::size_t bucketOf(std::int64_t cx, std::int64_t cy) const;
   bool fits(std::uint32_t i, const Aabb& box) const;
+  /// Calls f(item) for the binned items of the cells [x0, x1] x [y0, y1] whose boxes
+  /// overlap `box`.
   template <class F>
-  void scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, F&& f) const;
+  void scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, const Aabb& box, F&& f) const;
   std::size_t slotOf(std::int64_t cx, std::int64_t cy) const;
 
   int ax_ = 0;  ///< the grid's axes
@@ -122,14 +132,18 @@ private:
   double cell_ = 1.0;
   double inv_cell_ = 1.0;
   int shift_ = 60;
+  std::vector<Aabb> boxes_;             ///< per item: its current box
   std::vector<std::int64_t> cx_;        ///< per item: its cell
   std::vector<std::int64_t> cy_;
+  std::vector<std::uint32_t> slot_pos_; ///< per item: its place in `entries_`
   std::vector<std::uint8_t> moved_;     ///< per item: listed in `moved_grid_` instead
   std::vector<std::uint32_t> starts_;   ///< bucket b holds entries_[starts_[b] .. starts_[b + 1])
-  std::vector<Entry> entries_;
+  std::vector<std::uint32_t> entries_;  ///< items in order of their buckets
+  /// The binned items' boxes in the order of `entries_`; an item that moved out has an
+  /// empty box here, which overlaps nothing.
+  std::vector<Aabb> sorted_boxes_;
   std::vector<std::uint32_t> next_;
   std::vector<double> extents_;
-  std::vector<double> sorted_extents_;
   /// Dense mode: cells in a row-major array over the items' cells with a border of one;
   /// otherwise hashed buckets (items spread far apart).
   bool dense_ = false;
@@ -142,7 +156,8 @@ private:
 };
 
 template <class F>
-void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, F&& f) const
+void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, const Aabb& box,
+                         F&& f) const
 {
   if (dense_)
   {
@@ -158,8 +173,8 @@ void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std:
       const std::size_t first = slotOf(x0, iy);
       const std::size_t last = first + static_cast<std::size_t>(x1 - x0) + 1;
       for (std::uint32_t k = starts_[first]; k < starts_[last]; ++k)
-        if (!moved_[entries_[k].item])
-          f(entries_[k].item);
+        if (overlap(sorted_boxes_[k], box))
+          f(entries_[k]);
     }
     return;
   }
@@ -169,27 +184,36 @@ void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std:
       const std::size_t b = bucketOf(ix, iy);
       for (std::uint32_t k = starts_[b]; k < starts_[b + 1]; ++k)
       {
-        const Entry& e = entries_[k];
-        if (e.cx == ix && e.cy == iy && !moved_[e.item])
-          f(e.item);
+        const std::uint32_t j = entries_[k];
+        if (cx_[j] == ix && cy_[j] == iy && overlap(sorted_boxes_[k], box))
+          f(j);
       }
     }
 }
 
 template <class F>
-void StepGrid::query(std::uint32_t asker, const Aabb& box, F&& f) const
+void StepGrid::query(std::uint32_t i, F&& f) const
 {
+  const Aabb& box = boxes_[i];
   if (!moved_list_.empty())
   {
+    const auto moved = [&](std::uint32_t j) {
+      if (j != i && overlap(boxes_[j], box))
+        f(j);
+    };
     if (moved_grid_.oversized(box))
       for (std::uint32_t j : moved_list_)  // too many cells to look up: all that moved
-        f(j);
+        moved(j);
     else
-      moved_grid_.query(box, f);
+      moved_grid_.query(box, moved);
   }
-  if (!moved_[asker])
+  const auto binned = [&](std::uint32_t j) {
+    if (j != i)
+      f(j);
+  };
+  if (!moved_[i])
   {
-    scanCells(cx_[asker] - 1, cx_[asker] + 1, cy_[asker] - 1, cy_[asker] + 1, f);
+    scanCells(cx_[i] - 1, cx_[i] + 1, cy_[i] - 1, cy_[i] + 1, box, binned);
     return;
   }
   // Cells c whose reach ((c - 1/2) h, (c + 3/2) h) meets the box.
@@ -199,11 +223,58 @@ void StepGrid::query(std::uint32_t asker, const Aabb& box, F&& f) const
   const std::int64_t y1 = index(std::floor(box.max[ay_] * inv_cell_ + 0.5));
   if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) > static_cast<double>(cx_.size()) + 16)
   {
-    for (std::uint32_t j = 0; j < cx_.size(); ++j)  // a huge box: every binned item
-      if (!moved_[j])
-        f(j);
+    for (std::uint32_t k = 0; k < entries_.size(); ++k)  // a huge box: every binned item
+      if (overlap(sorted_boxes_[k], box))
+        binned(entries_[k]);
     return;
   }
-  scanCells(x0, x1, y0, y1, f);
+  scanCells(x0, x1, y0, y1, box, binned);
+}
+
+template <class F>
+void StepGrid::forEachPair(F&& f) const
+{
+  if (dense_)
+  {
+    // Each cell with itself and with the four neighbours after it in row-major order
+    // (east, and the row above): every pair of neighbouring cells once.
+    const std::size_t slots = starts_.size() - 1;
+    const auto w = static_cast<std::size_t>(width_);
+    for (std::size_t s = 0; s + w + 2 <= slots; ++s)
+    {
+      const std::uint32_t begin = starts_[s], end = starts_[s + 1];
+      for (std::uint32_t k = begin; k < end; ++k)
+      {
+        const Aabb& box = sorted_boxes_[k];
+        const std::uint32_t item = entries_[k];
+        for (std::uint32_t l = k + 1; l < starts_[s + 2]; ++l)  // the rest of this cell, then east
+          if (overlap(sorted_boxes_[l], box))
+            f(item, entries_[l]);
+        for (std::uint32_t l = starts_[s + w - 1]; l < starts_[s + w + 2]; ++l)  // the row above
+          if (overlap(sorted_boxes_[l], box))
+            f(item, entries_[l]);
+      }
+    }
+  }
+  else
+  {
+    for (std::uint32_t k = 0; k < entries_.size(); ++k)
+    {
+      const std::uint32_t i = entries_[k];
+      if (moved_[i])
+        continue;
+      scanCells(cx_[i] - 1, cx_[i] + 1, cy_[i] - 1, cy_[i] + 1, boxes_[i], [&](std::uint32_t j) {
+        if (j > i)
+          f(i, j);
+      });
+    }
+  }
+  // Items that moved out find all their pairs themselves; a pair of two such is found
+  // from the lower one's side.
+  for (std::uint32_t i : moved_list_)
+    query(i, [&](std::uint32_t j) {
+      if (!moved_[j] || j > i)
+        f(i, j);
+    });
 }
 }  // namespace ball_collision_sim::core

@@ -37,6 +37,15 @@ public:
   FloorFoot project(const Vec3& q, const Vec2& guess) const;
   /// The centre of a ball of radius r nearest to q: foot + r n.
   Vec3 ballCentre(const FloorFoot& foot, double radius) const { return foot.point + radius * foot.normal; }
+  /// Plane only: the parameters (u, v) of the foot point of q.
+  Vec2 planeParameters(const Vec3& q) const
+  {
+    const Vec3 d = q - def_.point;
+    return plane_gram_inverse_ * Vec2(d.dot(def_.u), d.dot(def_.v));
+  }
+  /// Plane only: its unit normal (facing against gravity) and <normal, point on it>.
+  const Vec3& planeNormal() const { return plane_normal_; }
+  double planeOffset() const { return plane_normal_.dot(def_.point); }
   /// The unit vector the floor's normals are oriented toward.
   const Vec3& up() const { return up_; }
 

@@ -3,6 +3,7 @@
 #include "ball_collision_sim/core/types.hpp"
 #include "ball_collision_sim/core/wall.hpp"
 
+#include <cmath>
 #include <optional>
 
 namespace ball_collision_sim::core
@@ -17,7 +18,29 @@ constexpr double kClosingSlop = 1e-12;
 /// t = c / (-h + sqrt(h^2 - a c)), h = <e, d>. Already touching and closing by more
 /// than kClosingSlop * reach over [0, t_max]: t = 0.
 /// Ball-ball: d = p1 - p2, e = ds1 - ds2, reach = r1 + r2.
-std::optional<double> sphereSweep(const Vec3& d, const Vec3& e, double reach, double t_max);
+inline std::optional<double> sphereSweep(const Vec3& d, const Vec3& e, double reach, double t_max)
+{
+  const double c = d.squaredNorm() - reach * reach;
+  const double h = e.dot(d);  // half the linear coefficient: one convention throughout
+  if (c <= 0)
+  {
+    // Touching (or overlapping by round-off): an impact now, if closing at all.
+    if (-h * t_max > kClosingSlop * reach * d.norm())
+      return 0.0;
+    return std::nullopt;
+  }
+  if (h >= 0)
+    return std::nullopt;  // not approaching
+  const double a = e.squaredNorm();
+  const double disc = h * h - a * c;
+  if (disc < 0)
+    return std::nullopt;  // passes by
+  // q > 0 because h < 0; c / q is the smaller root without cancellation.
+  const double t = c / (-h + std::sqrt(disc));
+  if (!(t <= t_max))
+    return std::nullopt;
+  return t;
+}
 
 /// First contact of a ball with a wall.
 struct WallHit

@@ -111,7 +111,7 @@ private:
   void load();
   Ball makeBall(int id, const BallDef& def) const;
   /// Unit vector against gravity (the floor's normal side).
-  Vec3 up() const;
+  const Vec3& up() const { return up_; }
 
   // The stages of a step, in order.
   void predictMotions();
@@ -119,11 +119,13 @@ private:
   void findFirstImpacts();
   void resolveEventsInTimeOrder();
   void commitToFloor();
+  /// Turns ball i by its rolling since the step began and sets its angular velocity.
+  void roll(std::size_t i, const Vec3& floor_normal);
 
   Vec3 predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span);
   Aabb currentBox(std::size_t i) const;
   void pushEvent(const Event& event);
-  void detect(std::size_t i, bool only_higher);
+  void detect(std::size_t i);
   void detectWalls(std::size_t i);
   void detectBall(std::size_t i, std::size_t j);
   void resolveBallWall(const Event& event);
@@ -144,6 +146,12 @@ private:
   double dt_;
   Vec3 gravity_;
   std::optional<Floor> floor_;
+  Vec3 up_ = Vec3::UnitZ();
+  /// A plane floor: its normal and offset, and the resting speed that goes with it.
+  bool plane_ = false;
+  Vec3 plane_normal_ = Vec3::UnitZ();
+  double plane_offset_ = 0.0;
+  double plane_resting_speed_ = 0.0;
   std::vector<Wall> walls_;
   std::vector<Ball> balls_;
   int next_ball_id_ = 0;
@@ -154,7 +162,7 @@ private:
   std::vector<Motion> motions_;
   std::vector<Event> heap_;
   StepGrid grid_;
-  std::vector<Aabb> boxes_;  ///< each ball's swept box for the rest of the step
+  std::vector<Aabb> wall_boxes_;
   std::vector<Vec3> floor_normals_;
   std::vector<CollisionEvent> events_;
   std::vector<RestingContact> resting_;
