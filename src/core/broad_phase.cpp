@@ -212,19 +212,22 @@ void StepGrid::build(const Vec3& up)
       update(static_cast<std::uint32_t>(i), boxes[i]);
 }
 
-std::size_t StepGrid::slotOf(std::int64_t cx, std::int64_t cy) const
+void StepGrid::markObstacles(const std::vector<Aabb>& obstacles)
 {
-  if (dense_)
-    return static_cast<std::size_t>((cx - min_x_ + 1) + width_ * (cy - min_y_ + 1));
-  return bucketOf(cx, cy);
-}
-
-std::size_t StepGrid::bucketOf(std::int64_t cx, std::int64_t cy) const
-{
-  // Fibonacci hashing of the two cell indices
-  const std::uint64_t h =
-      static_cast<std::uint64_t>(cx) * 0x9e3779b97f4a7c15ULL ^ static_cast<std::uint64_t>(cy) * 0xc2b2ae3d27d4eb4fULL;
-  return static_cast<std::size_t>((h ^ (h >> 29)) >> shift_);
+  if (!dense_)
+    return;
+  near_obstacle_.assign(starts_.size() - 1, 0);
+  for (const Aabb& box : obstacles)
+  {
+    // Cells c whose reach ((c - 1/2) h, (c + 3/2) h) meets the box, within the array.
+    const std::int64_t x0 = std::max(index(std::floor(box.min[ax_] * inv_cell_ - 1.5)), min_x_ - 1);
+    const std::int64_t x1 = std::min(index(std::floor(box.max[ax_] * inv_cell_ + 0.5)), min_x_ + width_ - 2);
+    const std::int64_t y0 = std::max(index(std::floor(box.min[ay_] * inv_cell_ - 1.5)), min_y_ - 1);
+    const std::int64_t y1 = std::min(index(std::floor(box.max[ay_] * inv_cell_ + 0.5)), min_y_ + height_ - 2);
+    for (std::int64_t iy = y0; iy <= y1; ++iy)
+      for (std::int64_t ix = x0; ix <= x1; ++ix)
+        near_obstacle_[slotOf(ix, iy)] = 1;
+  }
 }
 
 bool StepGrid::fits(std::uint32_t i, const Aabb& box) const

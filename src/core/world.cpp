@@ -268,6 +268,7 @@ void World::buildBroadPhase()
 {
   heap_.clear();
   grid_.build(up());  // on the swept boxes of the predicted motions
+  grid_.markObstacles(wall_boxes_);
 }
 
 void World::findFirstImpacts()
@@ -397,7 +398,7 @@ void World::detect(std::size_t i)
 void World::detectWalls(std::size_t i)
 {
   const Motion& m = motions_[i];
-  if (m.frozen)
+  if (m.frozen || !grid_.nearObstacle(static_cast<std::uint32_t>(i)))
     return;
   const Aabb& box = grid_.box(static_cast<std::uint32_t>(i));
   for (std::size_t w = 0; w < wall_boxes_.size(); ++w)

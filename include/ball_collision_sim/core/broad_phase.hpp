@@ -103,6 +103,13 @@ public:
   /// Bins the boxes; `up` picks the grid's two axes.
   void build(const Vec3& up);
   const Aabb& box(std::uint32_t i) const { return boxes_[i]; }
+  /// Notes which cells binned items could reach the given boxes (walls) from.
+  void markObstacles(const std::vector<Aabb>& obstacles);
+  /// False when item i's box cannot overlap any of the boxes given to markObstacles().
+  bool nearObstacle(std::uint32_t i) const
+  {
+    return moved_[i] || !dense_ || near_obstacle_[slotOf(cx_[i], cy_[i])];
+  }
   /// Item i's box is now `box` (its motion changed during the step).
   void update(std::uint32_t i, const Aabb& box);
   /// Calls f(j) for every other item j whose box overlaps the box of item i; j may come
@@ -119,13 +126,24 @@ private:
   /// (they then share cells, which costs time, never a pair).
   static std::int64_t index(double cells) { return static_cast<std::int64_t>(std::clamp(cells, -1e15, 1e15)); }
   static bool overlap(const Aabb& a, const Aabb& b) { return a.overlaps(b); }
-  std::size_t bucketOf(std::int64_t cx, std::int64_t cy) const;
   bool fits(std::uint32_t i, const Aabb& box) const;
   /// Calls f(item) for the binned items of the cells [x0, x1] x [y0, y1] whose boxes
   /// overlap `box`.
   template <class F>
   void scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, const Aabb& box, F&& f) const;
-  std::size_t slotOf(std::int64_t cx, std::int64_t cy) const;
+  std::size_t bucketOf(std::int64_t cx, std::int64_t cy) const
+  {
+    // Fibonacci hashing of the two cell indices
+    const std::uint64_t h =
+        static_cast<std::uint64_t>(cx) * 0x9e3779b97f4a7c15ULL ^ static_cast<std::uint64_t>(cy) * 0xc2b2ae3d27d4eb4fULL;
+    return static_cast<std::size_t>((h ^ (h >> 29)) >> shift_);
+  }
+  std::size_t slotOf(std::int64_t cx, std::int64_t cy) const
+  {
+    if (dense_)
+      return static_cast<std::size_t>((cx - min_x_ + 1) + width_ * (cy - min_y_ + 1));
+    return bucketOf(cx, cy);
+  }
 
   int ax_ = 0;  ///< the grid's axes
   int ay_ = 1;
@@ -143,6 +161,7 @@ private:
   /// empty box here, which overlaps nothing.
   std::vector<Aabb> sorted_boxes_;
   std::vector<std::uint32_t> next_;
+  std::vector<std::uint8_t> near_obstacle_;  ///< dense mode, per cell
   std::vector<double> extents_;
   /// Dense mode: cells in a row-major array over the items' cells with a border of one;
   /// otherwise hashed buckets (items spread far apart).
