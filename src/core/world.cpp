@@ -48,16 +48,18 @@ void sinCos(double x, double& s, double& c)
 /// balls: centre c(x) = p0 + (x - x0) b for x in [x0, 1]. A new one starts at every event.
 struct World::Motion
 {
+  // what detection reads, in the first 64 bytes
   double x0 = 0.0;               ///< where this motion starts, fraction of the step
   Vec3 p0 = Vec3::Zero();        ///< centre at x0 [m]
-  Vec3 v0 = Vec3::Zero();        ///< velocity at x0 [m/s]
-  Vec3 b = Vec3::Zero();         ///< displacement per unit of x [m]
-  Vec3 start = Vec3::Zero();     ///< centre at the step's start [m]
-  Vec2 uv = Vec2::Zero();        ///< last foot point, Newton's starting guess
+  Vec3 b = Vec3::Zero();         ///< displacement per unit of x [m]; zero while frozen
+  double radius = 0.0;           ///< the ball's [m]
   std::uint32_t epoch = 0;       ///< bumped at every event of this ball
   std::uint32_t events = 0;      ///< events of this ball in this step
   bool frozen = false;
   std::int32_t blocked = -1;     ///< its BlockedSet this step, if any
+  Vec3 v0 = Vec3::Zero();        ///< velocity at x0 [m/s]
+  Vec3 start = Vec3::Zero();     ///< centre at the step's start [m]
+  Vec2 uv = Vec2::Zero();        ///< last foot point, Newton's starting guess
 };
 
 /// Unit directions a ball may not move along for the rest of the step: toward a wall it
@@ -236,6 +238,7 @@ void World::predictMotions()
     const Ball& ball = balls_[i];
     Motion& m = motions_[i];
     m = Motion{};
+    m.radius = ball.radius;
     m.p0 = m.start = ball.position;
     m.v0 = ball.velocity;
     m.uv = ball.uv;
@@ -250,18 +253,18 @@ Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double spa
   // seed (1): ds = dt v + dt^2 g / 2, then back onto the floor, seed (2)-(4)
   const Vec3 q = p + span * v + (0.5 * span * span) * gravity_;
   if (plane_)
-    return q + (balls_[i].radius + plane_offset_ - plane_normal_.dot(q)) * plane_normal_;
+    return q + (motions_[i].radius + plane_offset_ - plane_normal_.dot(q)) * plane_normal_;
   if (!floor_)
     return q;
   const FloorFoot foot = floor_->project(q, motions_[i].uv);
   motions_[i].uv = foot.uv;
-  return floor_->ballCentre(foot, balls_[i].radius);
+  return floor_->ballCentre(foot, motions_[i].radius);
 }
 
 Aabb World::currentBox(std::size_t i) const
 {
   const Motion& m = motions_[i];
-  return sweptBox(m.p0, m.p0 + (1 - m.x0) * m.b, balls_[i].radius);
+  return sweptBox(m.p0, m.p0 + (1 - m.x0) * m.b, m.radius);
 }
 
 void World::buildBroadPhase()
@@ -406,7 +409,7 @@ void World::detectWalls(std::size_t i)
     if (!box.overlaps(wall_boxes_[w]))
       continue;
     const Wall& wall = walls_[w];
-    const auto hit = sweepWall(wall, m.p0, m.b, balls_[i].radius, 1 - m.x0);
+    const auto hit = sweepWall(wall, m.p0, m.b, m.radius, 1 - m.x0);
     if (hit)
       pushEvent(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0,
                       true, hit->feature, hit->normal});
@@ -419,11 +422,10 @@ void World::detectBall(std::size_t i, std::size_t j)
   const std::size_t a = std::min(i, j), b = std::max(i, j);
   const Motion& ma = motions_[a];
   const Motion& mb = motions_[b];
-  if (ma.frozen && mb.frozen)
-    return;
+  // (two frozen balls have no motion, so no impact)
   const double xs = std::max(ma.x0, mb.x0);
-  const Vec3 d = positionAt(a, xs) - positionAt(b, xs);
-  const auto t = sphereSweep(d, ma.b - mb.b, balls_[a].radius + balls_[b].radius, 1 - xs);
+  const Vec3 d = (ma.p0 + (xs - ma.x0) * ma.b) - (mb.p0 + (xs - mb.x0) * mb.b);
+  const auto t = sphereSweep(d, ma.b - mb.b, ma.radius + mb.radius, 1 - xs);
   if (t)
     pushEvent(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), ma.epoch, mb.epoch,
                     false, WallFeature::kFace, Vec3::Zero()});
