@@ -58,8 +58,6 @@ struct World::Motion
   bool frozen = false;
   std::int32_t blocked = -1;     ///< its BlockedSet this step, if any
   Vec3 v0 = Vec3::Zero();        ///< velocity at x0 [m/s]
-  Vec3 start = Vec3::Zero();     ///< centre at the step's start [m]
-  Vec2 uv = Vec2::Zero();        ///< last foot point, Newton's starting guess
 };
 
 /// Unit directions a ball may not move along for the rest of the step: toward a wall it
@@ -184,10 +182,13 @@ void World::load()
     walls_.emplace_back(next_wall_id_++, def, scene_.restitution);
   balls_.clear();
   next_ball_id_ = 0;
-  for (const BallDef& def : allBalls(scene_))
+  const std::vector<BallDef> defs = allBalls(scene_);
+  balls_.reserve(defs.size());
+  for (const BallDef& def : defs)
     balls_.push_back(makeBall(next_ball_id_++, def));
   stats_ = WorldStats{};
   events_.clear();
+  order_.clear();
 }
 
 void World::reset()
@@ -218,6 +219,12 @@ void World::step()
   events_.clear();
   resting_.clear();
   blocked_sets_.clear();
+  if (order_.size() != balls_.size())
+  {
+    order_.resize(balls_.size());
+    for (std::size_t k = 0; k < order_.size(); ++k)
+      order_[k] = static_cast<std::uint32_t>(k);
+  }
   wall_boxes_.resize(walls_.size());
   for (std::size_t w = 0; w < walls_.size(); ++w)
     wall_boxes_[w] = Aabb{walls_[w].box_min, walls_[w].box_max};
@@ -226,22 +233,34 @@ void World::step()
   findFirstImpacts();          // exact times of impact of nearby pairs and walls
   resolveEventsInTimeOrder();  // earliest first; re-detect only the balls involved
   commitToFloor();             // every ball to the step's end, back on the floor
+  // The next step visits the balls in this step's cell order, so that neighbours in
+  // space are neighbours in memory too.
+  if (grid_.inCellOrder())
+  {
+    const std::vector<std::uint32_t>& cell_order = grid_.order();
+    next_order_.resize(order_.size());
+    for (std::size_t k = 0; k < order_.size(); ++k)
+      next_order_[k] = order_[cell_order[k]];
+    order_.swap(next_order_);
+  }
   ++stats_.steps;
 }
 
 void World::predictMotions()
 {
   motions_.resize(balls_.size());
+  floor_uv_.resize(floor_ && !plane_ ? balls_.size() : 0);
   std::vector<Aabb>& boxes = grid_.boxes(balls_.size());
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
-    const Ball& ball = balls_[i];
+    const Ball& ball = balls_[order_[i]];
     Motion& m = motions_[i];
     m = Motion{};
     m.radius = ball.radius;
-    m.p0 = m.start = ball.position;
+    m.p0 = ball.position;
     m.v0 = ball.velocity;
-    m.uv = ball.uv;
+    if (!floor_uv_.empty())
+      floor_uv_[i] = ball.uv;
     const Vec3 end = predictedEnd(i, m.p0, m.v0, dt_);
     m.b = end - m.p0;
     boxes[i] = sweptBox(m.p0, end, ball.radius);
@@ -256,8 +275,8 @@ Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double spa
     return q + (motions_[i].radius + plane_offset_ - plane_normal_.dot(q)) * plane_normal_;
   if (!floor_)
     return q;
-  const FloorFoot foot = floor_->project(q, motions_[i].uv);
-  motions_[i].uv = foot.uv;
+  const FloorFoot foot = floor_->project(q, floor_uv_[i]);
+  floor_uv_[i] = foot.uv;
   return floor_->ballCentre(foot, motions_[i].radius);
 }
 
@@ -311,7 +330,7 @@ void World::commitToFloor()
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     Motion& m = motions_[i];
-    Ball& ball = balls_[i];
+    Ball& ball = balls_[order_[i]];
     Vec3 p = positionAt(i, 1.0);
     Vec3 normal = up_;
     if (plane_)
@@ -322,26 +341,29 @@ void World::commitToFloor()
     }
     else if (floor_)
     {
-      const FloorFoot foot = floor_->project(p, m.uv);
+      const FloorFoot foot = floor_->project(p, floor_uv_[i]);
       p = floor_->ballCentre(foot, ball.radius);
       ball.uv = foot.uv;
       normal = foot.normal;
       floor_normals_[i] = normal;
     }
+    const Vec3 moved = p - ball.position;
     ball.position = p;
     ball.velocity = m.frozen ? Vec3::Zero() : onFloorVelocity(m, 1.0, p, normal);
     if (!settle)
-      roll(i, normal);
+      roll(i, normal, moved);
+    else
+      m.p0 = moved;  // the motion is done with: p0 keeps the step's move for roll()
   }
   if (!settle)
     return;
   // Resting contacts keep no closing speed into the step that follows.
   for (std::size_t i = 0; i < balls_.size(); ++i)
-    balls_[i].velocity = allowed(motions_[i], balls_[i].velocity);
+    balls_[order_[i]].velocity = allowed(motions_[i], balls_[order_[i]].velocity);
   for (const RestingContact& contact : resting_)
   {
-    Ball& a = balls_[contact.ball];
-    Ball& b = balls_[contact.other];
+    Ball& a = balls_[order_[contact.ball]];
+    Ball& b = balls_[order_[contact.other]];
     const double inv_a = motions_[contact.ball].frozen ? 0.0 : 1.0 / a.mass;
     const double inv_b = motions_[contact.other].frozen ? 0.0 : 1.0 / b.mass;
     const double closing = a.velocity.dot(contact.dir_ball) - b.velocity.dot(contact.dir_other);
@@ -355,19 +377,18 @@ void World::commitToFloor()
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     const Vec3& normal = plane_ ? plane_normal_ : floor_ ? floor_normals_[i] : up_;
-    Ball& ball = balls_[i];
+    Ball& ball = balls_[order_[i]];
     if (floor_ && !resting_.empty())
       ball.velocity -= ball.velocity.dot(normal) * normal;
-    roll(i, normal);
+    roll(i, normal, motions_[i].p0);
   }
 }
 
-void World::roll(std::size_t i, const Vec3& normal)
+void World::roll(std::size_t i, const Vec3& normal, const Vec3& d)
 {
   // Rolling without slip: turned by |d| / r about n x d, d the move along the floor
   // (|n x d| is its length).
-  Ball& ball = balls_[i];
-  const Vec3 d = ball.position - motions_[i].start;
+  Ball& ball = balls_[order_[i]];
   const Vec3 axis = normal.cross(d);
   const double axis_norm = axis.norm();
   if (axis_norm > 0)
@@ -445,7 +466,7 @@ Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
     return plane_normal_;
   if (!floor_)
     return up_;
-  return floor_->project(position, motions_[i].uv).normal;
+  return floor_->project(position, floor_uv_[i]).normal;
 }
 
 Vec3 World::onFloorVelocity(const Motion& m, double x, const Vec3& position, const Vec3& normal) const
@@ -528,7 +549,7 @@ void World::resolveBallWall(const Event& event)
 {
   const std::size_t i = event.i;
   const Wall& wall = walls_[event.j];
-  const Ball& ball = balls_[i];
+  const Ball& ball = balls_[order_[i]];
   const Vec3 p = positionAt(i, event.x);
   const Vec3 floor_normal = floorNormalAt(i, p);
   Vec3 v = onFloorVelocity(motions_[i], event.x, p, floor_normal);
@@ -557,8 +578,8 @@ void World::resolveBallWall(const Event& event)
 void World::resolveBallBall(const Event& event)
 {
   const std::size_t i = event.i, j = event.j;
-  const Ball& a = balls_[i];
-  const Ball& b = balls_[j];
+  const Ball& a = balls_[order_[i]];
+  const Ball& b = balls_[order_[j]];
   const Vec3 pa = positionAt(i, event.x);
   const Vec3 pb = positionAt(j, event.x);
   const Vec3 na = floorNormalAt(i, pa);
@@ -727,6 +748,7 @@ AddResult World::addBall(const BallDef& def)
   result.ok = true;
   result.id = next_ball_id_++;
   balls_.push_back(makeBall(result.id, def));
+  order_.clear();
   return result;
 }
 
@@ -759,6 +781,7 @@ bool World::removeBall(int id)
   if (it == balls_.end())
     return false;
   balls_.erase(it);
+  order_.clear();
   return true;
 }
 

@@ -103,6 +103,9 @@ public:
   /// Bins the boxes; `up` picks the grid's two axes.
   void build(const Vec3& up);
   const Aabb& box(std::uint32_t i) const { return boxes_[i]; }
+  /// True when order() lists the items cell by cell, row by row.
+  bool inCellOrder() const { return dense_; }
+  const std::vector<std::uint32_t>& order() const { return entries_; }
   /// Notes which cells binned items could reach the given boxes (walls) from.
   void markObstacles(const std::vector<Aabb>& obstacles);
   /// False when item i's box cannot overlap any of the boxes given to markObstacles().

@@ -8,7 +8,8 @@ namespace ball_collision_sim::core
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 using Mat2 = Eigen::Matrix2d;
-using Quat = Eigen::Quaterniond;
+/// Unaligned, so that it packs into structs without padding.
+using Quat = Eigen::Quaternion<double, Eigen::DontAlign>;
 
 /// Largest length accepted anywhere in a scene [m]; beyond it squares overflow precision.
 constexpr double kMaxLength = 1e6;

@@ -119,8 +119,8 @@ private:
   void findFirstImpacts();
   void resolveEventsInTimeOrder();
   void commitToFloor();
-  /// Turns ball i by its rolling since the step began and sets its angular velocity.
-  void roll(std::size_t i, const Vec3& floor_normal);
+  /// Turns ball i by its rolling over the step's move d and sets its angular velocity.
+  void roll(std::size_t i, const Vec3& floor_normal, const Vec3& d);
 
   Vec3 predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span);
   Aabb currentBox(std::size_t i) const;
@@ -158,12 +158,17 @@ private:
   int next_wall_id_ = 0;
   WorldStats stats_;
 
+  /// The step visits ball balls_[order_[k]] as its k-th: the balls in the last step's
+  /// cell order (the step's work space is indexed by k). Reset by any edit.
+  std::vector<std::uint32_t> order_;
+  std::vector<std::uint32_t> next_order_;
   // per-step work space, kept between steps to avoid allocation
   std::vector<Motion> motions_;
   std::vector<Event> heap_;
   StepGrid grid_;
   std::vector<Aabb> wall_boxes_;
   std::vector<Vec3> floor_normals_;
+  std::vector<Vec2> floor_uv_;  ///< curved floors: each ball's last foot point, Newton's guess
   std::vector<CollisionEvent> events_;
   std::vector<RestingContact> resting_;
   std::vector<BlockedSet> blocked_sets_;
