@@ -127,15 +127,21 @@ void UniformGrid::insert(std::uint32_t item, const Aabb& box)
       }
 }
 
-void StepGrid::build(const Vec3& up)
+void StepGrid::start(std::size_t n, const Vec3& up)
 {
-  const std::size_t n = boxes_.size();
-  const std::vector<Aabb>& boxes = boxes_;
   // Grid axes: drop the one most nearly along "up", where balls on a floor barely spread.
   int drop = 0;
   up.cwiseAbs().maxCoeff(&drop);
   ax_ = drop == 0 ? 1 : 0;
   ay_ = drop == 2 ? 1 : 2;
+  boxes_.resize(n);
+  extents_.resize(n);
+}
+
+void StepGrid::build()
+{
+  const std::size_t n = boxes_.size();
+  const std::vector<Aabb>& boxes = boxes_;
   cx_.resize(n);
   cy_.resize(n);
   slot_pos_.resize(n);
@@ -152,15 +158,11 @@ void StepGrid::build(const Vec3& up)
   }
 
   // Cells a little wider than the widest box, leaving out boxes far wider than the
-  // median (a rare fast or large ball): they are listed as moved instead of making
+  // mean (a rare fast or large ball): they are listed as moved instead of making
   // every cell huge.
-  extents_.resize(n);
   double sum = 0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    extents_[i] = std::max(boxes[i].max[ax_] - boxes[i].min[ax_], boxes[i].max[ay_] - boxes[i].min[ay_]);
-    sum += extents_[i];
-  }
+  for (const double e : extents_)
+    sum += e;
   const double outlier = 4 * sum / static_cast<double>(n);
   double widest = 0;
   for (const double e : extents_)

@@ -250,7 +250,7 @@ void World::predictMotions()
 {
   motions_.resize(balls_.size());
   floor_uv_.resize(floor_ && !plane_ ? balls_.size() : 0);
-  std::vector<Aabb>& boxes = grid_.boxes(balls_.size());
+  grid_.start(balls_.size(), up_);
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     const Ball& ball = balls_[order_[i]];
@@ -263,7 +263,7 @@ void World::predictMotions()
       floor_uv_[i] = ball.uv;
     const Vec3 end = predictedEnd(i, m.p0, m.v0, dt_);
     m.b = end - m.p0;
-    boxes[i] = sweptBox(m.p0, end, ball.radius);
+    grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, end, ball.radius));
   }
 }
 
@@ -289,14 +289,13 @@ Aabb World::currentBox(std::size_t i) const
 void World::buildBroadPhase()
 {
   heap_.clear();
-  grid_.build(up());  // on the swept boxes of the predicted motions
+  grid_.build();  // on the swept boxes of the predicted motions
   grid_.markObstacles(wall_boxes_);
 }
 
 void World::findFirstImpacts()
 {
-  for (std::size_t i = 0; i < balls_.size(); ++i)
-    detectWalls(i);
+  grid_.forEachNearObstacle([&](std::uint32_t i) { detectWalls(i); });
   grid_.forEachPair([&](std::uint32_t i, std::uint32_t j) { detectBall(i, j); });
 }
 

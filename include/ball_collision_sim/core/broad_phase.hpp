@@ -94,14 +94,16 @@ void UniformGrid::query(const Aabb& box, F&& f) const
 class StepGrid
 {
 public:
-  /// The items' boxes, to be filled (n of them) before build().
-  std::vector<Aabb>& boxes(std::size_t n)
+  /// Starts a step of n items; `up` picks the grid's two axes. Then setBox() for each
+  /// item, then build().
+  void start(std::size_t n, const Vec3& up);
+  void setBox(std::uint32_t i, const Aabb& box)
   {
-    boxes_.resize(n);
-    return boxes_;
+    boxes_[i] = box;
+    extents_[i] = std::max(box.max[ax_] - box.min[ax_], box.max[ay_] - box.min[ay_]);
   }
-  /// Bins the boxes; `up` picks the grid's two axes.
-  void build(const Vec3& up);
+  /// Bins the boxes.
+  void build();
   const Aabb& box(std::uint32_t i) const { return boxes_[i]; }
   /// True when order() lists the items cell by cell, row by row.
   bool inCellOrder() const { return dense_; }
@@ -113,6 +115,9 @@ public:
   {
     return moved_[i] || !dense_ || near_obstacle_[slotOf(cx_[i], cy_[i])];
   }
+  /// Calls f(i) for every item that nearObstacle() may be true for, each once.
+  template <class F>
+  void forEachNearObstacle(F&& f) const;
   /// Item i's box is now `box` (its motion changed during the step).
   void update(std::uint32_t i, const Aabb& box);
   /// Calls f(j) for every other item j whose box overlaps the box of item i; j may come
@@ -251,6 +256,24 @@ void StepGrid::query(std::uint32_t i, F&& f) const
     return;
   }
   scanCells(x0, x1, y0, y1, box, binned);
+}
+
+template <class F>
+void StepGrid::forEachNearObstacle(F&& f) const
+{
+  if (!dense_)
+  {
+    for (std::uint32_t i = 0; i < boxes_.size(); ++i)
+      f(i);
+    return;
+  }
+  for (std::size_t s = 0; s + 1 < starts_.size(); ++s)
+    if (near_obstacle_[s])
+      for (std::uint32_t k = starts_[s]; k < starts_[s + 1]; ++k)
+        if (!moved_[entries_[k]])
+          f(entries_[k]);
+  for (std::uint32_t i : moved_list_)
+    f(i);
 }
 
 template <class F>
