@@ -15,9 +15,9 @@ namespace ball_collision_sim::bridge
 /// /clock every step, /ball_sim/collisions per collision, /ball_sim/ball_states at the
 /// scene's state_rate, /tf at its tf_rate (first tf_max_balls balls), /ball_sim/markers
 /// at `marker_rate` (with the flashes of the collisions since the last set when the
-/// scene's collision_flashes is on), and the scene's YAML once on /ball_sim/scene. The bag is written
-/// under PATH.active and renamed to PATH by close(): no run leaves a truncated bag under
-/// the final name.
+/// scene's collision_flashes is on), and the scene's YAML once on /ball_sim/scene. The
+/// bag is written under PATH.active and renamed to PATH by close(): no run leaves a
+/// truncated bag under the final name.
 class RunBag
 {
 public:
