@@ -385,12 +385,16 @@ TEST(CollisionFlashes, InTheBagAtTheContactPointOnlyWhenSwitchedOn)
     std::vector<visualization_msgs::Marker> flashes;
     rosbag::Bag bag(path, rosbag::bagmode::Read);
     for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/ball_sim/markers")))
-      for (const auto& marker : m.instantiate<visualization_msgs::MarkerArray>()->markers)
+    {
+      const auto array = m.instantiate<visualization_msgs::MarkerArray>();  // kept alive for the loop
+      ASSERT_TRUE(array);
+      for (const auto& marker : array->markers)
         if (marker.ns == bridge::kCollisionsNs)
         {
           flashes.push_back(marker);
           EXPECT_EQ(m.getTime(), marker.header.stamp);
         }
+    }
     bag.close();
     std::remove(path.c_str());
     if (!on)
