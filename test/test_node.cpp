@@ -373,6 +373,23 @@ TEST(Node, MarkersShowFloorWallsAndOneStableIdPerBall)
   EXPECT_EQ(floors, 1);
   EXPECT_EQ(walls, 4);
   EXPECT_EQ(ball_ids, (std::vector<int>{0, 1}));
+  // coloured by speed on a scale up to the fastest ball at the start (ball 0, 1.5 m/s):
+  // ball 0 at the top (yellow), ball 1 (0.5 m/s) a third of the way, blue toward magenta
+  for (const auto& m : arrays.back().markers)
+  {
+    if (m.ns == "balls" && m.id == 0)
+    {
+      EXPECT_FLOAT_EQ(m.color.r, 1.0f);
+      EXPECT_FLOAT_EQ(m.color.g, 0.85f);
+      EXPECT_FLOAT_EQ(m.color.b, 0.1f);
+    }
+    if (m.ns == "balls" && m.id == 1)
+    {
+      EXPECT_NEAR(m.color.r, 0.2 + 0.7 * 2 / 3.0, 1e-6);
+      EXPECT_NEAR(m.color.g, 0.35 - 0.2 * 2 / 3.0, 1e-6);
+      EXPECT_NEAR(m.color.b, 1.0 - 0.35 * 2 / 3.0, 1e-6);
+    }
+  }
   // a step moves the balls under the same ids, and sends no floor again
   step(10);
   ASSERT_TRUE(markers.waitFor([](const auto& all) { return !all.empty(); }));
@@ -399,6 +416,71 @@ TEST(Node, MarkersShowFloorWallsAndOneStableIdPerBall)
   reset();
   ASSERT_TRUE(markers.waitFor([](const auto& all) { return !all.empty(); }));
   EXPECT_EQ(markers.take().front().markers.front().action, visualization_msgs::Marker::DELETEALL);
+}
+
+namespace
+{
+/// The collision flashes among the marker arrays.
+std::vector<visualization_msgs::Marker> flashesIn(const std::vector<visualization_msgs::MarkerArray>& arrays)
+{
+  std::vector<visualization_msgs::Marker> out;
+  for (const auto& array : arrays)
+    for (const auto& m : array.markers)
+      if (m.ns == "collisions")
+        out.push_back(m);
+  return out;
+}
+}  // namespace
+
+// A collision flashes briefly at its contact point, on the markers topic.
+TEST(Node, CollisionFlashesAtTheContactPoint)
+{
+  fresh();
+  Inbox<visualization_msgs::MarkerArray> markers("/ball_sim/markers");
+  waitConnected(markers);
+  ASSERT_TRUE(markers.waitFor([](const auto& all) { return !all.empty(); }));
+  markers.take();
+  step(45);  // before the impact: no flash
+  ASSERT_TRUE(markers.waitFor([](const auto& all) { return !all.empty(); }));
+  EXPECT_TRUE(flashesIn(markers.take()).empty());
+  step(15);  // through the impact at t = 0.5065 s
+  ASSERT_TRUE(markers.waitFor([](const auto& all) { return !flashesIn(all).empty(); }));
+  const auto flashes = flashesIn(markers.take());
+  ASSERT_EQ(flashes.size(), 1u);
+  // the balls touch at x = -0.763 + 1.5 t + 0.125, on the line of centres at z = r
+  EXPECT_NEAR(flashes[0].pose.position.x, -0.763 + 1.5 * kImpactTime + 0.125, 1e-9);
+  EXPECT_NEAR(flashes[0].pose.position.y, 0.0, 1e-12);
+  EXPECT_NEAR(flashes[0].pose.position.z, 0.125, 1e-12);
+  EXPECT_EQ(flashes[0].lifetime, ros::Duration(0.3));
+  EXPECT_EQ(flashes[0].type, visualization_msgs::Marker::SPHERE);
+  EXPECT_EQ(flashes[0].header.frame_id, "world");
+  EXPECT_NEAR(flashes[0].header.stamp.toSec(), 60 * kDt, 1e-9);
+}
+
+// collision_flashes: false (the second node of node.test): the same collision, no flash.
+TEST(Node, NoFlashesWhenSwitchedOff)
+{
+  ASSERT_TRUE(ros::service::waitForService("/noflash_sim/step", ros::Duration(20.0)));
+  Inbox<visualization_msgs::MarkerArray> markers("/noflash_sim/markers");
+  Inbox<bcs::CollisionEvent> collisions("/noflash_sim/collisions");
+  waitConnected(markers);
+  waitConnected(collisions);
+  ASSERT_TRUE(markers.waitFor([](const auto& all) { return !all.empty(); }));
+  bcs::Step srv;
+  srv.request.steps = 60;
+  ASSERT_TRUE(call("/noflash_sim/step", srv).response.success) << srv.response.message;
+  // the collision happened (it is on the collisions topic) ...
+  ASSERT_TRUE(collisions.waitFor([](const auto& all) { return !all.empty(); }));
+  EXPECT_NEAR(collisions.take().at(0).header.stamp.toSec(), kImpactTime, 1e-9);
+  // ... and the markers sent after it carry the balls but no flash
+  ASSERT_TRUE(markers.waitFor([](const auto& all) {
+    for (const auto& a : all)
+      for (const auto& m : a.markers)
+        if (m.ns == "balls" && std::abs(m.header.stamp.toSec() - 60 * kDt) < 1e-9)
+          return true;
+    return false;
+  }));
+  EXPECT_TRUE(flashesIn(markers.take()).empty());
 }
 
 // The node's ball states (paused, stepped through the service, recorded to a bag) are
@@ -514,6 +596,23 @@ TEST(SceneParams, BadSceneStopsTheNode)
   EXPECT_EQ(WEXITSTATUS(status), 1) << output;
   EXPECT_NE(output.find("FATAL"), std::string::npos) << output;
   EXPECT_NE(output.find("balls[0].radius: must be > 0"), std::string::npos) << output;
+}
+
+// A bad node setting stops the node the same way, with one message naming the key.
+TEST(SceneParams, BadBallColorStopsTheNode)
+{
+  const std::string command = std::string(BCS_SIMULATOR_NODE_EXE) + " __name:=bad_color_sim 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[512];
+  while (fgets(buffer, sizeof(buffer), pipe))
+    output += buffer;
+  const int status = pclose(pipe);
+  ASSERT_TRUE(WIFEXITED(status)) << output;
+  EXPECT_EQ(WEXITSTATUS(status), 1) << output;
+  EXPECT_NE(output.find("FATAL"), std::string::npos) << output;
+  EXPECT_NE(output.find("ball_color: expected speed or id, got the string \"fast\""), std::string::npos) << output;
 }
 
 int main(int argc, char** argv)

@@ -2,12 +2,19 @@
 #include "ball_collision_sim/ros/conversions.hpp"
 #include "ball_collision_sim/ros/markers.hpp"
 #include "ball_collision_sim/ros/outputs.hpp"
+#include "ball_collision_sim/ros/run_bag.hpp"
 #include "ball_collision_sim/ros/scene_param.hpp"
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
 
 #include <gtest/gtest.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
 
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <unistd.h>
+#include <vector>
 
 using namespace ball_collision_sim;
 
@@ -99,15 +106,32 @@ TEST(Markers, FloorMeshFollowsTheSurfaceAndWallsShowBothSides)
   ASSERT_EQ(m.points.size(), 8u * 8u * 6u);
   ASSERT_EQ(m.colors.size(), m.points.size());
   double lowest = 0;
-  for (const auto& p : m.points)
-    lowest = std::min(lowest, p.z);
+  std::size_t low = 0, high = 0;
+  for (std::size_t k = 0; k < m.points.size(); ++k)
+  {
+    lowest = std::min(lowest, m.points[k].z);
+    low = m.points[k].z < m.points[low].z ? k : low;
+    high = m.points[k].z > m.points[high].z ? k : high;
+  }
   EXPECT_NEAR(lowest, -0.1, 1e-12);  // a quarter of the centre point's depth, at the centre
+  // shaded by height: the lowest point dark green-blue, the highest light
+  EXPECT_FLOAT_EQ(m.colors[low].g, 0.35f);
+  EXPECT_FLOAT_EQ(m.colors[high].g, 0.75f);
+  EXPECT_LT(m.colors[low].r + m.colors[low].g + m.colors[low].b,
+            m.colors[high].r + m.colors[high].g + m.colors[high].b);
 
   const core::Wall wall(5, core::WallDef{core::Vec3(0, 0, 0), core::Vec3(1, 0, 0), core::Vec3(0, 0, 1), {}}, 1.0);
   const auto w = bridge::wallMarker(wall, "world");
   EXPECT_EQ(w.id, 5);
-  EXPECT_EQ(w.points.size(), 12u);
-  EXPECT_LT(w.color.a, 1.0f);
+  ASSERT_EQ(w.points.size(), 6u);
+  // a colour per vertex (rviz draws it unlit, from both sides), translucent everywhere
+  ASSERT_EQ(w.colors.size(), w.points.size());
+  for (std::size_t k = 0; k < w.colors.size(); ++k)
+  {
+    EXPECT_LE(w.colors[k].a * w.color.a, 0.45f) << k;
+    EXPECT_GT(w.colors[k].a * w.color.a, 0.1f) << k;
+  }
+  EXPECT_GT(w.colors[0].a, w.colors[2].a);  // clearer toward the top (point + v)
 }
 
 TEST(Markers, ManyBallsAreDrawnAsOneSphereListPerRadius)
@@ -123,12 +147,12 @@ TEST(Markers, ManyBallsAreDrawnAsOneSphereListPerRadius)
     scene.balls.push_back(b);
   }
   const core::World world(scene);
-  const auto single = bridge::ballMarkers(world, "world", ros::Time(1.0), 5);
+  const auto single = bridge::ballMarkers(world, "world", ros::Time(1.0), 5, bridge::BallColoring());
   ASSERT_EQ(single.markers.size(), 5u);
   EXPECT_EQ(single.markers[3].type, visualization_msgs::Marker::SPHERE);
   EXPECT_EQ(single.markers[3].id, 3);
 
-  const auto lists = bridge::ballMarkers(world, "world", ros::Time(1.0), 4);
+  const auto lists = bridge::ballMarkers(world, "world", ros::Time(1.0), 4, bridge::BallColoring());
   ASSERT_EQ(lists.markers.size(), 2u);  // radii 0.1 and 0.2
   EXPECT_EQ(lists.markers[0].type, visualization_msgs::Marker::SPHERE_LIST);
   EXPECT_EQ(lists.markers[0].ns, bridge::kBallListsNs);
@@ -137,4 +161,252 @@ TEST(Markers, ManyBallsAreDrawnAsOneSphereListPerRadius)
   EXPECT_EQ(lists.markers[1].points.size(), 3u);
   EXPECT_EQ(lists.markers[1].colors.size(), 3u);
   EXPECT_NEAR(lists.markers[1].points[1].x, -1.5 + 0.7 * 2, 1e-12);
+}
+
+namespace
+{
+core::Ball ballMoving(int id, double speed)
+{
+  core::Ball ball;
+  ball.id = id;
+  ball.velocity = core::Vec3(0.6, 0.8, 0.0) * speed;
+  return ball;
+}
+
+bool sameColor(const std_msgs::ColorRGBA& a, const std_msgs::ColorRGBA& b)
+{
+  return a.r == b.r && a.g == b.g && a.b == b.b && a.a == b.a;
+}
+
+/// A floor with walls and two balls that meet head-on at t = 0.5065 s (the rostest's scene).
+core::Scene headOnScene()
+{
+  core::Scene scene;
+  core::FloorDef floor;
+  floor.point = core::Vec3(-2, -1, 0);
+  floor.u = core::Vec3(4, 0, 0);
+  floor.v = core::Vec3(0, 2, 0);
+  scene.floor = floor;
+  core::BallDef a, b;
+  a.position = core::Vec3(-0.763, 0, 0.125);
+  a.velocity = core::Vec3(1.5, 0, 0);
+  a.radius = 0.125;
+  b.position = core::Vec3(0.5, 0, 0.125);
+  b.velocity = core::Vec3(-0.5, 0, 0);
+  b.radius = 0.125;
+  b.mass = 3;
+  scene.balls = {a, b};
+  return scene;
+}
+}  // namespace
+
+TEST(BallColors, BySpeedFromBlueThroughMagentaToYellow)
+{
+  bridge::BallColoring coloring;
+  coloring.mode = core::BallColor::kSpeed;
+  coloring.speed_max = 2.0;
+  const auto still = bridge::ballColor(ballMoving(0, 0.0), coloring);
+  const auto slow = bridge::ballColor(ballMoving(0, 0.5), coloring);
+  const auto middle = bridge::ballColor(ballMoving(0, 1.0), coloring);
+  const auto fast = bridge::ballColor(ballMoving(0, 2.0), coloring);
+  // the ends and the middle of the scale, exactly
+  EXPECT_FLOAT_EQ(still.r, 0.2f);
+  EXPECT_FLOAT_EQ(still.g, 0.35f);
+  EXPECT_FLOAT_EQ(still.b, 1.0f);
+  EXPECT_FLOAT_EQ(middle.r, 0.9f);
+  EXPECT_FLOAT_EQ(middle.g, 0.15f);
+  EXPECT_FLOAT_EQ(middle.b, 0.65f);
+  EXPECT_FLOAT_EQ(fast.r, 1.0f);
+  EXPECT_FLOAT_EQ(fast.g, 0.85f);
+  EXPECT_FLOAT_EQ(fast.b, 0.1f);
+  // a quarter of the way: halfway from blue to magenta
+  EXPECT_FLOAT_EQ(slow.r, 0.55f);
+  EXPECT_FLOAT_EQ(slow.b, 0.825f);
+  EXPECT_EQ(fast.a, 1.0f);
+  // a fast ball and a slow one differ; faster than the top of the scale is the top
+  EXPECT_FALSE(sameColor(slow, fast));
+  EXPECT_TRUE(sameColor(bridge::ballColor(ballMoving(0, 50.0), coloring), fast));
+  // never green: green is the floor's colour
+  for (double v = 0; v <= 2.0; v += 0.05)
+  {
+    const auto c = bridge::ballColor(ballMoving(0, v), coloring);
+    EXPECT_FALSE(c.g > c.r && c.g > c.b) << v;
+  }
+  // the colour goes into the marker
+  EXPECT_TRUE(sameColor(bridge::ballMarker(ballMoving(4, 2.0), "world", ros::Time(1), coloring).color, fast));
+}
+
+TEST(BallColors, ByIdDoNotChangeWithSpeed)
+{
+  bridge::BallColoring coloring;
+  coloring.mode = core::BallColor::kId;
+  coloring.speed_max = 2.0;
+  const auto still = bridge::ballColor(ballMoving(3, 0.0), coloring);
+  EXPECT_TRUE(sameColor(still, bridge::ballColor(ballMoving(3, 1.9), coloring)));
+  EXPECT_TRUE(sameColor(still, bridge::ballColor(ballMoving(3, 40.0), coloring)));
+  // neighbouring ids differ clearly
+  const auto next = bridge::ballColor(ballMoving(4, 0.0), coloring);
+  EXPECT_GT(std::abs(still.r - next.r) + std::abs(still.g - next.g) + std::abs(still.b - next.b), 0.5f);
+}
+
+TEST(BallColors, SpeedScaleFromTheSettingsOrTheFastestBall)
+{
+  core::Scene scene = headOnScene();
+  // speed_color_max 0: the fastest ball at the start, 1.5 m/s
+  bridge::BallColoring coloring = bridge::ballColoring(core::World(scene));
+  EXPECT_EQ(coloring.mode, core::BallColor::kSpeed);
+  EXPECT_DOUBLE_EQ(coloring.speed_max, 1.5);
+  scene.node.speed_color_max = 4.0;
+  scene.node.ball_color = core::BallColor::kId;
+  coloring = bridge::ballColoring(core::World(scene));
+  EXPECT_EQ(coloring.mode, core::BallColor::kId);
+  EXPECT_DOUBLE_EQ(coloring.speed_max, 4.0);
+  // every ball still: 1 m/s, not a division by zero
+  scene.node.speed_color_max = 0.0;
+  for (core::BallDef& b : scene.balls)
+    b.velocity = core::Vec3::Zero();
+  EXPECT_DOUBLE_EQ(bridge::ballColoring(core::World(scene)).speed_max, 1.0);
+  // sphere lists (many balls) carry the same colours per point
+  core::World world(headOnScene());
+  const bridge::BallColoring by_speed = bridge::ballColoring(world);
+  const auto lists = bridge::ballMarkers(world, "world", ros::Time(1.0), 1, by_speed);
+  ASSERT_EQ(lists.markers.size(), 1u);
+  ASSERT_EQ(lists.markers[0].colors.size(), 2u);
+  EXPECT_TRUE(sameColor(lists.markers[0].colors[0], bridge::ballColor(world.balls()[0], by_speed)));
+  EXPECT_FALSE(sameColor(lists.markers[0].colors[0], lists.markers[0].colors[1]));
+}
+
+TEST(SceneYaml, BallColorSettingsAreCheckedByName)
+{
+  EXPECT_EQ(yaml::parseScene("ball_color: id").node.ball_color, core::BallColor::kId);
+  EXPECT_EQ(yaml::parseScene("ball_color: speed").node.ball_color, core::BallColor::kSpeed);
+  EXPECT_EQ(yaml::parseScene("{}").node.ball_color, core::BallColor::kSpeed);
+  EXPECT_EQ(yaml::parseScene("speed_color_max: 3").node.speed_color_max, 3.0);
+  EXPECT_FALSE(yaml::parseScene("collision_flashes: false").node.collision_flashes);
+  EXPECT_TRUE(yaml::parseScene("{}").node.collision_flashes);
+  auto error = [](const std::string& text) {
+    try
+    {
+      yaml::parseScene(text, "t.yaml");
+    }
+    catch (const yaml::SceneError& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(error("ball_color: fast"), "t.yaml: ball_color: expected speed or id, got fast");
+  EXPECT_EQ(error("ball_color: [speed]"), "t.yaml: ball_color: expected speed or id, got a list");
+  EXPECT_EQ(error("speed_color_max: -1"),
+            "t.yaml: speed_color_max: must be in [0, 1e7] m/s (0 = the fastest ball at the start), got -1");
+  EXPECT_EQ(error("speed_color_max: .nan"),
+            "t.yaml: speed_color_max: must be in [0, 1e7] m/s (0 = the fastest ball at the start), got .nan");
+  EXPECT_EQ(error("collision_flashes: 1"), "t.yaml: collision_flashes: expected true or false, got 1");
+  // the parameter server's strings come through toYaml quoted, and are read alike
+  XmlRpc::XmlRpcValue params;
+  params["ball_color"] = std::string("id");
+  EXPECT_EQ(yaml::parseScene(bridge::toYaml(params)).node.ball_color, core::BallColor::kId);
+  params["ball_color"] = std::string("fast");
+  EXPECT_NE(error(bridge::toYaml(params)).find("ball_color: expected speed or id"), std::string::npos);
+}
+
+TEST(CollisionFlashes, AShortLivedSphereAtTheContactPoint)
+{
+  core::CollisionEvent event;
+  event.point = core::Vec3(0.12175, -0.5, 0.125);
+  event.time = 0.5065;
+  const auto m = bridge::collisionFlash(event, "world", ros::Time(0.51), 17);
+  EXPECT_EQ(m.ns, "collisions");
+  EXPECT_EQ(m.id, 17);
+  EXPECT_EQ(m.type, visualization_msgs::Marker::SPHERE);
+  EXPECT_EQ(m.action, visualization_msgs::Marker::ADD);
+  EXPECT_EQ(m.header.frame_id, "world");
+  EXPECT_EQ(m.header.stamp, ros::Time(0.51));
+  EXPECT_EQ(m.pose.position.x, 0.12175);
+  EXPECT_EQ(m.pose.position.y, -0.5);
+  EXPECT_EQ(m.pose.position.z, 0.125);
+  EXPECT_EQ(m.lifetime, ros::Duration(0.3));
+  EXPECT_NEAR(m.scale.x, 0.12, 1e-12);
+  EXPECT_GT(m.color.a, 0.5f);
+}
+
+TEST(CollisionFlashes, CappedPerSetRestingContactsSkippedIdsCycle)
+{
+  bridge::CollisionFlashes flashes(3);
+  std::vector<core::CollisionEvent> events(5);
+  for (int k = 0; k < 5; ++k)
+    events[k].point = core::Vec3(k, 0, 0);
+  events[1].resting = true;  // a ball leaning on something: no flash
+  flashes.add(events);
+  EXPECT_EQ(flashes.pending(), 3u);
+  flashes.add(events);  // full: nothing more until taken
+  auto markers = flashes.take("world", ros::Time(2));
+  ASSERT_EQ(markers.size(), 3u);
+  EXPECT_EQ(markers[0].pose.position.x, 0);
+  EXPECT_EQ(markers[1].pose.position.x, 2);  // the resting contact 1 was skipped
+  EXPECT_EQ(markers[2].pose.position.x, 3);
+  EXPECT_EQ(markers[0].id, 0);
+  EXPECT_EQ(markers[2].id, 2);
+  EXPECT_EQ(flashes.pending(), 0u);
+  EXPECT_TRUE(flashes.take("world", ros::Time(2)).empty());
+  // ids go on where they stopped, and wrap after kIdCycle
+  flashes.add({events[0]});
+  EXPECT_EQ(flashes.take("world", ros::Time(3)).at(0).id, 3);
+  for (int k = 4; k < bridge::CollisionFlashes::kIdCycle; ++k)
+  {
+    flashes.add({events[0]});
+    flashes.take("world", ros::Time(3));
+  }
+  flashes.add({events[0]});
+  EXPECT_EQ(flashes.take("world", ros::Time(3)).at(0).id, 0);
+  flashes.add(events);
+  flashes.clear();
+  EXPECT_TRUE(flashes.take("world", ros::Time(4)).empty());
+}
+
+// The offline tool's bags carry the flashes like the node's topic, and not when switched off.
+TEST(CollisionFlashes, InTheBagAtTheContactPointOnlyWhenSwitchedOn)
+{
+  for (const bool on : {true, false})
+  {
+    core::Scene scene = headOnScene();
+    scene.node.collision_flashes = on;
+    core::World world(scene);
+    const std::string path = "/tmp/bcs_flashes_" + std::to_string(getpid()) + (on ? "_on" : "_off") + ".bag";
+    {
+      bridge::RunBag bag(path, world, "{}", 20.0);  // markers every 5 steps
+      for (int k = 0; k < 60; ++k)
+      {
+        world.step();
+        bag.afterStep(world);
+      }
+      bag.close();
+    }
+    std::vector<visualization_msgs::Marker> flashes;
+    rosbag::Bag bag(path, rosbag::bagmode::Read);
+    for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/ball_sim/markers")))
+    {
+      const auto array = m.instantiate<visualization_msgs::MarkerArray>();  // kept alive for the loop
+      ASSERT_TRUE(array);
+      for (const auto& marker : array->markers)
+        if (marker.ns == bridge::kCollisionsNs)
+        {
+          flashes.push_back(marker);
+          EXPECT_EQ(m.getTime(), marker.header.stamp);
+        }
+    }
+    bag.close();
+    std::remove(path.c_str());
+    if (!on)
+    {
+      EXPECT_TRUE(flashes.empty());
+      continue;
+    }
+    // the one collision, at t = 0.5065 s, is drawn with the set after it (t = 0.55 s)
+    ASSERT_EQ(flashes.size(), 1u);
+    EXPECT_NEAR(flashes[0].pose.position.x, -0.763 + 1.5 * 0.5065 + 0.125, 1e-9);
+    EXPECT_NEAR(flashes[0].pose.position.y, 0.0, 1e-12);
+    EXPECT_NEAR(flashes[0].header.stamp.toSec(), 0.55, 1e-9);
+    EXPECT_EQ(flashes[0].lifetime, ros::Duration(bridge::kFlashLifetime));
+  }
 }

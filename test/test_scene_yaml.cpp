@@ -265,12 +265,20 @@ TEST(SceneYaml, AcceptsAndIgnoresNodeOnlyKeys)
   std::string text;
   for (const auto key : ball_collision_sim::yaml::kNodeOnlyKeys)
   {
-    text += std::string(key) + (key == "publish_collisions" || key == "start_paused" ? ": false\n" : ": 10\n");
+    if (key == "publish_collisions" || key == "start_paused" || key == "collision_flashes")
+      text += std::string(key) + ": false\n";
+    else if (key == "ball_color")
+      text += std::string(key) + ": id\n";
+    else
+      text += std::string(key) + ": 10\n";
   }
   const auto scene = parseScene(text);
   EXPECT_EQ(scene.node.marker_rate, 10);
   EXPECT_EQ(scene.node.tf_max_balls, 10);
   EXPECT_FALSE(scene.node.publish_collisions);
+  EXPECT_FALSE(scene.node.collision_flashes);
+  EXPECT_EQ(scene.node.ball_color, ball_collision_sim::core::BallColor::kId);
+  EXPECT_EQ(scene.node.speed_color_max, 10);
   EXPECT_EQ(errorOf("tf_rate: fast"), "t.yaml: tf_rate: expected a number, got fast");
   EXPECT_EQ(errorOf("start_paused: 1"), "t.yaml: start_paused: expected true or false, got 1");
   EXPECT_EQ(errorOf("tf_max_balls: 2.5"), "t.yaml: tf_max_balls: expected an integer, got 2.5");
@@ -292,7 +300,7 @@ TEST(SceneYaml, EachMistakeGivesOneLineNamingTheKeyAndTheReason)
     {"dtt: 0.1", "t.yaml: dtt: unknown key (expected one of: frame_id, dt, gravity, restitution, floor, walls, "
                  "balls, random_balls, real_time_factor, marker_rate, tf_rate, tf_max_balls, state_rate, "
                  "publish_collisions, start_paused, click_radius, click_mass, status_period, max_balls, "
-                 "marker_list_threshold)"},
+                 "marker_list_threshold, ball_color, speed_color_max, collision_flashes)"},
     {"floor: {type: plane, control_points: []}",
      "t.yaml: floor.control_points: unknown key (expected one of: type, point, u, v)"},
     {"random_balls: {count: 1, region: {min: [0, 0], max: [1, 1], mid: [0, 0]}}",

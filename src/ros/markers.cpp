@@ -19,6 +19,11 @@ std_msgs::ColorRGBA rgba(double r, double g, double b, double a)
   return c;
 }
 
+std_msgs::ColorRGBA mix(const std_msgs::ColorRGBA& a, const std_msgs::ColorRGBA& b, double t)
+{
+  return rgba(a.r + t * (b.r - a.r), a.g + t * (b.g - a.g), a.b + t * (b.b - a.b), a.a + t * (b.a - a.a));
+}
+
 /// A colour of full saturation for hue h in [0, 1).
 std_msgs::ColorRGBA hue(double h, double value, double alpha)
 {
@@ -81,14 +86,31 @@ visualization_msgs::Marker wallMarker(const core::Wall& wall, const std::string&
 {
   visualization_msgs::Marker m = base(kWallsNs, wall.id, visualization_msgs::Marker::TRIANGLE_LIST, frame_id);
   const auto& c = wall.corners;
-  // both windings, so that the wall shows from either side
-  for (const int k : {0, 1, 2, 0, 2, 3, 0, 2, 1, 0, 3, 2})
+  // Colours per vertex: rviz then draws the triangles unlit and shows them from both
+  // sides (with one colour only it lights them from no normal, and they come out nearly
+  // black). Pale blue glass, clearer toward the far edge (point + v, the top of an
+  // upright wall).
+  for (const int k : {0, 1, 2, 0, 2, 3})
+  {
     m.points.push_back(toPoint(c[k]));
-  m.color = rgba(0.75, 0.8, 0.9, 0.45);
+    m.colors.push_back(k < 2 ? rgba(0.6, 0.8, 1.0, 0.45) : rgba(0.6, 0.8, 1.0, 0.2));
+  }
+  m.color = rgba(0.6, 0.8, 1.0, 1.0);  // rviz multiplies each vertex's alpha by this one
   return m;
 }
 
-visualization_msgs::Marker ballMarker(const core::Ball& ball, const std::string& frame_id, const ros::Time& stamp)
+std_msgs::ColorRGBA ballColor(const core::Ball& ball, const BallColoring& coloring)
+{
+  if (coloring.mode == core::BallColor::kId)
+    return hue(0.61803398875 * ball.id + 0.05, 0.95, 1.0);
+  const double t = coloring.speed_max > 0 ? std::clamp(ball.velocity.norm() / coloring.speed_max, 0.0, 1.0) : 1.0;
+  const std_msgs::ColorRGBA slow = rgba(0.2, 0.35, 1.0, 1.0), middle = rgba(0.9, 0.15, 0.65, 1.0),
+                            fast = rgba(1.0, 0.85, 0.1, 1.0);
+  return t < 0.5 ? mix(slow, middle, 2 * t) : mix(middle, fast, 2 * t - 1);
+}
+
+visualization_msgs::Marker ballMarker(const core::Ball& ball, const std::string& frame_id, const ros::Time& stamp,
+                                      const BallColoring& coloring)
 {
   visualization_msgs::Marker m = base(kBallsNs, ball.id, visualization_msgs::Marker::SPHERE, frame_id);
   m.header.stamp = stamp;
@@ -98,8 +120,19 @@ visualization_msgs::Marker ballMarker(const core::Ball& ball, const std::string&
   m.pose.orientation.z = ball.orientation.z();
   m.pose.orientation.w = ball.orientation.w();
   m.scale.x = m.scale.y = m.scale.z = 2 * ball.radius;
-  // golden-ratio steps of hue: neighbouring ids get clearly different colours
-  m.color = hue(0.61803398875 * ball.id + 0.05, 0.95, 1.0);
+  m.color = ballColor(ball, coloring);
+  return m;
+}
+
+visualization_msgs::Marker collisionFlash(const core::CollisionEvent& event, const std::string& frame_id,
+                                          const ros::Time& stamp, int id)
+{
+  visualization_msgs::Marker m = base(kCollisionsNs, id, visualization_msgs::Marker::SPHERE, frame_id);
+  m.header.stamp = stamp;
+  m.pose.position = toPoint(event.point);
+  m.scale.x = m.scale.y = m.scale.z = kFlashSize;
+  m.color = rgba(1.0, 1.0, 0.75, 0.9);
+  m.lifetime = ros::Duration(kFlashLifetime);
   return m;
 }
 

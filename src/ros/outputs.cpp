@@ -39,15 +39,33 @@ tf2_msgs::TFMessage transformsMessage(const core::World& world, const std::strin
   return msg;
 }
 
+BallColoring ballColoring(const core::World& world)
+{
+  const core::NodeSettings& node = world.scene().node;
+  BallColoring coloring;
+  coloring.mode = node.ball_color;
+  coloring.speed_max = node.speed_color_max;
+  if (!(coloring.speed_max > 0))
+  {
+    coloring.speed_max = 0;
+    for (const core::Ball& ball : world.balls())
+      coloring.speed_max = std::max(coloring.speed_max, ball.velocity.norm());
+    if (!(coloring.speed_max > 0))
+      coloring.speed_max = 1.0;
+  }
+  return coloring;
+}
+
 visualization_msgs::MarkerArray ballMarkers(const core::World& world, const std::string& frame_id,
-                                            const ros::Time& stamp, std::size_t list_threshold)
+                                            const ros::Time& stamp, std::size_t list_threshold,
+                                            const BallColoring& coloring)
 {
   visualization_msgs::MarkerArray msg;
   if (world.balls().size() <= list_threshold)
   {
     msg.markers.reserve(world.balls().size());
     for (const core::Ball& ball : world.balls())
-      msg.markers.push_back(ballMarker(ball, frame_id, stamp));
+      msg.markers.push_back(ballMarker(ball, frame_id, stamp, coloring));
     return msg;
   }
   // One list per distinct radius, in increasing radius.
@@ -63,7 +81,7 @@ visualization_msgs::MarkerArray ballMarkers(const core::World& world, const std:
     visualization_msgs::Marker& m = msg.markers[k];
     core::Ball shape;
     shape.radius = radii[k];
-    m = ballMarker(shape, frame_id, stamp);
+    m = ballMarker(shape, frame_id, stamp, coloring);
     m.ns = kBallListsNs;
     m.id = static_cast<int>(k);
     m.type = visualization_msgs::Marker::SPHERE_LIST;
@@ -75,7 +93,7 @@ visualization_msgs::MarkerArray ballMarkers(const core::World& world, const std:
     visualization_msgs::Marker& m =
         msg.markers[static_cast<std::size_t>(std::lower_bound(radii.begin(), radii.end(), ball.radius) - radii.begin())];
     m.points.push_back(toPoint(ball.position));
-    m.colors.push_back(ballMarker(ball, frame_id, stamp).color);
+    m.colors.push_back(ballColor(ball, coloring));
   }
   return msg;
 }
@@ -88,6 +106,30 @@ visualization_msgs::MarkerArray staticMarkers(const core::World& world, const st
   for (const core::Wall& wall : world.walls())
     msg.markers.push_back(wallMarker(wall, frame_id));
   return msg;
+}
+
+void CollisionFlashes::add(const std::vector<core::CollisionEvent>& events)
+{
+  for (const core::CollisionEvent& event : events)
+  {
+    if (pending_.size() >= max_per_set_)
+      return;
+    if (!event.resting)
+      pending_.push_back(event);
+  }
+}
+
+std::vector<visualization_msgs::Marker> CollisionFlashes::take(const std::string& frame_id, const ros::Time& stamp)
+{
+  std::vector<visualization_msgs::Marker> out;
+  out.reserve(pending_.size());
+  for (const core::CollisionEvent& event : pending_)
+  {
+    out.push_back(collisionFlash(event, frame_id, stamp, next_id_));
+    next_id_ = (next_id_ + 1) % kIdCycle;
+  }
+  pending_.clear();
+  return out;
 }
 
 std::uint64_t stepsPer(double rate, double dt)

@@ -21,6 +21,7 @@ RunBag::RunBag(const std::string& path, const core::World& world, const std::str
     , tf_every_(stepsPer(world.scene().node.tf_rate, world.dt()))
     , marker_every_(marker_rate > 0 ? stepsPer(marker_rate, world.dt()) : 0)
     , tf_max_balls_(static_cast<std::size_t>(world.scene().node.tf_max_balls))
+    , coloring_(ballColoring(world))
 {
   bag_.open(active_path_, rosbag::bagmode::Write);
   const ros::Time stamp(world.time());
@@ -51,8 +52,13 @@ void RunBag::writeView(const core::World& world, const ros::Time& stamp)
   if (world.stats().steps % tf_every_ == 0 && tf_max_balls_ > 0)
     write("/tf", stamp, transformsMessage(world, frame_id_, stamp, tf_max_balls_));
   if (world.stats().steps == 0 || (marker_every_ > 0 && world.stats().steps % marker_every_ == 0))
-    write("/ball_sim/markers", stamp,
-          ballMarkers(world, frame_id_, stamp, static_cast<std::size_t>(world.scene().node.marker_list_threshold)));
+  {
+    visualization_msgs::MarkerArray markers = ballMarkers(
+        world, frame_id_, stamp, static_cast<std::size_t>(world.scene().node.marker_list_threshold), coloring_);
+    const std::vector<visualization_msgs::Marker> flashes = flashes_.take(frame_id_, stamp);
+    markers.markers.insert(markers.markers.end(), flashes.begin(), flashes.end());
+    write("/ball_sim/markers", stamp, markers);
+  }
 }
 
 void RunBag::afterStep(const core::World& world)
@@ -66,6 +72,8 @@ void RunBag::afterStep(const core::World& world)
   }
   if (world.stats().steps % state_every_ == 0)
     write("/ball_sim/ball_states", stamp, statesMessage(world, frame_id_, stamp));
+  if (marker_every_ > 0 && world.scene().node.collision_flashes)
+    flashes_.add(world.lastEvents());
   writeView(world, stamp);
 }
 

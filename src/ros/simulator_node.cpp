@@ -26,6 +26,7 @@ SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : world_(loadSceneParams(pnh, &scene_yaml_))
     , settings_(world_.scene().node)
     , frame_id_(world_.scene().frame_id)
+    , coloring_(ballColoring(world_))
     , paused_(settings_.start_paused)
     , nh_(nh)
     , pnh_(pnh)
@@ -130,6 +131,8 @@ void SimulatorNode::stepOnce()
       collisions_pub_.publish(toMsg(event, frame_id_));
   if (world_.stats().steps % state_every_ == 0 && states_pub_.getNumSubscribers() > 0)
     publishStates(stamp);
+  if (settings_.collision_flashes && settings_.marker_rate > 0)
+    flashes_.add(world_.lastEvents());
 }
 
 void SimulatorNode::publishStates(const ros::Time& stamp)
@@ -159,7 +162,10 @@ void SimulatorNode::publishView(bool force)
 void SimulatorNode::publishBalls(const ros::Time& stamp)
 {
   if (markers_pub_.getNumSubscribers() == 0)
+  {
+    flashes_.clear();
     return;
+  }
   visualization_msgs::MarkerArray msg;
   const auto threshold = static_cast<std::size_t>(settings_.marker_list_threshold);
   const bool lists = world_.balls().size() > threshold;
@@ -175,10 +181,12 @@ void SimulatorNode::publishBalls(const ros::Time& stamp)
   for (const int id : shown_balls_)
     if (!std::binary_search(ids.begin(), ids.end(), id))
       msg.markers.push_back(deleteMarker(kBallsNs, id, frame_id_));
-  const visualization_msgs::MarkerArray balls = ballMarkers(world_, frame_id_, stamp, threshold);
+  const visualization_msgs::MarkerArray balls = ballMarkers(world_, frame_id_, stamp, threshold, coloring_);
   for (int k = lists ? static_cast<int>(balls.markers.size()) : 0; k < shown_lists_; ++k)
     msg.markers.push_back(deleteMarker(kBallListsNs, k, frame_id_));
   msg.markers.insert(msg.markers.end(), balls.markers.begin(), balls.markers.end());
+  const std::vector<visualization_msgs::Marker> flashes = flashes_.take(frame_id_, stamp);
+  msg.markers.insert(msg.markers.end(), flashes.begin(), flashes.end());
   shown_balls_ = std::move(ids);
   shown_lists_ = lists ? static_cast<int>(balls.markers.size()) : 0;
   markers_pub_.publish(msg);
@@ -203,8 +211,9 @@ void SimulatorNode::onMarkerSubscriber(const ros::SingleSubscriberPublisher& sub
 {
   // A newcomer gets the floor and walls, which are otherwise sent only when they change.
   visualization_msgs::MarkerArray msg = staticMarkers(world_, frame_id_);
-  const visualization_msgs::MarkerArray balls = ballMarkers(world_, frame_id_, ros::Time(world_.time()),
-                                                            static_cast<std::size_t>(settings_.marker_list_threshold));
+  const visualization_msgs::MarkerArray balls =
+      ballMarkers(world_, frame_id_, ros::Time(world_.time()),
+                  static_cast<std::size_t>(settings_.marker_list_threshold), coloring_);
   msg.markers.insert(msg.markers.end(), balls.markers.begin(), balls.markers.end());
   subscriber.publish(msg);
 }
@@ -279,6 +288,7 @@ bool SimulatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
   markers_pub_.publish(clear);
   shown_balls_.clear();
   shown_lists_ = 0;
+  flashes_.clear();
   publishStatic();
   const ros::Time start(world_.time());
   clock_pub_.publish(clockMessage(start));

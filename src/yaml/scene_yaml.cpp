@@ -562,6 +562,21 @@ void readNodeSettings(const MapFields& fields, core::NodeSettings& node)
     node.marker_list_threshold = readInt(*value, "marker_list_threshold");
   flag("publish_collisions", node.publish_collisions);
   flag("start_paused", node.start_paused);
+  flag("collision_flashes", node.collision_flashes);
+  // How balls are drawn is not physics, so core::validate() does not look at it: the
+  // reader checks these two itself, for the node and the offline tool alike.
+  if (const YAML::Node* value = fields.find("ball_color"))
+  {
+    if (!value->IsScalar() || (value->Scalar() != "speed" && value->Scalar() != "id"))
+      fail("ball_color", "expected speed or id, got " + describe(*value));
+    node.ball_color = value->Scalar() == "speed" ? core::BallColor::kSpeed : core::BallColor::kId;
+  }
+  if (const YAML::Node* value = fields.find("speed_color_max"))
+  {
+    node.speed_color_max = readNumber(*value, "speed_color_max");
+    if (!(node.speed_color_max >= 0 && node.speed_color_max <= 1e7))
+      fail("speed_color_max", "must be in [0, 1e7] m/s (0 = the fastest ball at the start), got " + value->Scalar());
+  }
 }
 
 core::Scene readScene(const YAML::Node& root)

@@ -71,6 +71,13 @@ struct RandomBallsDef
   std::optional<Region> region;
 };
 
+/// How the node draws its balls.
+enum class BallColor
+{
+  kSpeed,  ///< by speed, on a scale up to NodeSettings::speed_color_max
+  kId,     ///< a fixed colour per id
+};
+
 /// Settings read only by the ROS node; the offline tool accepts and ignores them.
 struct NodeSettings
 {
@@ -86,6 +93,9 @@ struct NodeSettings
   double status_period = 0.0;     ///< a status line every this many wall seconds [s]; 0 = none
   int max_balls = 100000;         ///< add_ball and clicks are refused past this many balls
   int marker_list_threshold = 1000;  ///< past this many balls, one sphere list per radius
+  BallColor ball_color = BallColor::kSpeed;  ///< how balls are coloured
+  double speed_color_max = 0.0;  ///< speed at the top of the colour scale [m/s]; 0 = the fastest ball at the start
+  bool collision_flashes = true;  ///< a short-lived marker at each collision's contact point
 };
 
 /// Everything a simulation starts from. Defaults are the documented YAML defaults.

@@ -1,6 +1,8 @@
 #pragma once
 
 #include "ball_collision_sim/core/world.hpp"
+#include "ball_collision_sim/ros/markers.hpp"
+#include "ball_collision_sim/ros/outputs.hpp"
 
 #include <rosbag/bag.h>
 
@@ -12,9 +14,10 @@ namespace ball_collision_sim::bridge
 /// A run written to a rosbag with the node's topics, every stamp simulated time:
 /// /clock every step, /ball_sim/collisions per collision, /ball_sim/ball_states at the
 /// scene's state_rate, /tf at its tf_rate (first tf_max_balls balls), /ball_sim/markers
-/// at `marker_rate`, and the scene's YAML once on /ball_sim/scene. The bag is written
-/// under PATH.active and renamed to PATH by close(): no run leaves a truncated bag under
-/// the final name.
+/// at `marker_rate` (with the flashes of the collisions since the last set when the
+/// scene's collision_flashes is on), and the scene's YAML once on /ball_sim/scene. The
+/// bag is written under PATH.active and renamed to PATH by close(): no run leaves a
+/// truncated bag under the final name.
 class RunBag
 {
 public:
@@ -46,6 +49,8 @@ private:
   std::uint64_t tf_every_;
   std::uint64_t marker_every_;  ///< 0: never after the start
   std::size_t tf_max_balls_;
+  BallColoring coloring_;  ///< from the world at the start, like the node's
+  CollisionFlashes flashes_;
   bool closed_ = false;
 };
 }  // namespace ball_collision_sim::bridge

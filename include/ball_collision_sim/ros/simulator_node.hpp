@@ -1,6 +1,8 @@
 #pragma once
 
 #include "ball_collision_sim/core/world.hpp"
+#include "ball_collision_sim/ros/markers.hpp"
+#include "ball_collision_sim/ros/outputs.hpp"
 
 #include <ball_collision_sim/AddBall.h>
 #include <ball_collision_sim/AddWall.h>
@@ -60,6 +62,7 @@ private:
   core::World world_;
   const core::NodeSettings settings_;
   const std::string frame_id_;
+  const BallColoring coloring_;  ///< from the world as loaded: the speed scale stays put
   bool paused_;
   std::uint64_t state_every_;  ///< publish ball_states every this many steps
 
@@ -85,5 +88,6 @@ private:
   ros::WallTime last_tf_;
   std::vector<int> shown_balls_;  ///< ball ids drawn last time, to delete the removed
   int shown_lists_ = 0;           ///< sphere lists drawn last time (many balls)
+  CollisionFlashes flashes_;      ///< collisions since the last ball markers
 };
 }  // namespace ball_collision_sim::bridge

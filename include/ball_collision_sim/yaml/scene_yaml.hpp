@@ -19,9 +19,10 @@ struct SceneError : std::runtime_error
 
 /// Top-level keys that only the ROS node uses (core::NodeSettings); the offline tool
 /// reads and checks them like every other key, and ignores them.
-inline constexpr std::array<std::string_view, 12> kNodeOnlyKeys{
+inline constexpr std::array<std::string_view, 15> kNodeOnlyKeys{
   "real_time_factor", "marker_rate", "tf_rate", "tf_max_balls", "state_rate", "publish_collisions",
   "start_paused", "click_radius", "click_mass", "status_period", "max_balls", "marker_list_threshold",
+  "ball_color", "speed_color_max", "collision_flashes",
 };
 
 /// Reads a scene from YAML text (design.md section 5). Every key is checked: an unknown
