@@ -72,22 +72,18 @@ void Floor::derivatives(const Vec2& uv, Vec3& s, Vec3& su, Vec3& sv, Vec3& suu, 
   }
   const Bernstein bu(uv.x());
   const Bernstein bv(uv.y());
-  // Along v first (each row of control points to a point and its v-derivatives), then
-  // along u.
   s = su = sv = suu = suv = svv = Vec3::Zero();
   for (int i = 0; i < 3; ++i)
-  {
-    const auto& row = def_.control_points[i];
-    const Vec3 b = bv.b[0] * row[0] + bv.b[1] * row[1] + bv.b[2] * row[2];
-    const Vec3 d = bv.d[0] * row[0] + bv.d[1] * row[1] + bv.d[2] * row[2];
-    const Vec3 dd = bv.dd[0] * row[0] + bv.dd[1] * row[1] + bv.dd[2] * row[2];
-    s += bu.b[i] * b;
-    su += bu.d[i] * b;
-    suu += bu.dd[i] * b;
-    sv += bu.b[i] * d;
-    suv += bu.d[i] * d;
-    svv += bu.b[i] * dd;
-  }
+    for (int j = 0; j < 3; ++j)
+    {
+      const Vec3& p = def_.control_points[i][j];
+      s += bu.b[i] * bv.b[j] * p;
+      su += bu.d[i] * bv.b[j] * p;
+      sv += bu.b[i] * bv.d[j] * p;
+      suu += bu.dd[i] * bv.b[j] * p;
+      suv += bu.d[i] * bv.d[j] * p;
+      svv += bu.b[i] * bv.dd[j] * p;
+    }
 }
 
 Vec3 Floor::point(const Vec2& uv) const
