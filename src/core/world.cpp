@@ -194,6 +194,7 @@ void World::step()
 {
   events_.clear();
   resting_.clear();
+  leaning_.clear();
   blocked_sets_.clear();
   predictMotions();            // each ball's free motion over the step, on the floor
   buildBroadPhase();           // swept boxes into a uniform grid
@@ -273,6 +274,7 @@ void World::resolveEventsInTimeOrder()
 void World::commitToFloor()
 {
   floor_normals_.resize(balls_.size());
+  std::sort(leaning_.begin(), leaning_.end());
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     Motion& m = motions_[i];
@@ -281,8 +283,10 @@ void World::commitToFloor()
     Vec3 normal = up();
     if (floor_)
     {
-      const FloorFoot foot = floor_->project(p, m.uv);
+      FloorFoot foot = floor_->project(p, m.uv);
       p = floor_->ballCentre(foot, ball.radius);
+      if (m.blocked >= 0 && !floor_->isPlane())
+        p = clearOfLeanedWalls(i, p, foot);
       ball.uv = foot.uv;
       normal = foot.normal;
     }
@@ -400,6 +404,36 @@ Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
   return floor_->project(position, motions_[i].uv).normal;
 }
 
+Vec3 World::clearOfLeanedWalls(std::size_t i, Vec3 p, FloorFoot& foot) const
+{
+  // On a curved floor the chord of a ball sliding along a wall ends, put back on the
+  // floor, a little inside the wall: out along the wall and back onto the floor, in turn.
+  const auto [first, last] = std::equal_range(leaning_.begin(), leaning_.end(), std::pair<std::size_t, std::size_t>(i, 0),
+                                              [](const auto& a, const auto& b) { return a.first < b.first; });
+  const double r = balls_[i].radius;
+  // Out of each wall in turn, then back onto the floor: in a corner (two walls and the
+  // floor) this converges more slowly, hence the many passes, each of few walls.
+  for (int pass = 0; pass < 64; ++pass)
+  {
+    bool moved = false;
+    for (auto it = first; it != last; ++it)
+    {
+      const Vec3 away = p - walls_[it->second].closestPoint(p);
+      const double distance = away.norm();
+      if (distance > 0 && r - distance > 1e-13)
+      {
+        p += away * ((r - distance) / distance);
+        moved = true;
+      }
+    }
+    if (!moved)
+      break;
+    foot = floor_->project(p, foot.uv);
+    p = floor_->ballCentre(foot, r);
+  }
+  return p;
+}
+
 Vec3 World::onFloorVelocity(const Motion& m, double x, const Vec3& position, const Vec3& normal) const
 {
   Vec3 v = m.v0 + ((x - m.x0) * dt_) * gravity_;
@@ -497,7 +531,14 @@ void World::resolveBallWall(const Event& event)
   v -= (impulse * inv_mass) * dir;
 
   if (resting)
-    addBlocked(motions_[i], dir);  // leaning on the wall until the step ends
+  {
+    // leaning on the wall until the step ends; where the floor is not square to the wall,
+    // also no motion into the wall itself (else it comes back at once, again and again)
+    addBlocked(motions_[i], dir);
+    if (dir.dot(n) < 1 - 1e-12)
+      addBlocked(motions_[i], n);
+    leaning_.emplace_back(i, event.j);
+  }
   startMotion(i, event.x, p, v);
   recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
               event);
