@@ -45,15 +45,17 @@ constexpr double kEnergyRelativeTolerance = 1e-9;
 constexpr double kEnergyAbsoluteTolerance = 1e-12;
 /// Deepest overlap allowed between two balls or a ball and a wall [m] ...
 constexpr double kOverlapTolerance = 1e-9;
-/// ... except between two balls on a curved (biquadratic) floor: there the end of a step
-/// is put back on the surface after the straight chord, which can press a ball into one
-/// it leans on. Allowed: this fraction of their radii (a known limit, see the README).
+/// ... except on a curved (biquadratic) floor: there the end of a step is put back on
+/// the surface after the straight chord, which can press a ball into a ball or a wall
+/// (by 2e-3 of the radii in the worst cases found). Allowed there: this fraction of the
+/// radii (of the two balls, or of the ball at a wall). An open problem, see the README.
 constexpr double kCurvedFloorOverlapFraction = 1e-2;
 
-/// On a curved floor a step with a resting contact or a ball stopped by the event cap,
-/// and the step after it, are exempt from the energy check: a ball held in a corner or a
-/// pile there is put back on the surface from its chord and may rise (by up to 1e-4 of
-/// the energy in the cases found; an open problem of the step, see the README).
+/// Where gravity pulls along the floor (a curved floor, or a plane it is not square to), a
+/// step with a resting contact or a ball stopped by the event cap, and the step after it,
+/// are exempt from the energy check: a ball held in a corner or a pile by resting
+/// contacts there can gain energy (up to 1e-4 of it in a step in the cases found, on a
+/// slope and on a bowl; open, see the README). Flat floors are checked in every step.
 
 /// Steps the decoded scene (when validate() accepts it) and checks after every step: no
 /// NaN or inf, no overlap deeper than the tolerances above between balls or with a wall, no
