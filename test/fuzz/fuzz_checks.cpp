@@ -330,7 +330,15 @@ std::string checkStepping(const std::uint8_t* data, std::size_t size)
   for (int k = 1; k <= c.steps; ++k)
   {
     const std::uint64_t resting = world.stats().resting_events + world.stats().frozen_balls;
+    std::vector<bool> moving;
+    for (const core::Ball& b : world.balls())
+      moving.push_back(b.velocity.squaredNorm() > 0);
     world.step();
+    // a ball that came to a stop on a curved floor (a turning point: the speed is set from
+    // the energy, and zero where the chord climbed higher than the energy allows)
+    bool turned = false;
+    for (std::size_t i = 0; i < moving.size() && i < world.balls().size(); ++i)
+      turned = turned || (curved && moving[i] && world.balls()[i].velocity.squaredNorm() == 0);
     const bool capped = sloped && world.stats().resting_events + world.stats().frozen_balls > resting;
     const std::string at = "step " + std::to_string(k) + ": ";
     if (const std::string bad = nonFinite(world); !bad.empty())
@@ -367,7 +375,7 @@ std::string checkStepping(const std::uint8_t* data, std::size_t size)
       return at + std::to_string(world.lostBalls()) + " balls left the walled floor";
     const EnergyScale after = energyOf(world);
     const double allowed = kEnergyRelativeTolerance * before.scale + kEnergyAbsoluteTolerance;
-    if (!(after.total - before.total <= allowed) && !capped && !capped_before)
+    if (!(after.total - before.total <= allowed) && !capped && !capped_before && !turned)
       return at + "energy rose from " + str(before.total) + " J to " + str(after.total) + " J (by " +
              str(after.total - before.total) + " J, allowed " + str(allowed) + " J)";
     before = after;

@@ -55,7 +55,10 @@ constexpr double kCurvedFloorOverlapFraction = 1e-2;
 /// step with a resting contact or a ball stopped by the event cap, and the step after it,
 /// are exempt from the energy check: a ball held in a corner or a pile by resting
 /// contacts there can gain energy (up to 1e-4 of it in a step in the cases found, on a
-/// slope and on a bowl; open, see the README). Flat floors are checked in every step.
+/// slope and on a bowl; open, see the README). So is a step in which a ball comes to a
+/// stop on a curved floor: the speed is set from the energy and clamped to zero where the
+/// step's chord climbed higher than the energy allows (the ball gains that much; open).
+/// Flat floors are checked in every step.
 
 /// Steps the decoded scene (when validate() accepts it) and checks after every step: no
 /// NaN or inf, no overlap deeper than the tolerances above between balls or with a wall, no
