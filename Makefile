@@ -12,7 +12,7 @@ BUILD_ABS := $(abspath $(BUILD))
 JOBS ?= 2
 DURATION ?= 10
 
-.PHONY: deps build test sanitize demo bench peers clean
+.PHONY: deps build test sanitize fuzz demo bench peers clean
 
 deps:
 	bash scripts/install_deps
@@ -40,6 +40,16 @@ sanitize: deps
 	cmake --build $(SANITIZE_BUILD) -j$(JOBS) --target tests
 	bash scripts/run_tests $(SANITIZE_BUILD) 2>&1 | tee $(SANITIZE_BUILD)/tests.log; test $${PIPESTATUS[0]} -eq 0
 	! grep -E "ERROR: (AddressSanitizer|LeakSanitizer)|runtime error:" -r $(SANITIZE_BUILD)/tests.log $(SANITIZE_BUILD)/test_results
+
+# The libFuzzer targets (test/fuzz/), built with clang apart from the package, then each
+# run for FUZZ_SECONDS in turn, one process; findings land in $(FUZZ_BUILD)/artifacts/.
+FUZZ_BUILD ?= .build-fuzz
+FUZZ_SECONDS ?= 60
+fuzz:
+	bash scripts/install_deps --fuzz
+	cmake -S test/fuzz -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug
+	cmake --build $(FUZZ_BUILD) -j$(JOBS)
+	bash scripts/run_fuzz $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 demo: build
 	bash scripts/demo $(BUILD) $(DURATION)

@@ -354,7 +354,7 @@ TEST(SceneYaml, EachMistakeGivesOneLineNamingTheKeyAndTheReason)
     {"# only a comment\n", "t.yaml: the scene must be a YAML map, got an empty document"},
     {"- dt: 1\n- dt: 2\n", "t.yaml: the scene must be a YAML map, got a list"},
     {"hello", "t.yaml: the scene must be a YAML map, got hello"},
-    {"dt: 1\n---\ndt: 2\n", "t.yaml: expected one YAML document, found 2"},
+    {"dt: 1\n---\ndt: 2\n", "t.yaml: expected one YAML document, found more"},
     {"[1, 2]: 3", "t.yaml: keys must be names, got a list as a key"},
   };
   for (const ErrorCase& c : cases)

@@ -51,14 +51,19 @@ public:
     fail(key, "length must be <= " + formatNumber(limit) + " " + unit + " (got " + formatNumber(value.stableNorm()) + ")");
     return false;
   }
-  /// finite and in (0, limit]
-  bool positive(const std::string& key, double value, double limit, const char* unit)
+  /// finite and in [least, limit], least > 0
+  bool positive(const std::string& key, double value, double least, double limit, const char* unit)
   {
     if (!finite(key, value))
       return false;
     if (!(value > 0))
     {
       fail(key, "must be > 0 (got " + formatNumber(value) + ")");
+      return false;
+    }
+    if (value < least)
+    {
+      fail(key, "must be >= " + formatNumber(least) + " " + unit + " (got " + formatNumber(value) + ")");
       return false;
     }
     if (value > limit)
@@ -84,15 +89,19 @@ public:
     ok = bounded(prefix + "v", v, kMaxLength, "m") && ok;
     if (!ok)
       return false;
-    if (u.norm() == 0)
+    for (const auto& [name, edge] : {std::pair{"u", &u}, std::pair{"v", &v}})
     {
-      fail(prefix + "u", "must be non-zero");
-      return false;
-    }
-    if (v.norm() == 0)
-    {
-      fail(prefix + "v", "must be non-zero");
-      return false;
+      const double length = edge->stableNorm();
+      if (length == 0)
+      {
+        fail(prefix + name, "must be non-zero");
+        return false;
+      }
+      if (length < kMinLength)
+      {
+        fail(prefix + name, "length must be >= " + formatNumber(kMinLength) + " m (got " + formatNumber(length) + ")");
+        return false;
+      }
     }
     if (u.cross(v).norm() <= 1e-9 * u.norm() * v.norm())
     {
@@ -170,8 +179,8 @@ bool checkBall(Checker& check, const std::string& prefix, const BallDef& ball)
 {
   bool ok = check.bounded(prefix + "position", ball.position, kMaxLength, "m");
   ok = check.bounded(prefix + "velocity", ball.velocity, kMaxSpeed, "m/s") && ok;
-  ok = check.positive(prefix + "radius", ball.radius, kMaxLength, "m") && ok;
-  ok = check.positive(prefix + "mass", ball.mass, kMaxMass, "kg") && ok;
+  ok = check.positive(prefix + "radius", ball.radius, kMinLength, kMaxLength, "m") && ok;
+  ok = check.positive(prefix + "mass", ball.mass, kMinMass, kMaxMass, "kg") && ok;
   return ok;
 }
 
@@ -270,8 +279,8 @@ std::vector<SceneIssue> validate(const Scene& scene)
     check.fail("tf_max_balls", "must be >= 0 (got " + std::to_string(node.tf_max_balls) + ")");
   if (check.finite("status_period", node.status_period) && node.status_period < 0)
     check.fail("status_period", "must be >= 0 s (0 = no status line)");
-  check.positive("click_radius", node.click_radius, kMaxLength, "m");
-  check.positive("click_mass", node.click_mass, kMaxMass, "kg");
+  check.positive("click_radius", node.click_radius, kMinLength, kMaxLength, "m");
+  check.positive("click_mass", node.click_mass, kMinMass, kMaxMass, "kg");
   const bool gravity_ok = check.bounded("gravity", scene.gravity, 1e6, "m/s^2");
   check.unitInterval("restitution", scene.restitution);
 
@@ -313,8 +322,8 @@ std::vector<SceneIssue> validate(const Scene& scene)
       check.fail("random_balls.count", "must be in [0, 10000000] (got " + std::to_string(rb.count) + ")");
       ok = false;
     }
-    ok = check.range("random_balls.radius", rb.radius, 0, true, kMaxLength) && ok;
-    ok = check.range("random_balls.mass", rb.mass, 0, true, kMaxMass) && ok;
+    ok = check.range("random_balls.radius", rb.radius, kMinLength, false, kMaxLength) && ok;
+    ok = check.range("random_balls.mass", rb.mass, kMinMass, false, kMaxMass) && ok;
     ok = check.range("random_balls.speed", rb.speed, 0, false, kMaxSpeed) && ok;
     if (rb.region)
     {

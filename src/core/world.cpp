@@ -218,6 +218,7 @@ void World::step()
 {
   events_.clear();
   resting_.clear();
+  leaning_.clear();
   blocked_sets_.clear();
   if (order_.size() != balls_.size())
   {
@@ -326,6 +327,7 @@ void World::commitToFloor()
   const bool settle = !resting_.empty() || !blocked_sets_.empty();
   if (floor_ && !plane_)
     floor_normals_.resize(balls_.size());
+  std::sort(leaning_.begin(), leaning_.end());
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     Motion& m = motions_[i];
@@ -340,8 +342,10 @@ void World::commitToFloor()
     }
     else if (floor_)
     {
-      const FloorFoot foot = floor_->project(p, floor_uv_[i]);
+      FloorFoot foot = floor_->project(p, floor_uv_[i]);
       p = floor_->ballCentre(foot, ball.radius);
+      if (m.blocked >= 0)
+        p = clearOfLeanedWalls(i, p, foot);
       ball.uv = foot.uv;
       normal = foot.normal;
       floor_normals_[i] = normal;
@@ -468,6 +472,36 @@ Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
   return floor_->project(position, floor_uv_[i]).normal;
 }
 
+Vec3 World::clearOfLeanedWalls(std::size_t i, Vec3 p, FloorFoot& foot) const
+{
+  // On a curved floor the chord of a ball sliding along a wall ends, put back on the
+  // floor, a little inside the wall: out along the wall and back onto the floor, in turn.
+  const auto [first, last] = std::equal_range(leaning_.begin(), leaning_.end(), std::pair<std::size_t, std::size_t>(i, 0),
+                                              [](const auto& a, const auto& b) { return a.first < b.first; });
+  const double r = motions_[i].radius;
+  // Out of each wall in turn, then back onto the floor: in a corner (two walls and the
+  // floor) this converges more slowly, hence the many passes, each of few walls.
+  for (int pass = 0; pass < 64; ++pass)
+  {
+    bool moved = false;
+    for (auto it = first; it != last; ++it)
+    {
+      const Vec3 away = p - walls_[it->second].closestPoint(p);
+      const double distance = away.norm();
+      if (distance > 0 && r - distance > 1e-13)
+      {
+        p += away * ((r - distance) / distance);
+        moved = true;
+      }
+    }
+    if (!moved)
+      break;
+    foot = floor_->project(p, foot.uv);
+    p = floor_->ballCentre(foot, r);
+  }
+  return p;
+}
+
 Vec3 World::onFloorVelocity(const Motion& m, double x, const Vec3& position, const Vec3& normal) const
 {
   Vec3 v = m.v0 + ((x - m.x0) * dt_) * gravity_;
@@ -566,7 +600,14 @@ void World::resolveBallWall(const Event& event)
   v -= (impulse * inv_mass) * dir;
 
   if (resting)
-    addBlocked(motions_[i], dir);  // leaning on the wall until the step ends
+  {
+    // leaning on the wall until the step ends; where the floor is not square to the wall,
+    // also no motion into the wall itself (else it comes back at once, again and again)
+    addBlocked(motions_[i], dir);
+    if (dir.dot(n) < 1 - 1e-12)
+      addBlocked(motions_[i], n);
+    leaning_.emplace_back(i, event.j);
+  }
   startMotion(i, event.x, p, v);
   recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
               event);

@@ -136,6 +136,7 @@ std::uint64_t stepsPer(double rate, double dt)
 {
   if (!(rate > 0))
     return 1;
-  return static_cast<std::uint64_t>(std::max(1.0, std::round(1.0 / (rate * dt))));
+  // clamped: a vanishing rate must not overflow the count
+  return static_cast<std::uint64_t>(std::clamp(std::round(1.0 / (rate * dt)), 1.0, 1e15));
 }
 }  // namespace ball_collision_sim::bridge

@@ -3,6 +3,7 @@
 #include "ball_collision_sim/ros/conversions.hpp"
 #include "ball_collision_sim/ros/markers.hpp"
 #include "ball_collision_sim/ros/outputs.hpp"
+#include "ball_collision_sim/ros/requests.hpp"
 #include "ball_collision_sim/ros/scene_param.hpp"
 
 #include <ball_collision_sim/BallStateArray.h>
@@ -16,8 +17,6 @@ namespace ball_collision_sim::bridge
 {
 namespace
 {
-/// Most steps one service call may ask for: a bound on how long the node stays busy.
-constexpr std::uint32_t kMaxStepsPerCall = 1000000;
 /// Wall time one timer callback may spend stepping before it lets services in [s].
 constexpr double kStepBudget = 0.05;
 }  // namespace
@@ -85,7 +84,9 @@ void SimulatorNode::onTimer(const ros::WallTimerEvent&)
   if (factor > 0)
   {
     const double due_time = (start - anchor_wall_).toSec() * factor;
-    const auto due = anchor_steps_ + static_cast<std::uint64_t>(std::floor(due_time / world_.dt() + 1e-9));
+    // clamped: a huge factor or a tiny dt must not overflow the count (it then lags and says so)
+    const double due_steps = std::min(std::floor(due_time / world_.dt() + 1e-9), 1e15);
+    const auto due = anchor_steps_ + static_cast<std::uint64_t>(due_steps);
     // More than a second of wall time behind: give up on catching up and say so.
     const double behind = static_cast<double>(due - std::min(due, world_.stats().steps)) * world_.dt() / factor;
     if (behind > 1.0)
@@ -222,45 +223,28 @@ void SimulatorNode::onMarkerSubscriber(const ros::SingleSubscriberPublisher& sub
 
 std::string SimulatorNode::roomForABall() const
 {
-  if (world_.balls().size() < static_cast<std::size_t>(settings_.max_balls))
-    return "";
-  return "max_balls: the world already holds " + std::to_string(world_.balls().size()) +
-         " balls, the most this node takes (parameter max_balls)";
+  return bridge::roomForABall(world_, settings_.max_balls);
 }
 
 bool SimulatorNode::onAddBall(AddBall::Request& req, AddBall::Response& res)
 {
-  if (const std::string full = roomForABall(); !full.empty())
-  {
-    res.success = false;
-    res.id = -1;
-    res.message = full;
-    return true;
-  }
-  const core::AddResult result = world_.addBall(fromMsg(req));
-  res.success = result.ok;
-  res.id = result.id;
-  res.message = result.ok ? "added ball " + std::to_string(result.id) : result.error;
-  if (result.ok)
+  answerAddBall(world_, settings_.max_balls, req, res);
+  if (res.success)
     publishView(true);
   return true;
 }
 
 bool SimulatorNode::onAddWall(AddWall::Request& req, AddWall::Response& res)
 {
-  const core::AddResult result = world_.addWall(fromMsg(req));
-  res.success = result.ok;
-  res.id = result.id;
-  res.message = result.ok ? "added wall " + std::to_string(result.id) : result.error;
-  if (result.ok)
+  answerAddWall(world_, req, res);
+  if (res.success)
     publishStatic();
   return true;
 }
 
 bool SimulatorNode::onRemoveBall(RemoveObject::Request& req, RemoveObject::Response& res)
 {
-  res.success = world_.removeBall(req.id);
-  res.message = res.success ? "removed ball " + std::to_string(req.id) : "id: no ball has id " + std::to_string(req.id);
+  answerRemoveBall(world_, req, res);
   if (res.success)
     publishView(true);
   return true;
@@ -268,8 +252,7 @@ bool SimulatorNode::onRemoveBall(RemoveObject::Request& req, RemoveObject::Respo
 
 bool SimulatorNode::onRemoveWall(RemoveObject::Request& req, RemoveObject::Response& res)
 {
-  res.success = world_.removeWall(req.id);
-  res.message = res.success ? "removed wall " + std::to_string(req.id) : "id: no wall has id " + std::to_string(req.id);
+  answerRemoveWall(world_, req, res);
   if (res.success)
   {
     visualization_msgs::MarkerArray msg;
@@ -313,19 +296,8 @@ bool SimulatorNode::onPause(std_srvs::SetBool::Request& req, std_srvs::SetBool::
 
 bool SimulatorNode::onStep(Step::Request& req, Step::Response& res)
 {
-  res.time = world_.time();
-  if (!paused_)
-  {
-    res.success = false;
-    res.message = "steps: stepping works only while paused (call pause with data: true first)";
+  if (!acceptStep(world_, paused_, req, res))
     return true;
-  }
-  if (req.steps < 1 || req.steps > kMaxStepsPerCall)
-  {
-    res.success = false;
-    res.message = "steps: must be in 1.." + std::to_string(kMaxStepsPerCall) + " (got " + std::to_string(req.steps) + ")";
-    return true;
-  }
   for (std::uint32_t k = 0; k < req.steps; ++k)
     stepOnce();
   publishView(true);

@@ -1,5 +1,6 @@
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cerrno>
@@ -10,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -49,6 +51,44 @@ std::string indexKey(const std::string& parent, std::size_t i)
   return parent + "[" + std::to_string(i) + "]";
 }
 
+// `text` as one printable line for a message: control bytes and bytes that are not UTF-8
+// as \xNN, at most `max_chars` characters, then "...". The file may be anything at all.
+std::string printable(std::string_view text, std::size_t max_chars = 40)
+{
+  std::string out;
+  std::size_t chars = 0;
+  for (std::size_t i = 0; i < text.size(); ++chars)
+  {
+    if (chars == max_chars)
+    {
+      return out + "...";
+    }
+    const auto c = static_cast<unsigned char>(text[i]);
+    std::size_t length = c < 0x80 ? 1 : (c & 0xe0) == 0xc0 ? 2 : (c & 0xf0) == 0xe0 ? 3 : (c & 0xf8) == 0xf0 ? 4 : 0;
+    if (c == 0xc0 || c == 0xc1 || c > 0xf4 || i + length > text.size())
+    {
+      length = 0;
+    }
+    for (std::size_t k = 1; k < length; ++k)
+    {
+      if ((static_cast<unsigned char>(text[i + k]) & 0xc0) != 0x80)
+      {
+        length = 0;
+      }
+    }
+    if (length == 0 || c < 0x20 || c == 0x7f)
+    {
+      static const char* const kHex = "0123456789abcdef";
+      out += c == '\n' || c == '\r' || c == '\t' ? std::string(" ") : std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
+      ++i;
+      continue;
+    }
+    out.append(text.substr(i, length));
+    i += length;
+  }
+  return out;
+}
+
 // What a node is, for "expected X, got Y". A scalar is shown as written (shortened, one
 // line), quoted when it was a string in the YAML so that `"1.0"` is not mistaken for 1.0.
 std::string describe(const YAML::Node& node)
@@ -65,19 +105,7 @@ std::string describe(const YAML::Node& node)
     case YAML::NodeType::Scalar:
       break;
   }
-  constexpr std::size_t kMaxShown = 40;
-  std::string text = node.Scalar();
-  if (text.size() > kMaxShown)
-  {
-    text = text.substr(0, kMaxShown) + "...";
-  }
-  for (char& c : text)
-  {
-    if (c == '\n' || c == '\r' || c == '\t')
-    {
-      c = ' ';
-    }
-  }
+  const std::string text = printable(node.Scalar());
   return node.Tag() == kPlainTag ? text : "the string \"" + text + "\"";
 }
 
@@ -332,7 +360,7 @@ public:
         {
           list += (list.empty() ? "" : ", ") + std::string(candidate);
         }
-        fail(childKey(key_, name), "unknown key (expected one of: " + list + ")");
+        fail(childKey(key_, printable(name)), "unknown key (expected one of: " + list + ")");
       }
       if (find(name) != nullptr)
       {
@@ -629,6 +657,21 @@ core::Scene readScene(const YAML::Node& root)
   return scene;
 }
 
+// Sees a document's events and ignores them: for counting documents.
+class DocumentCounter : public YAML::EventHandler
+{
+public:
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
 struct FileCloser
 {
   void operator()(std::FILE* file) const { std::fclose(file); }
@@ -647,26 +690,45 @@ std::string withMark(const std::string& source, const YAML::Mark& mark)
 
 core::Scene parseScene(const std::string& yaml_text, const std::string& source_name)
 {
-  std::vector<YAML::Node> documents;
+  // YAML allows no NUL; yaml-cpp stops reading at one and then yields empty documents
+  // without end, so a binary file is refused here, by the offset of its first NUL.
+  if (const std::size_t nul = yaml_text.find('\0'); nul != std::string::npos)
+  {
+    throw SceneError(source_name + ": byte " + std::to_string(nul) + " is NUL: not a YAML text file");
+  }
+  YAML::Node root;
   try
   {
-    documents = YAML::LoadAll(yaml_text);
+    // Count the documents, but no further than two: yaml-cpp's LoadAll() never returns on
+    // some malformed input (an endless run of empty documents).
+    std::istringstream in(yaml_text);
+    YAML::Parser parser(in);
+    DocumentCounter counter;
+    int documents = 0;
+    while (documents < 2 && parser.HandleNextDocument(counter))
+    {
+      ++documents;
+    }
+    if (documents > 1)
+    {
+      throw SceneError(source_name + ": expected one YAML document, found more");
+    }
+    if (documents == 1)
+    {
+      root = YAML::Load(yaml_text);
+    }
   }
   catch (const YAML::ParserException& e)
   {
-    throw SceneError(withMark(source_name, e.mark) + e.msg);
+    throw SceneError(withMark(source_name, e.mark) + printable(e.msg, 200));
   }
   catch (const YAML::Exception& e)
   {
-    throw SceneError(withMark(source_name, e.mark) + e.msg);
-  }
-  if (documents.size() > 1)
-  {
-    throw SceneError(source_name + ": expected one YAML document, found " + std::to_string(documents.size()));
+    throw SceneError(withMark(source_name, e.mark) + printable(e.msg, 200));
   }
   try
   {
-    return readScene(documents.empty() ? YAML::Node() : documents.front());
+    return readScene(root);
   }
   catch (const KeyError& e)
   {
@@ -675,7 +737,7 @@ core::Scene parseScene(const std::string& yaml_text, const std::string& source_n
   catch (const YAML::Exception& e)
   {
     // Not expected (every access is checked first), but keep the one-line contract.
-    throw SceneError(withMark(source_name, e.mark) + e.msg);
+    throw SceneError(withMark(source_name, e.mark) + printable(e.msg, 200));
   }
 }
 

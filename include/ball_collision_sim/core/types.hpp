@@ -13,10 +13,15 @@ using Quat = Eigen::Quaternion<double, Eigen::DontAlign>;
 
 /// Largest length accepted anywhere in a scene [m]; beyond it squares overflow precision.
 constexpr double kMaxLength = 1e6;
+/// Smallest radius and wall or floor edge accepted [m]: below it the rolling rate |v| / r
+/// overflows and edge products underflow to zero.
+constexpr double kMinLength = 1e-6;
 /// Largest speed accepted [m/s].
 constexpr double kMaxSpeed = 1e7;
 /// Largest mass accepted [kg].
 constexpr double kMaxMass = 1e12;
+/// Smallest mass accepted [kg]: below it 1 / m overflows.
+constexpr double kMinMass = 1e-12;
 /// Two objects closer than this are in contact; deeper overlap is an error at input [m].
 constexpr double kContactTolerance = 1e-9;
 }  // namespace ball_collision_sim::core

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ball_collision_sim::core
@@ -139,6 +140,8 @@ private:
   Vec3 allowed(const Motion& m, const Vec3& w) const;
   void addBlocked(Motion& m, const Vec3& direction);
   Vec3 floorNormalAt(std::size_t i, const Vec3& position) const;
+  /// `p` (on the curved floor) moved out of the walls ball i leaned on this step.
+  Vec3 clearOfLeanedWalls(std::size_t i, Vec3 p, FloorFoot& foot) const;
   Vec3 onFloorVelocity(const Motion& m, double x, const Vec3& position, const Vec3& normal) const;
   double restingSpeed(const Vec3& floor_normal) const;
 
@@ -171,6 +174,7 @@ private:
   std::vector<Vec2> floor_uv_;  ///< curved floors: each ball's last foot point, Newton's guess
   std::vector<CollisionEvent> events_;
   std::vector<RestingContact> resting_;
+  std::vector<std::pair<std::size_t, std::size_t>> leaning_;  ///< (ball, wall) resting contacts this step
   std::vector<BlockedSet> blocked_sets_;
 };
 }  // namespace ball_collision_sim::core

@@ -1,0 +1,310 @@
+// Every service of the node with bad requests, one table row each: the answer is
+// `success: false` with a message that starts with the field's name and gives the reason,
+// and the world is bit-identical afterwards (balls, walls and the ids still to be given).
+// The node's answers are called directly (bridge/requests.hpp), so no master is needed;
+// test_node checks the same services through ROS.
+#include "ball_collision_sim/core/state_hash.hpp"
+#include "ball_collision_sim/core/world.hpp"
+#include "ball_collision_sim/ros/requests.hpp"
+#include "ball_collision_sim/yaml/scene_yaml.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace bcs = ball_collision_sim;
+using bcs::core::World;
+
+namespace
+{
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// test/data/node_scene.yaml: a flat floor [-2, 2] x [-1, 1] inside four walls 0.3 m
+/// high (ids 0..3), ball 0 (r 0.125) at (-0.763, 0), ball 1 (r 0.125) at (0.5, 0).
+World nodeWorld()
+{
+  return World(bcs::yaml::loadValidScene(std::string(BCS_TEST_DATA_DIR) + "/node_scene.yaml"));
+}
+
+/// The exact bits of the balls, the walls and the number of balls and walls.
+std::uint64_t fingerprint(const World& world)
+{
+  bcs::core::Fnv1a h;
+  h.add(world.stateHash());
+  h.add(world.walls().size());
+  for (const bcs::core::Wall& wall : world.walls())
+  {
+    h.add(wall.id);
+    h.add(wall.def.point.data(), 3 * sizeof(double));
+    h.add(wall.def.u.data(), 3 * sizeof(double));
+    h.add(wall.def.v.data(), 3 * sizeof(double));
+    h.add(wall.restitution);
+  }
+  return h.value();
+}
+
+struct Answer
+{
+  bool success;
+  std::string message;
+  int id = -1;  ///< add_ball, add_wall: the id answered
+};
+
+bcs::AddBall::Request ballRequest(double x, double y, double z, double vx, double vy, double vz, double radius,
+                                  double mass)
+{
+  bcs::AddBall::Request req;
+  req.position.x = x;
+  req.position.y = y;
+  req.position.z = z;
+  req.velocity.x = vx;
+  req.velocity.y = vy;
+  req.velocity.z = vz;
+  req.radius = radius;
+  req.mass = mass;
+  return req;
+}
+
+/// A good ball: at (1.2, 0.5) on the floor, clear of everything.
+bcs::AddBall::Request goodBall()
+{
+  return ballRequest(1.2, 0.5, 0.1, 0.3, 0, 0, 0.1, 1);
+}
+
+bcs::AddWall::Request wallRequest(double px, double py, double pz, double ux, double uy, double uz, double vx,
+                                  double vy, double vz)
+{
+  bcs::AddWall::Request req;
+  req.point.x = px;
+  req.point.y = py;
+  req.point.z = pz;
+  req.u.x = ux;
+  req.u.y = uy;
+  req.u.z = uz;
+  req.v.x = vx;
+  req.v.y = vy;
+  req.v.z = vz;
+  return req;
+}
+
+/// A good wall: 0.8 m across the floor at x = 1.5, clear of both balls.
+bcs::AddWall::Request goodWall()
+{
+  return wallRequest(1.5, -0.9, 0, 0, 0.8, 0, 0, 0, 0.3);
+}
+
+Answer addBall(World& world, const bcs::AddBall::Request& req, int max_balls = 100)
+{
+  bcs::AddBall::Response res;
+  bcs::bridge::answerAddBall(world, max_balls, req, res);
+  return {res.success != 0, res.message, res.id};
+}
+
+Answer addWall(World& world, const bcs::AddWall::Request& req)
+{
+  bcs::AddWall::Response res;
+  bcs::bridge::answerAddWall(world, req, res);
+  return {res.success != 0, res.message, res.id};
+}
+
+Answer removeBall(World& world, int id)
+{
+  bcs::RemoveObject::Request req;
+  req.id = id;
+  bcs::RemoveObject::Response res;
+  bcs::bridge::answerRemoveBall(world, req, res);
+  return {res.success != 0, res.message};
+}
+
+Answer removeWall(World& world, int id)
+{
+  bcs::RemoveObject::Request req;
+  req.id = id;
+  bcs::RemoveObject::Response res;
+  bcs::bridge::answerRemoveWall(world, req, res);
+  return {res.success != 0, res.message};
+}
+
+Answer step(World& world, bool paused, std::uint32_t steps)
+{
+  bcs::Step::Request req;
+  req.steps = steps;
+  bcs::Step::Response res;
+  // accepted: the node then steps and answers success; refused: the answer is ready
+  const bool accepted = bcs::bridge::acceptStep(world, paused, req, res);
+  if (!accepted)
+  {
+    EXPECT_FALSE(res.success);
+  }
+  return {accepted, res.message};
+}
+
+struct Row
+{
+  const char* what;
+  std::function<Answer(World&)> call;
+  const char* field;   ///< the message starts with "<field>: "
+  const char* reason;  ///< ... and contains this
+  bool answers_id = false;  ///< add_ball, add_wall: the id answered must be -1
+};
+
+void runTable(const std::vector<Row>& rows)
+{
+  for (const Row& row : rows)
+  {
+    SCOPED_TRACE(row.what);
+    World world = nodeWorld();
+    world.step();  // not at t = 0: a bad request must not reset anything either
+    const std::uint64_t before = fingerprint(world);
+    const Answer answer = row.call(world);
+    EXPECT_FALSE(answer.success);
+    EXPECT_EQ(answer.message.rfind(std::string(row.field) + ": ", 0), 0u) << answer.message;
+    EXPECT_NE(answer.message.find(row.reason), std::string::npos) << answer.message;
+    EXPECT_EQ(answer.message.find('\n'), std::string::npos) << answer.message;
+    if (row.answers_id)
+    {
+      EXPECT_EQ(answer.id, -1);
+    }
+    EXPECT_EQ(fingerprint(world), before) << "the world changed";
+    // no id was used up: the next good ball and wall get the ids they would have had
+    EXPECT_EQ(addBall(world, goodBall()).id, 2);
+    EXPECT_EQ(addWall(world, goodWall()).id, 4);
+  }
+}
+
+Row ball(const char* what, bcs::AddBall::Request req, const char* field, const char* reason, int max_balls = 100)
+{
+  return {what, [req, max_balls](World& w) { return addBall(w, req, max_balls); }, field, reason, true};
+}
+
+Row wall(const char* what, bcs::AddWall::Request req, const char* field, const char* reason)
+{
+  return {what, [req](World& w) { return addWall(w, req); }, field, reason, true};
+}
+}  // namespace
+
+TEST(BadRequests, GoodRequestsAreAccepted)
+{
+  // the rows below differ from these in one field each
+  World world = nodeWorld();
+  const Answer b = addBall(world, goodBall());
+  EXPECT_TRUE(b.success) << b.message;
+  const Answer w = addWall(world, goodWall());
+  EXPECT_TRUE(w.success) << w.message;
+  EXPECT_TRUE(removeBall(world, b.id).success);
+  EXPECT_TRUE(removeWall(world, w.id).success);
+  EXPECT_TRUE(step(world, true, 1).success);
+  EXPECT_TRUE(step(world, true, bcs::bridge::kMaxStepsPerCall).success);
+}
+
+TEST(BadRequests, AddBall)
+{
+  runTable({
+      ball("position.x NaN", ballRequest(kNan, 0.5, 0.1, 0, 0, 0, 0.1, 1), "position", "must be finite"),
+      ball("position.z inf", ballRequest(1.2, 0.5, kInf, 0, 0, 0, 0.1, 1), "position", "must be finite"),
+      ball("position.y -inf", ballRequest(1.2, -kInf, 0.1, 0, 0, 0, 0.1, 1), "position", "must be finite"),
+      ball("position 1e300", ballRequest(1e300, 0.5, 0.1, 0, 0, 0, 0.1, 1), "position", "length must be <= 1e+06 m"),
+      ball("velocity.y NaN", ballRequest(1.2, 0.5, 0.1, 0, kNan, 0, 0.1, 1), "velocity", "must be finite"),
+      ball("velocity.x -inf", ballRequest(1.2, 0.5, 0.1, -kInf, 0, 0, 0.1, 1), "velocity", "must be finite"),
+      ball("velocity 1e300", ballRequest(1.2, 0.5, 0.1, 0, 0, 1e300, 0.1, 1), "velocity", "length must be <= 1e+07 m/s"),
+      ball("radius 0", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, 0, 1), "radius", "must be > 0"),
+      ball("radius -0.1", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, -0.1, 1), "radius", "must be > 0"),
+      ball("radius NaN", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, kNan, 1), "radius", "must be finite"),
+      ball("radius inf", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, kInf, 1), "radius", "must be finite"),
+      ball("radius 1e300", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, 1e300, 1), "radius", "must be <= 1e+06 m"),
+      ball("radius 1e-320 (denormal)", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, 1e-320, 1), "radius", "must be >= 1e-06 m"),
+      ball("mass 0", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, 0.1, 0), "mass", "must be > 0"),
+      ball("mass -1", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, 0.1, -1), "mass", "must be > 0"),
+      ball("mass NaN", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, 0.1, kNan), "mass", "must be finite"),
+      ball("mass inf", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, 0.1, kInf), "mass", "must be finite"),
+      ball("mass 1e300", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, 0.1, 1e300), "mass", "must be <= 1e+12 kg"),
+      ball("mass 1e-320 (denormal)", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, 0.1, 1e-320), "mass", "must be >= 1e-12 kg"),
+      ball("overlaps ball 1", ballRequest(0.6, 0.1, 0.1, 0, 0, 0, 0.1, 1), "position", "overlaps ball 1 by"),
+      ball("on top of ball 0", ballRequest(-0.763, 0, 0.125, 0, 0, 0, 0.125, 1), "position", "overlaps ball 0 by"),
+      ball("overlaps wall 3", ballRequest(1.95, 0.5, 0.1, 0, 0, 0, 0.1, 1), "position", "overlaps wall 3 by"),
+      ball("off the floor in x", ballRequest(5, 0.5, 0.1, 0, 0, 0, 0.1, 1), "position", "off the floor"),
+      ball("off the floor in y", ballRequest(1.2, -3, 0.1, 0, 0, 0, 0.1, 1), "position", "off the floor"),
+      ball("below the floor", ballRequest(1.2, 0.5, -1, 0, 0, 0, 0.1, 1), "position", "below the surface"),
+      ball("far above the floor", ballRequest(1.2, 0.5, 3, 0, 0, 0, 0.1, 1), "position", "above the surface"),
+      ball("max_balls reached", goodBall(), "max_balls", "already holds 2 balls", 2),
+  });
+}
+
+TEST(BadRequests, AddWall)
+{
+  runTable({
+      wall("point NaN", wallRequest(kNan, -0.9, 0, 0, 0.8, 0, 0, 0, 0.3), "point", "must be finite"),
+      wall("point 1e300", wallRequest(1.5, 1e300, 0, 0, 0.8, 0, 0, 0, 0.3), "point", "length must be <= 1e+06 m"),
+      wall("u inf", wallRequest(1.5, -0.9, 0, 0, kInf, 0, 0, 0, 0.3), "u", "must be finite"),
+      wall("v NaN", wallRequest(1.5, -0.9, 0, 0, 0.8, 0, 0, 0, kNan), "v", "must be finite"),
+      wall("u 1e300", wallRequest(1.5, -0.9, 0, 0, 1e300, 0, 0, 0, 0.3), "u", "length must be <= 1e+06 m"),
+      wall("u zero", wallRequest(1.5, -0.9, 0, 0, 0, 0, 0, 0, 0.3), "u", "must be non-zero"),
+      wall("v zero", wallRequest(1.5, -0.9, 0, 0, 0.8, 0, 0, 0, 0), "v", "must be non-zero"),
+      wall("u and v zero", wallRequest(1.5, -0.9, 0, 0, 0, 0, 0, 0, 0), "u", "must be non-zero"),
+      wall("u 1e-200 (squares underflow)", wallRequest(1.5, -0.9, 0, 0, 1e-200, 0, 0, 0, 0.3), "u",
+           "length must be >= 1e-06 m"),
+      wall("v parallel to u", wallRequest(1.5, -0.9, 0, 0, 0.8, 0, 0, 1.6, 0), "v", "parallel to u"),
+      wall("v against u", wallRequest(1.5, -0.9, 0, 0, 0.8, 0, 0, -0.2, 0), "v", "parallel to u"),
+      wall("v all but parallel", wallRequest(1.5, -0.9, 0, 0, 0.8, 0, 0, 0.8, 1e-12), "v", "parallel to u"),
+      wall("through ball 0", wallRequest(-0.763, -0.9, 0, 0, 1.8, 0, 0, 0, 0.3), "point", "cuts through ball 0"),
+      wall("through ball 1 edgewise", wallRequest(0.5, 0, 0, 0.5, 0, 0, 0, 0, 0.3), "point", "cuts through ball 1"),
+  });
+}
+
+TEST(BadRequests, RemoveBall)
+{
+  runTable({
+      {"unknown id 42", [](World& w) { return removeBall(w, 42); }, "id", "no ball has id 42"},
+      {"negative id", [](World& w) { return removeBall(w, -1); }, "id", "no ball has id -1"},
+      {"largest id", [](World& w) { return removeBall(w, std::numeric_limits<std::int32_t>::max()); }, "id",
+       "no ball has id 2147483647"},
+      {"smallest id", [](World& w) { return removeBall(w, std::numeric_limits<std::int32_t>::min()); }, "id",
+       "no ball has id -2147483648"},
+      {"the next id, not given yet", [](World& w) { return removeBall(w, 2); }, "id", "no ball has id 2"},
+      {"a wall's id", [](World& w) { return removeBall(w, 3); }, "id", "no ball has id 3"},
+  });
+}
+
+TEST(BadRequests, RemoveWall)
+{
+  runTable({
+      {"unknown id 4", [](World& w) { return removeWall(w, 4); }, "id", "no wall has id 4"},
+      {"negative id", [](World& w) { return removeWall(w, -1); }, "id", "no wall has id -1"},
+      {"largest id", [](World& w) { return removeWall(w, std::numeric_limits<std::int32_t>::max()); }, "id",
+       "no wall has id 2147483647"},
+      {"smallest id", [](World& w) { return removeWall(w, std::numeric_limits<std::int32_t>::min()); }, "id",
+       "no wall has id -2147483648"},
+  });
+}
+
+TEST(BadRequests, RemovedOnceIsGone)
+{
+  World world = nodeWorld();
+  ASSERT_TRUE(removeBall(world, 1).success);
+  ASSERT_TRUE(removeWall(world, 2).success);
+  const std::uint64_t before = fingerprint(world);
+  const Answer ball = removeBall(world, 1);
+  EXPECT_FALSE(ball.success);
+  EXPECT_EQ(ball.message, "id: no ball has id 1");
+  const Answer wall = removeWall(world, 2);
+  EXPECT_FALSE(wall.success);
+  EXPECT_EQ(wall.message, "id: no wall has id 2");
+  EXPECT_EQ(fingerprint(world), before);
+}
+
+TEST(BadRequests, Step)
+{
+  runTable({
+      {"zero steps", [](World& w) { return step(w, true, 0); }, "steps", "must be in 1..1000000 (got 0)"},
+      {"one too many", [](World& w) { return step(w, true, bcs::bridge::kMaxStepsPerCall + 1); }, "steps",
+       "must be in 1..1000000 (got 1000001)"},
+      {"largest count", [](World& w) { return step(w, true, std::numeric_limits<std::uint32_t>::max()); }, "steps",
+       "(got 4294967295)"},
+      {"while running", [](World& w) { return step(w, false, 1); }, "steps", "only while paused"},
+  });
+}
