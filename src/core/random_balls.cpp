@@ -75,8 +75,14 @@ std::vector<BallDef> placeRandomBalls(const Scene& scene)
 
   std::mt19937_64 rng(def.seed);
   const long max_attempts = 100L * def.count + 1000;
-  for (long attempt = 0; attempt < max_attempts && static_cast<int>(out.size()) < def.count; ++attempt)
+  // A full floor fails every attempt: give up after this many misses in a row, or a count
+  // far beyond the room (up to 10^7) takes 100 attempts a ball, minutes, to be refused.
+  constexpr long kMaxMissesInARow = 100000;
+  long misses = 0;
+  for (long attempt = 0; attempt < max_attempts && static_cast<int>(out.size()) < def.count && misses < kMaxMissesInARow;
+       ++attempt)
   {
+    ++misses;  // until this attempt places its ball
     BallDef ball;
     ball.radius = uniform(rng, def.radius.min, def.radius.max);
     ball.mass = uniform(rng, def.mass.min, def.mass.max);
@@ -109,6 +115,7 @@ std::vector<BallDef> placeRandomBalls(const Scene& scene)
     obstacles.push_back(ball);
     grid.insert(static_cast<std::uint32_t>(obstacles.size() - 1), sweptBox(ball.position, ball.position, ball.radius));
     out.push_back(ball);
+    misses = 0;
   }
   return out;
 }
