@@ -5,6 +5,7 @@
 // scripts/soak; prints progress on stderr and one summary line on stdout; exits 1 when a
 // check failed.
 //   soak [--balls N] [--steps S] [--check-every K] [--seed SEED]
+#include "fixtures.hpp"
 #include "scenes.hpp"
 
 #include "ball_collision_sim/core/world.hpp"
@@ -23,30 +24,6 @@ namespace
 {
 using ball_collision_sim::core::Ball;
 using ball_collision_sim::core::World;
-
-/// Deepest overlap between two balls [m] (negative when none touch), by a sweep in x.
-double deepestOverlap(const std::vector<Ball>& balls, std::vector<std::size_t>& order)
-{
-  order.resize(balls.size());
-  for (std::size_t i = 0; i < order.size(); ++i)
-    order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return balls[a].position.x() - balls[a].radius < balls[b].position.x() - balls[b].radius;
-  });
-  double deepest = -1e300;
-  for (std::size_t k = 0; k < order.size(); ++k)
-  {
-    const Ball& a = balls[order[k]];
-    for (std::size_t l = k + 1; l < order.size(); ++l)
-    {
-      const Ball& b = balls[order[l]];
-      if (b.position.x() - b.radius > a.position.x() + a.radius)
-        break;
-      deepest = std::max(deepest, a.radius + b.radius - (a.position - b.position).norm());
-    }
-  }
-  return deepest;
-}
 
 constexpr double kEnergyTolerance = 1e-9;   // relative
 constexpr double kOverlapTolerance = 1e-9;  // [m]
@@ -83,7 +60,6 @@ int main(int argc, char** argv)
   const double k0 = world.energy().kinetic;
   double worst_drift = 0, worst_overlap = -1e300;
   long long escaped = 0, non_finite = 0, checks = 0;
-  std::vector<std::size_t> order;
   const auto start = std::chrono::steady_clock::now();
   auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   double last_report = 0;
@@ -105,7 +81,7 @@ int main(int argc, char** argv)
     escaped += world.lostBalls();
     // measured against the kinetic energy: the potential one is a constant on the flat floor
     worst_drift = std::max(worst_drift, std::abs(world.energy().total() - e0) / k0);
-    worst_overlap = std::max(worst_overlap, deepestOverlap(world.balls(), order));
+    worst_overlap = std::max(worst_overlap, ball_collision_sim::test::deepestOverlap(world.balls()));
     if (seconds() - last_report > 30 || k == steps)
     {
       last_report = seconds();
