@@ -582,9 +582,13 @@ TEST(SceneParams, SameSceneAsTheYamlReader)
 }
 
 // A bad scene stops the node at start with one message naming the key, exit code 1.
-TEST(SceneParams, BadSceneStopsTheNode)
+namespace
 {
-  const std::string command = std::string(BCS_SIMULATOR_NODE_EXE) + " __name:=bad_sim 2>&1";
+/// Starts the node under `name` (its parameters come from node.test) and checks that it
+/// stops at once: exit code 1 and a FATAL line containing `expected`.
+void expectNodeStopsAtStart(const std::string& name, const std::string& expected)
+{
+  const std::string command = std::string(BCS_SIMULATOR_NODE_EXE) + " __name:=" + name + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   ASSERT_NE(pipe, nullptr);
   std::string output;
@@ -595,24 +599,19 @@ TEST(SceneParams, BadSceneStopsTheNode)
   ASSERT_TRUE(WIFEXITED(status)) << output;
   EXPECT_EQ(WEXITSTATUS(status), 1) << output;
   EXPECT_NE(output.find("FATAL"), std::string::npos) << output;
-  EXPECT_NE(output.find("balls[0].radius: must be > 0"), std::string::npos) << output;
+  EXPECT_NE(output.find(expected), std::string::npos) << output;
+}
+}  // namespace
+
+TEST(SceneParams, BadSceneStopsTheNode)
+{
+  expectNodeStopsAtStart("bad_sim", "balls[0].radius: must be > 0");
 }
 
 // A bad node setting stops the node the same way, with one message naming the key.
 TEST(SceneParams, BadBallColorStopsTheNode)
 {
-  const std::string command = std::string(BCS_SIMULATOR_NODE_EXE) + " __name:=bad_color_sim 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  char buffer[512];
-  while (fgets(buffer, sizeof(buffer), pipe))
-    output += buffer;
-  const int status = pclose(pipe);
-  ASSERT_TRUE(WIFEXITED(status)) << output;
-  EXPECT_EQ(WEXITSTATUS(status), 1) << output;
-  EXPECT_NE(output.find("FATAL"), std::string::npos) << output;
-  EXPECT_NE(output.find("ball_color: expected speed or id, got the string \"fast\""), std::string::npos) << output;
+  expectNodeStopsAtStart("bad_color_sim", "ball_color: expected speed or id, got the string \"fast\"");
 }
 
 int main(int argc, char** argv)

@@ -133,7 +133,6 @@ private:
   /// A whole number of cells as an index, clamped so that far-away items cannot overflow
   /// (they then share cells, which costs time, never a pair).
   static std::int64_t index(double cells) { return static_cast<std::int64_t>(std::clamp(cells, -1e15, 1e15)); }
-  static bool overlap(const Aabb& a, const Aabb& b) { return a.overlaps(b); }
   bool fits(std::uint32_t i, const Aabb& box) const;
   /// Calls f(item) for the binned items of the cells [x0, x1] x [y0, y1] whose boxes
   /// overlap `box`.
@@ -200,7 +199,7 @@ void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std:
       const std::size_t first = slotOf(x0, iy);
       const std::size_t last = first + static_cast<std::size_t>(x1 - x0) + 1;
       for (std::uint32_t k = starts_[first]; k < starts_[last]; ++k)
-        if (overlap(sorted_boxes_[k], box))
+        if (sorted_boxes_[k].overlaps(box))
           f(entries_[k]);
     }
     return;
@@ -212,7 +211,7 @@ void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std:
       for (std::uint32_t k = starts_[b]; k < starts_[b + 1]; ++k)
       {
         const std::uint32_t j = entries_[k];
-        if (cx_[j] == ix && cy_[j] == iy && overlap(sorted_boxes_[k], box))
+        if (cx_[j] == ix && cy_[j] == iy && sorted_boxes_[k].overlaps(box))
           f(j);
       }
     }
@@ -225,7 +224,7 @@ void StepGrid::query(std::uint32_t i, F&& f) const
   if (!moved_list_.empty())
   {
     const auto moved = [&](std::uint32_t j) {
-      if (j != i && overlap(boxes_[j], box))
+      if (j != i && boxes_[j].overlaps(box))
         f(j);
     };
     if (moved_grid_.oversized(box))
@@ -251,7 +250,7 @@ void StepGrid::query(std::uint32_t i, F&& f) const
   if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) > static_cast<double>(cx_.size()) + 16)
   {
     for (std::uint32_t k = 0; k < entries_.size(); ++k)  // a huge box: every binned item
-      if (overlap(sorted_boxes_[k], box))
+      if (sorted_boxes_[k].overlaps(box))
         binned(entries_[k]);
     return;
   }
@@ -293,10 +292,10 @@ void StepGrid::forEachPair(F&& f) const
         const Aabb& box = sorted_boxes_[k];
         const std::uint32_t item = entries_[k];
         for (std::uint32_t l = k + 1; l < starts_[s + 2]; ++l)  // the rest of this cell, then east
-          if (overlap(sorted_boxes_[l], box))
+          if (sorted_boxes_[l].overlaps(box))
             f(item, entries_[l]);
         for (std::uint32_t l = starts_[s + w - 1]; l < starts_[s + w + 2]; ++l)  // the row above
-          if (overlap(sorted_boxes_[l], box))
+          if (sorted_boxes_[l].overlaps(box))
             f(item, entries_[l]);
       }
     }
