@@ -176,6 +176,8 @@ void World::load()
   plane_resting_speed_ = 0.0;
   if (plane_)
     plane_resting_speed_ = restingSpeed(plane_normal_);
+  const Vec3 along = plane_ ? tangentPart(gravity_, plane_normal_) : gravity_;
+  straight_ = (plane_ || !floor_) && along.norm() <= 1e-12 * g;
   walls_.clear();
   next_wall_id_ = 0;
   for (const WallDef& def : scene_.walls)
@@ -218,7 +220,6 @@ void World::step()
 {
   events_.clear();
   resting_.clear();
-  leaning_.clear();
   blocked_sets_.clear();
   if (order_.size() != balls_.size())
   {
@@ -264,7 +265,10 @@ void World::predictMotions()
       floor_uv_[i] = ball.uv;
     const Vec3 end = predictedEnd(i, m.p0, m.v0, dt_);
     m.b = end - m.p0;
-    grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, end, ball.radius));
+    if (!plane_ && floor_)
+      keepEnergy(i);  // on a plane the first chord ends where the exact path does
+    const Vec3 reach = m.p0 + m.b;
+    grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, reach, ball.radius));
   }
 }
 
@@ -327,7 +331,6 @@ void World::commitToFloor()
   const bool settle = !resting_.empty() || !blocked_sets_.empty();
   if (floor_ && !plane_)
     floor_normals_.resize(balls_.size());
-  std::sort(leaning_.begin(), leaning_.end());
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     Motion& m = motions_[i];
@@ -342,10 +345,10 @@ void World::commitToFloor()
     }
     else if (floor_)
     {
-      FloorFoot foot = floor_->project(p, floor_uv_[i]);
-      p = floor_->ballCentre(foot, ball.radius);
-      if (m.blocked >= 0)
-        p = clearOfLeanedWalls(i, p, foot);
+      // The chord ends on the floor (endOnFloor) except where a ball was stopped by the
+      // event cap or its constraints did not settle: then it stays at its chord's end,
+      // clear of everything, a little off the floor until the next step puts it back.
+      const FloorFoot foot = floor_->project(p, floor_uv_[i]);
       ball.uv = foot.uv;
       normal = foot.normal;
       floor_normals_[i] = normal;
@@ -472,46 +475,18 @@ Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
   return floor_->project(position, floor_uv_[i]).normal;
 }
 
-Vec3 World::clearOfLeanedWalls(std::size_t i, Vec3 p, FloorFoot& foot) const
-{
-  // On a curved floor the chord of a ball sliding along a wall ends, put back on the
-  // floor, a little inside the wall: out along the wall and back onto the floor, in turn.
-  const auto [first, last] = std::equal_range(leaning_.begin(), leaning_.end(), std::pair<std::size_t, std::size_t>(i, 0),
-                                              [](const auto& a, const auto& b) { return a.first < b.first; });
-  const double r = motions_[i].radius;
-  // Out of each wall in turn, then back onto the floor: in a corner (two walls and the
-  // floor) this converges more slowly, hence the many passes, each of few walls.
-  for (int pass = 0; pass < 64; ++pass)
-  {
-    bool moved = false;
-    for (auto it = first; it != last; ++it)
-    {
-      const Vec3 away = p - walls_[it->second].closestPoint(p);
-      const double distance = away.norm();
-      if (distance > 0 && r - distance > 1e-13)
-      {
-        p += away * ((r - distance) / distance);
-        moved = true;
-      }
-    }
-    if (!moved)
-      break;
-    foot = floor_->project(p, foot.uv);
-    p = floor_->ballCentre(foot, r);
-  }
-  return p;
-}
-
 Vec3 World::onFloorVelocity(const Motion& m, double x, const Vec3& position, const Vec3& normal) const
 {
   Vec3 v = m.v0 + ((x - m.x0) * dt_) * gravity_;
-  if (!floor_)
-    return v;
-  v -= v.dot(normal) * normal;
-  if (floor_->isPlane())
-    return v;  // constant acceleration along the plane: exact as it stands
-  // On a curved floor the tangent projection alone gains or loses energy; keep the
-  // frictionless ball's |v|^2 = |v0|^2 + 2 <g, p - p0> (the course code's correction).
+  if (floor_)
+    v -= v.dot(normal) * normal;
+  if (straight_)
+    return v;  // no force along the floor: the motion is the chord itself
+  // Under a force along the floor the ball's path is a curve and its motion in the step
+  // the chord across it, which runs below the curve; so where an impact stops the chord,
+  // the velocity the force gave by then does not go with the height the chord reached.
+  // Keep the frictionless ball's |v|^2 = |v0|^2 + 2 <g, p - p0> (the course code's
+  // correction on its curved floor).
   const double target = m.v0.squaredNorm() + 2 * gravity_.dot(position - m.p0);
   const double norm = v.norm();
   if (target <= 0 || norm == 0)
@@ -541,6 +516,100 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   const double rest = 1 - x;
   m.b = rest > 0 ? Vec3((predictedEnd(i, position, m.v0, rest * dt_) - position) / rest) : Vec3(dt_ * m.v0);
   m.b = allowed(m, m.b);
+  endOnFloor(i);
+  keepEnergy(i);
+}
+
+void World::endOnFloor(std::size_t i)
+{
+  // The chord must end on the floor, where the step's end puts the ball: a ball moved
+  // there after its motion was checked could be pressed into what it touches. Taking
+  // out the blocked directions moves the end off a curved floor; back onto it and out of
+  // them again, in turn, until both hold.
+  Motion& m = motions_[i];
+  const double rest = 1 - m.x0;
+  if (plane_ || !floor_ || m.frozen || !(rest > 0))
+    return;
+  for (int pass = 0; pass < 32; ++pass)
+  {
+    const Vec3 on = (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest;
+    const Vec3 free = allowed(m, on);
+    const bool done = (free - on).squaredNorm() <= 1e-30 * on.squaredNorm();
+    m.b = done ? on : free;
+    if (done)
+      return;
+  }
+}
+
+Vec3 World::onFloor(std::size_t i, const Vec3& q) const
+{
+  if (plane_)
+    return q + (motions_[i].radius + plane_offset_ - plane_normal_.dot(q)) * plane_normal_;
+  if (!floor_)
+    return q;
+  return floor_->ballCentre(floor_->project(q, floor_uv_[i]), motions_[i].radius);
+}
+
+void World::keepEnergy(std::size_t i)
+{
+  Motion& m = motions_[i];
+  const double rest = 1 - m.x0;
+  if (straight_ || m.frozen || !(rest > 0))
+    return;
+  // |v|^2 at the end of the step would be this, with the motion cut to the fraction s of its chord
+  const auto speedSquared = [&](double s) {
+    return m.v0.squaredNorm() + 2 * gravity_.dot(onFloor(i, m.p0 + (s * rest) * m.b) - m.p0);
+  };
+  // (on a curved floor the chord already ends on it, see endOnFloor: no projection needed)
+  const double full = plane_ || !floor_ ? speedSquared(1.0) : m.v0.squaredNorm() + 2 * rest * gravity_.dot(m.b);
+  if (full >= 0)
+    return;
+  // The chord ends higher than the ball's energy reaches (a turning point on a curved
+  // floor, or a ball in a pile whose constraints turned its motion uphill): it stops
+  // where the energy runs out instead, so that no energy is made.
+  const double start = speedSquared(0.0);
+  double lo = 0.0;
+  if (start > 0)
+  {
+    if (plane_ || !floor_)
+      lo = start / (start - full);  // linear in s
+    else
+    {
+      double hi = 1.0;
+      for (int k = 0; k < 50 && hi - lo > 1e-15; ++k)
+      {
+        const double mid = 0.5 * (lo + hi);
+        (speedSquared(mid) >= 0 ? lo : hi) = mid;
+      }
+    }
+    // (round-off may leave the end a hair too high; the speed is clamped to zero then)
+  }
+  m.b *= lo;
+  if (plane_ || !floor_)
+    return;
+  if (lo > 0)
+  {
+    m.b = allowed(m, (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest);
+    return;
+  }
+  // A motion that starts at an impact inside the step starts on the chord, below or
+  // above the floor; where the floor above it is higher than the energy reaches, the
+  // ball slides downhill from there instead, as far as it takes to be low enough.
+  const Vec3 foot = onFloor(i, m.p0);
+  const Vec3 downhill = tangentPart(gravity_, floorNormalAt(i, foot));
+  const double slope = downhill.norm();
+  if (!(slope > 0))
+    return;
+  // (a short way only: the chord's sag is small next to the ball; else it stays put)
+  for (double reach = std::max(-start / slope, 1e-12 * m.radius); reach < 0.5 * m.radius; reach *= 2)
+  {
+    const Vec3 b = allowed(m, (onFloor(i, foot + (reach / slope) * downhill) - m.p0) / rest);
+    if (m.v0.squaredNorm() + 2 * gravity_.dot(onFloor(i, m.p0 + rest * b) - m.p0) >= 0)
+    {
+      m.b = b;
+      return;
+    }
+  }
 }
 
 void World::countEvent(std::size_t i)
@@ -606,7 +675,6 @@ void World::resolveBallWall(const Event& event)
     addBlocked(motions_[i], dir);
     if (dir.dot(n) < 1 - 1e-12)
       addBlocked(motions_[i], n);
-    leaning_.emplace_back(i, event.j);
   }
   startMotion(i, event.x, p, v);
   recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
@@ -651,6 +719,7 @@ void World::resolveBallBall(const Event& event)
   va -= (impulse * inv_a) * ta;
   vb += (impulse * inv_b) * tb;
 
+  bool both_still = false;
   if (resting)
   {
     // A ball that cannot give way along the contact blocks the other's approach for the
@@ -658,7 +727,7 @@ void World::resolveBallBall(const Event& event)
     // each other, so that piles settle in one event per contact instead of passing
     // vanishing impulses back and forth.
     const double still = std::max(restingSpeed(na), restingSpeed(nb));
-    const bool both_still = va.norm() <= still && vb.norm() <= still;
+    both_still = va.norm() <= still && vb.norm() <= still;
     const bool a_fixed = both_still || inv_a * ta.squaredNorm() < 1e-12 * inv_b * tb.squaredNorm();
     const bool b_fixed = both_still || inv_b * tb.squaredNorm() < 1e-12 * inv_a * ta.squaredNorm();
     if (a_fixed && along_b.squaredNorm() > 0)
@@ -670,14 +739,30 @@ void World::resolveBallBall(const Event& event)
   startMotion(j, event.x, pb, vb);
   if (resting)
   {
-    const double into = ma.b.dot(ta) - mb.b.dot(tb);
-    const double k = inv_a * ta.squaredNorm() + inv_b * tb.squaredNorm();
-    if (into > 0 && k > 0)
+    // No approach left in the motions either (gravity along the floor would press them
+    // together again at once). On a curved floor, putting the ends back on the floor can
+    // bring some back: in turn, a few times.
+    const bool curved = floor_ && !plane_;
+    for (int pass = 0; pass < (curved ? 32 : 1); ++pass)
     {
+      const Vec3 ua = curved ? n : ta, ub = curved ? n : tb;
+      const double into = ma.b.dot(ua) - mb.b.dot(ub);
+      const double k = inv_a * ta.dot(ua) + inv_b * tb.dot(ub);
+      if (!(into > 0 && k > 0))
+        break;
       const double jb = into / k;
       ma.b -= (jb * inv_a) * ta;
       mb.b += (jb * inv_b) * tb;
+      endOnFloor(i);
+      endOnFloor(j);
     }
+    // Two balls all but still whose motions still close in (a pile in a corner of a
+    // curved floor, where the floor, the walls and each other leave no room to settle
+    // into): they stay where they are for the rest of the step.
+    if (both_still && ma.b.dot(n) - mb.b.dot(n) > 0)
+      ma.b = mb.b = Vec3::Zero();
+    keepEnergy(i);
+    keepEnergy(j);
     resting_.push_back({i, j, ta, tb});
   }
   recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, impulse, closing, resting, event);

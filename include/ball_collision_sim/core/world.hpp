@@ -140,8 +140,12 @@ private:
   Vec3 allowed(const Motion& m, const Vec3& w) const;
   void addBlocked(Motion& m, const Vec3& direction);
   Vec3 floorNormalAt(std::size_t i, const Vec3& position) const;
-  /// `p` (on the curved floor) moved out of the walls ball i leaned on this step.
-  Vec3 clearOfLeanedWalls(std::size_t i, Vec3 p, FloorFoot& foot) const;
+  /// Where the ball i centred at q is put back on the floor (q itself without a floor).
+  Vec3 onFloor(std::size_t i, const Vec3& q) const;
+  /// Curved floors: ball i's chord moved to end on the floor and kept out of its blocked directions.
+  void endOnFloor(std::size_t i);
+  /// Shortens ball i's motion where its end would lie higher than its energy reaches.
+  void keepEnergy(std::size_t i);
   Vec3 onFloorVelocity(const Motion& m, double x, const Vec3& position, const Vec3& normal) const;
   double restingSpeed(const Vec3& floor_normal) const;
 
@@ -155,6 +159,9 @@ private:
   Vec3 plane_normal_ = Vec3::UnitZ();
   double plane_offset_ = 0.0;
   double plane_resting_speed_ = 0.0;
+  /// No force along the floor (a plane square to gravity, or no floor and no gravity):
+  /// balls move in straight lines between impacts.
+  bool straight_ = true;
   std::vector<Wall> walls_;
   std::vector<Ball> balls_;
   int next_ball_id_ = 0;
@@ -174,7 +181,6 @@ private:
   std::vector<Vec2> floor_uv_;  ///< curved floors: each ball's last foot point, Newton's guess
   std::vector<CollisionEvent> events_;
   std::vector<RestingContact> resting_;
-  std::vector<std::pair<std::size_t, std::size_t>> leaning_;  ///< (ball, wall) resting contacts this step
   std::vector<BlockedSet> blocked_sets_;
 };
 }  // namespace ball_collision_sim::core
