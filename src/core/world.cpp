@@ -483,7 +483,7 @@ Vec3 World::onFloorVelocity(const Motion& m, double x, const Vec3& position, con
   if (straight_)
     return v;  // no force along the floor: the motion is the chord itself
   // Under a force along the floor the ball's path is a curve and its motion in the step
-  // the chord across it, which runs below the curve; so where an impact stops the chord,
+  // the chord across it, which runs off the curve; so where an impact stops the chord,
   // the velocity the force gave by then does not go with the height the chord reached.
   // Keep the frictionless ball's |v|^2 = |v0|^2 + 2 <g, p - p0> (the course code's
   // correction on its curved floor).
@@ -759,10 +759,10 @@ void World::resolveBallBall(const Event& event)
     // Two balls all but still whose motions still close in (a pile in a corner of a
     // curved floor, where the floor, the walls and each other leave no room to settle
     // into): they stay where they are for the rest of the step.
-    if (both_still && ma.b.dot(n) - mb.b.dot(n) > 0)
-      ma.b = mb.b = Vec3::Zero();
     keepEnergy(i);
     keepEnergy(j);
+    if (both_still && ma.b.dot(n) - mb.b.dot(n) > 0)
+      ma.b = mb.b = Vec3::Zero();
     resting_.push_back({i, j, ta, tb});
   }
   recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, impulse, closing, resting, event);
