@@ -276,10 +276,8 @@ Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double spa
 {
   // seed (1): ds = dt v + dt^2 g / 2, then back onto the floor, seed (2)-(4)
   const Vec3 q = p + span * v + (0.5 * span * span) * gravity_;
-  if (plane_)
-    return q + (motions_[i].radius + plane_offset_ - plane_normal_.dot(q)) * plane_normal_;
-  if (!floor_)
-    return q;
+  if (plane_ || !floor_)
+    return onFloor(i, q);
   const FloorFoot foot = floor_->project(q, floor_uv_[i]);
   floor_uv_[i] = foot.uv;
   return floor_->ballCentre(foot, motions_[i].radius);
@@ -339,7 +337,7 @@ void World::commitToFloor()
     Vec3 normal = up_;
     if (plane_)
     {
-      p += (ball.radius + plane_offset_ - plane_normal_.dot(p)) * plane_normal_;
+      p = onFloor(i, p);
       ball.uv = floor_->planeParameters(p);
       normal = plane_normal_;
     }
@@ -556,10 +554,12 @@ void World::keepEnergy(std::size_t i)
   const double rest = 1 - m.x0;
   if (straight_ || m.frozen || !(rest > 0))
     return;
-  // |v|^2 at the end of the step would be this, with the motion cut to the fraction s of its chord
-  const auto speedSquared = [&](double s) {
-    return m.v0.squaredNorm() + 2 * gravity_.dot(onFloor(i, m.p0 + (s * rest) * m.b) - m.p0);
+  // |v|^2 at the end of the step with the displacement b per unit of x, put on the floor
+  const auto speedSquaredWith = [&](const Vec3& b) {
+    return m.v0.squaredNorm() + 2 * gravity_.dot(onFloor(i, m.p0 + rest * b) - m.p0);
   };
+  // ... with the motion cut to the fraction s of its chord
+  const auto speedSquared = [&](double s) { return speedSquaredWith(s * m.b); };
   // (on a curved floor the chord already ends on it, see endOnFloor: no projection needed)
   const double full = plane_ || !floor_ ? speedSquared(1.0) : m.v0.squaredNorm() + 2 * rest * gravity_.dot(m.b);
   if (full >= 0)
@@ -604,7 +604,7 @@ void World::keepEnergy(std::size_t i)
   for (double reach = std::max(-start / slope, 1e-12 * m.radius); reach < 0.5 * m.radius; reach *= 2)
   {
     const Vec3 b = allowed(m, (onFloor(i, foot + (reach / slope) * downhill) - m.p0) / rest);
-    if (m.v0.squaredNorm() + 2 * gravity_.dot(onFloor(i, m.p0 + rest * b) - m.p0) >= 0)
+    if (speedSquaredWith(b) >= 0)
     {
       m.b = b;
       return;
