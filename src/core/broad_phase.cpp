@@ -170,7 +170,6 @@ void StepGrid::build()
       widest = std::max(widest, e);
   cell_ = widest * (1 + 1e-9) + 1e-12;
   inv_cell_ = 1.0 / cell_;
-  moved_grid_.reset(cell_, n / 8 + 16);
 
   std::int64_t max_x = 0, max_y = 0;
   for (std::size_t i = 0; i < n; ++i)
@@ -255,7 +254,16 @@ void StepGrid::update(std::uint32_t i, const Aabb& box)
     // out of the cells: an empty box there overlaps nothing
     const double inf = std::numeric_limits<double>::infinity();
     sorted_boxes_[slot_pos_[i]] = Aabb{Vec3::Constant(inf), Vec3::Constant(-inf)};
+    if (moved_list_.size() == kFewMoved + 1)
+    {
+      // too many to scan from now on: the moved grid takes over, with the boxes so far
+      moved_grid_.reset(cell_, boxes_.size() / 8 + 16);
+      for (std::uint32_t j : moved_list_)
+        moved_grid_.insert(j, boxes_[j]);
+      return;
+    }
   }
-  moved_grid_.insert(i, box);
+  if (moved_list_.size() > kFewMoved)
+    moved_grid_.insert(i, box);
 }
 }  // namespace ball_collision_sim::core

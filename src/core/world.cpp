@@ -26,21 +26,27 @@ constexpr double kRestingSteps = 2.0;
 constexpr double kRestingSpeedFloor = 1e-9;
 
 
-/// sin and cos of x; a short series where |x| is small, the usual way elsewhere.
-void sinCos(double x, double& s, double& c)
+/// sin(x) / x and cos(x): series where |x| is small, the usual way elsewhere. The series
+/// are summed in pairs of terms (Estrin's scheme) so that they take a few dependent
+/// steps rather than one per term.
+void sincCos(double x, double& sinc, double& c)
 {
-  if (std::abs(x) > 0.5)
+  if (!(std::abs(x) <= 0.5))
   {
-    s = std::sin(x);
+    sinc = std::sin(x) / x;
     c = std::cos(x);
     return;
   }
-  // Taylor series to x^17 and x^18: the first term left out is below 3e-23 for |x| <= 1/2.
-  const double x2 = x * x;
-  s = x * (1 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880 +
-      x2 * (-1.0 / 39916800 + x2 * (1.0 / 6227020800 + x2 * (-1.0 / 1307674368000 + x2 * (1.0 / 355687428096000)))))))));
-  c = 1 + x2 * (-1.0 / 2 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 + x2 * (-1.0 / 3628800 +
-      x2 * (1.0 / 479001600 + x2 * (-1.0 / 87178291200 + x2 * (1.0 / 20922789888000 + x2 * (-1.0 / 6402373705728000)))))))));
+  // Taylor series to x^16 and x^18: the first term left out is below 3e-23 for |x| <= 1/2.
+  // s[k] = (-1)^k / (2k + 1)!, c[k] = (-1)^k / (2k)!
+  constexpr double s1 = -1.0 / 6, s2 = 1.0 / 120, s3 = -1.0 / 5040, s4 = 1.0 / 362880, s5 = -1.0 / 39916800,
+                   s6 = 1.0 / 6227020800, s7 = -1.0 / 1307674368000, s8 = 1.0 / 355687428096000;
+  constexpr double c1 = -1.0 / 2, c2 = 1.0 / 24, c3 = -1.0 / 720, c4 = 1.0 / 40320, c5 = -1.0 / 3628800,
+                   c6 = 1.0 / 479001600, c7 = -1.0 / 87178291200, c8 = 1.0 / 20922789888000,
+                   c9 = -1.0 / 6402373705728000;
+  const double x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
+  sinc = ((1 + s1 * x2) + x4 * (s2 + s3 * x2)) + x8 * (((s4 + s5 * x2) + x4 * (s6 + s7 * x2)) + x8 * s8);
+  c = ((1 + c1 * x2) + x4 * (c2 + c3 * x2)) + x8 * (((c4 + c5 * x2) + x4 * (c6 + c7 * x2)) + x8 * (c8 + c9 * x2));
 }
 }  // namespace
 
@@ -132,11 +138,13 @@ struct World::Event
   Vec3 normal;               ///< ball-wall: unit, from the wall toward the ball
 };
 
-bool World::EventLater::operator()(const Event& a, const Event& b) const
+bool World::EventLater::operator()(const QueuedEvent& qa, const QueuedEvent& qb) const
 {
   // Earliest first; ties broken by indices so that runs are deterministic.
-  if (a.x != b.x)
-    return a.x > b.x;
+  if (qa.x != qb.x)
+    return qa.x > qb.x;
+  const Event& a = (*pool)[qa.slot];
+  const Event& b = (*pool)[qb.slot];
   if (a.i != b.i)
     return a.i > b.i;
   if (a.wall != b.wall)
@@ -292,6 +300,8 @@ Aabb World::currentBox(std::size_t i) const
 void World::buildBroadPhase()
 {
   heap_.clear();
+  event_pool_.clear();
+  free_slots_.clear();
   grid_.build();  // on the swept boxes of the predicted motions
   grid_.markObstacles(wall_boxes_);
 }
@@ -304,12 +314,14 @@ void World::findFirstImpacts()
 
 void World::resolveEventsInTimeOrder()
 {
-  const EventLater later;
+  const EventLater later{&event_pool_};
   while (!heap_.empty())
   {
     std::pop_heap(heap_.begin(), heap_.end(), later);
-    const Event event = heap_.back();
+    const std::uint32_t slot = heap_.back().slot;
     heap_.pop_back();
+    const Event event = event_pool_[slot];
+    free_slots_.push_back(slot);
     if (motions_[event.i].epoch != event.epoch_i || (!event.wall && motions_[event.j].epoch != event.epoch_j))
     {
       ++stats_.stale_events;  // a ball involved has had an event since this was found
@@ -393,28 +405,42 @@ void World::roll(std::size_t i, const Vec3& normal, const Vec3& d)
   // Rolling without slip: turned by |d| / r about n x d, d the move along the floor
   // (|n x d| is its length).
   Ball& ball = balls_[order_[i]];
+  const double half_inv_radius = 0.5 / ball.radius;
   const Vec3 axis = normal.cross(d);
   const double axis_norm = axis.norm();
   if (axis_norm > 0)
   {
-    double sin_half = 0, cos_half = 1;
-    sinCos(0.5 * axis_norm / ball.radius, sin_half, cos_half);
-    const Vec3 k = (sin_half / axis_norm) * axis;
+    // the half angle x = |n x d| / 2r; sin(x) / |n x d| = sinc(x) / 2r
+    double sinc_half = 1, cos_half = 1;
+    sincCos(axis_norm * half_inv_radius, sinc_half, cos_half);
+    const Vec3 k = (sinc_half * half_inv_radius) * axis;
     Quat q = Quat(cos_half, k.x(), k.y(), k.z()) * ball.orientation;
     // back to unit length: the product of unit quaternions is off by round-off only, so
     // one Newton step of 1/sqrt does
     q.coeffs() *= 1.5 - 0.5 * q.coeffs().squaredNorm();
     ball.orientation = q;
   }
-  ball.angular_velocity = normal.cross(ball.velocity) / ball.radius;
+  ball.angular_velocity = normal.cross(ball.velocity) * (2 * half_inv_radius);
 }
 
 // ---- detection -----------------------------------------------------------------------
 
 void World::pushEvent(const Event& event)
 {
-  heap_.push_back(event);
-  std::push_heap(heap_.begin(), heap_.end(), EventLater{});
+  std::uint32_t slot = 0;
+  if (free_slots_.empty())
+  {
+    slot = static_cast<std::uint32_t>(event_pool_.size());
+    event_pool_.push_back(event);
+  }
+  else
+  {
+    slot = free_slots_.back();
+    free_slots_.pop_back();
+    event_pool_[slot] = event;
+  }
+  heap_.push_back({event.x, slot});
+  std::push_heap(heap_.begin(), heap_.end(), EventLater{&event_pool_});
 }
 
 void World::detect(std::size_t i)

@@ -177,6 +177,9 @@ private:
   std::int64_t min_y_ = 0;
   std::int64_t width_ = 0;
   std::int64_t height_ = 0;
+  /// Up to this many moved items are found by a scan of the list; past it, the moved
+  /// grid (filled then) holds them.
+  static constexpr std::size_t kFewMoved = 32;
   UniformGrid moved_grid_;
   std::vector<std::uint32_t> moved_list_;
 };
@@ -227,8 +230,8 @@ void StepGrid::query(std::uint32_t i, F&& f) const
       if (j != i && boxes_[j].overlaps(box))
         f(j);
     };
-    if (moved_grid_.oversized(box))
-      for (std::uint32_t j : moved_list_)  // too many cells to look up: all that moved
+    if (moved_list_.size() <= kFewMoved || moved_grid_.oversized(box))
+      for (std::uint32_t j : moved_list_)  // few, or too many cells to look up: all that moved
         moved(j);
     else
       moved_grid_.query(box, moved);

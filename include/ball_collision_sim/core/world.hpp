@@ -96,9 +96,16 @@ private:
   struct Motion;
   struct BlockedSet;
   struct Event;
+  /// The queue holds the time of each pending event and its place in `event_pool_`.
+  struct QueuedEvent
+  {
+    double x;
+    std::uint32_t slot;
+  };
   struct EventLater
   {
-    bool operator()(const Event& a, const Event& b) const;
+    const std::vector<Event>* pool;
+    bool operator()(const QueuedEvent& a, const QueuedEvent& b) const;
   };
   /// Two balls resting on each other: no closing speed is left at the step's end.
   struct RestingContact
@@ -174,7 +181,9 @@ private:
   std::vector<std::uint32_t> next_order_;
   // per-step work space, kept between steps to avoid allocation
   std::vector<Motion> motions_;
-  std::vector<Event> heap_;
+  std::vector<QueuedEvent> heap_;
+  std::vector<Event> event_pool_;
+  std::vector<std::uint32_t> free_slots_;
   StepGrid grid_;
   std::vector<Aabb> wall_boxes_;
   std::vector<Vec3> floor_normals_;
