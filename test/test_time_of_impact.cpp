@@ -1,7 +1,10 @@
+#include "ball_collision_sim/core/broad_phase.hpp"
 #include "ball_collision_sim/core/time_of_impact.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 using namespace ball_collision_sim::core;
@@ -142,4 +145,48 @@ TEST(SweepWall, NoTunnellingAtAnySpeed)
   const auto hit = sweepWall(w, Vec3(0.5, 0.5, 3), Vec3(0, 0, -1e6), 0.01, 1);
   ASSERT_TRUE(hit);
   EXPECT_NEAR(hit->t, (3 - 0.01) / 1e6, 1e-20);
+}
+
+TEST(Box32, HoldsTheBoxItIsRoundedFromAndIsNoMoreThanTwoFloatSpacingsWider)
+{
+  // The broad phase keeps its boxes in floats: a box that lost a sliver of the double box
+  // it came from could miss a pair.
+  const double inf = std::numeric_limits<double>::infinity(), fmax = std::numeric_limits<float>::max();
+  const auto check = [&](double lo, double hi) {
+    const Box32 f = Box32::around(Aabb{Vec3(lo, -hi, lo), Vec3(hi, -lo, hi)});
+    for (int k = 0; k < 3; ++k)
+    {
+      const double a = k == 1 ? -hi : lo, b = k == 1 ? -lo : hi;
+      ASSERT_LE(f.min[k], a) << a;
+      ASSERT_GE(f.max[k], b) << b;
+      if (std::abs(a) <= fmax)
+      {
+        ASSERT_GE(f.min[k], a - 3 * std::abs(a) * 0x1p-23 - 1e-36) << a;
+      }
+      if (std::abs(b) <= fmax)
+      {
+        ASSERT_LE(f.max[k], b + 3 * std::abs(b) * 0x1p-23 + 1e-36) << b;
+      }
+    }
+  };
+  const double specials[] = {0.0, 1e-300, 1e-40, 1.0, 0.1, 3.4e38, 3.5e38, 1e300, inf};
+  for (const double a : specials)
+    for (const double b : specials)
+    {
+      check(std::min(a, b), std::max(a, b));
+      check(-std::max(a, b), -std::min(a, b));
+      check(-a, b);
+    }
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int k = 0; k < 100000; ++k)
+  {
+    const double a = unit(rng) * std::pow(10.0, static_cast<int>(rng() % 50) - 25);
+    check(a, a + std::abs(unit(rng)) * std::abs(a) * 1e-6);
+  }
+  // overlap agrees with the double boxes wherever they are apart by more than the rounding
+  const Box32 left = Box32::around(Aabb{Vec3(0, 0, 0), Vec3(1, 1, 1)});
+  EXPECT_TRUE(left.overlaps(Box32::around(Aabb{Vec3(1, 0.5, 0.5), Vec3(2, 2, 2)})));
+  EXPECT_FALSE(left.overlaps(Box32::around(Aabb{Vec3(1 + 1e-6, 0, 0), Vec3(2, 1, 1)})));
+  EXPECT_FALSE(left.overlaps(Box32::around(Aabb{Vec3(0, 0, 1 + 1e-6), Vec3(1, 1, 2)})));
 }

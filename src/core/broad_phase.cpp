@@ -135,13 +135,12 @@ void StepGrid::start(std::size_t n, const Vec3& up)
   ax_ = drop == 0 ? 1 : 0;
   ay_ = drop == 2 ? 1 : 2;
   boxes_.resize(n);
-  extents_.resize(n);
 }
 
 void StepGrid::build()
 {
   const std::size_t n = boxes_.size();
-  const std::vector<Aabb>& boxes = boxes_;
+  const std::vector<Box32>& boxes = boxes_;
   cx_.resize(n);
   cy_.resize(n);
   slot_pos_.resize(n);
@@ -160,13 +159,16 @@ void StepGrid::build()
   // Cells a little wider than the widest box, leaving out boxes far wider than the
   // mean (a rare fast or large ball): they are listed as moved instead of making
   // every cell huge.
+  const auto extent = [&](const Box32& box) {
+    return std::max(static_cast<double>(box.max[ax_]) - box.min[ax_], static_cast<double>(box.max[ay_]) - box.min[ay_]);
+  };
   double sum = 0;
-  for (const double e : extents_)
-    sum += e;
+  for (const Box32& box : boxes)
+    sum += extent(box);
   const double outlier = 4 * sum / static_cast<double>(n);
   double widest = 0;
-  for (const double e : extents_)
-    if (e <= outlier)
+  for (const Box32& box : boxes)
+    if (const double e = extent(box); e <= outlier)
       widest = std::max(widest, e);
   cell_ = widest * (1 + 1e-9) + 1e-12;
   inv_cell_ = 1.0 / cell_;
@@ -174,8 +176,8 @@ void StepGrid::build()
   std::int64_t max_x = 0, max_y = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
-    cx_[i] = index(std::floor(0.5 * (boxes[i].min[ax_] + boxes[i].max[ax_]) * inv_cell_));
-    cy_[i] = index(std::floor(0.5 * (boxes[i].min[ay_] + boxes[i].max[ay_]) * inv_cell_));
+    cx_[i] = index(std::floor(0.5 * (static_cast<double>(boxes[i].min[ax_]) + boxes[i].max[ax_]) * inv_cell_));
+    cy_[i] = index(std::floor(0.5 * (static_cast<double>(boxes[i].min[ay_]) + boxes[i].max[ay_]) * inv_cell_));
     min_x_ = i == 0 ? cx_[i] : std::min(min_x_, cx_[i]);
     min_y_ = i == 0 ? cy_[i] : std::min(min_y_, cy_[i]);
     max_x = i == 0 ? cx_[i] : std::max(max_x, cx_[i]);
@@ -209,17 +211,18 @@ void StepGrid::build()
     slot_pos_[i] = k;
   }
   for (std::size_t i = 0; i < n; ++i)
-    if (extents_[i] > widest)
-      update(static_cast<std::uint32_t>(i), boxes[i]);
+    if (extent(boxes[i]) > widest && !fits(static_cast<std::uint32_t>(i), boxes[i]))
+      moveOut(static_cast<std::uint32_t>(i));
 }
 
-void StepGrid::markObstacles(const std::vector<Aabb>& obstacles)
+void StepGrid::markObstacles(const std::vector<Box32>& obstacles)
 {
   if (!dense_)
     return;
   near_obstacle_.assign(starts_.size() - 1, 0);
-  for (const Aabb& box : obstacles)
+  for (const Box32& rounded : obstacles)
   {
+    const Aabb box = rounded.toAabb();
     // Cells c whose reach ((c - 1/2) h, (c + 3/2) h) meets the box, within the array.
     const std::int64_t x0 = std::max(index(std::floor(box.min[ax_] * inv_cell_ - 1.5)), min_x_ - 1);
     const std::int64_t x1 = std::min(index(std::floor(box.max[ax_] * inv_cell_ + 0.5)), min_x_ + width_ - 2);
@@ -231,7 +234,7 @@ void StepGrid::markObstacles(const std::vector<Aabb>& obstacles)
   }
 }
 
-bool StepGrid::fits(std::uint32_t i, const Aabb& box) const
+bool StepGrid::fits(std::uint32_t i, const Box32& box) const
 {
   // strictly within half a cell of the item's own cell
   const double lo_x = (static_cast<double>(cx_[i]) - 0.5) * cell_, hi_x = (static_cast<double>(cx_[i]) + 1.5) * cell_;
@@ -241,29 +244,34 @@ bool StepGrid::fits(std::uint32_t i, const Aabb& box) const
 
 void StepGrid::update(std::uint32_t i, const Aabb& box)
 {
-  boxes_[i] = box;
+  boxes_[i] = Box32::around(box);
+  if (!moved_[i] && fits(i, boxes_[i]))
+  {
+    sorted_boxes_[slot_pos_[i]] = boxes_[i];
+    return;
+  }
+  moveOut(i);
+}
+
+void StepGrid::moveOut(std::uint32_t i)
+{
   if (!moved_[i])
   {
-    if (fits(i, box))
-    {
-      sorted_boxes_[slot_pos_[i]] = box;
-      return;
-    }
     moved_[i] = 1;
     moved_list_.push_back(i);
     // out of the cells: an empty box there overlaps nothing
-    const double inf = std::numeric_limits<double>::infinity();
-    sorted_boxes_[slot_pos_[i]] = Aabb{Vec3::Constant(inf), Vec3::Constant(-inf)};
+    const float inf = std::numeric_limits<float>::infinity();
+    sorted_boxes_[slot_pos_[i]] = Box32{{inf, inf, inf}, {-inf, -inf, -inf}};
     if (moved_list_.size() == kFewMoved + 1)
     {
       // too many to scan from now on: the moved grid takes over, with the boxes so far
       moved_grid_.reset(cell_, boxes_.size() / 8 + 16);
       for (std::uint32_t j : moved_list_)
-        moved_grid_.insert(j, boxes_[j]);
+        moved_grid_.insert(j, boxes_[j].toAabb());
       return;
     }
   }
   if (moved_list_.size() > kFewMoved)
-    moved_grid_.insert(i, box);
+    moved_grid_.insert(i, boxes_[i].toAabb());
 }
 }  // namespace ball_collision_sim::core

@@ -237,7 +237,7 @@ void World::step()
   }
   wall_boxes_.resize(walls_.size());
   for (std::size_t w = 0; w < walls_.size(); ++w)
-    wall_boxes_[w] = Aabb{walls_[w].box_min, walls_[w].box_max};
+    wall_boxes_[w] = Box32::around(Aabb{walls_[w].box_min, walls_[w].box_max});
   predictMotions();            // each ball's free motion over the step, on the floor, and its swept box
   buildBroadPhase();           // the swept boxes into a uniform grid
   findFirstImpacts();          // exact times of impact of nearby pairs and walls
@@ -454,7 +454,7 @@ void World::detectWalls(std::size_t i)
   const Motion& m = motions_[i];
   if (m.frozen || !grid_.nearObstacle(static_cast<std::uint32_t>(i)))
     return;
-  const Aabb& box = grid_.box(static_cast<std::uint32_t>(i));
+  const Box32& box = grid_.box(static_cast<std::uint32_t>(i));
   for (std::size_t w = 0; w < wall_boxes_.size(); ++w)
   {
     if (!box.overlaps(wall_boxes_[w]))

@@ -3,8 +3,10 @@
 #include "ball_collision_sim/core/types.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace ball_collision_sim::core
@@ -20,6 +22,48 @@ struct Aabb
     return static_cast<bool>(static_cast<int>(min.x() <= o.max.x()) & static_cast<int>(o.min.x() <= max.x()) &
                              static_cast<int>(min.y() <= o.max.y()) & static_cast<int>(o.min.y() <= max.y()) &
                              static_cast<int>(min.z() <= o.max.z()) & static_cast<int>(o.min.z() <= max.z()));
+  }
+};
+
+/// An Aabb in single precision, rounded outward so that it holds the box it was made
+/// from: half the memory of a step's boxes, at the cost of a few more candidate pairs.
+struct Box32
+{
+  std::array<float, 3> min;
+  std::array<float, 3> max;
+  static Box32 around(const Aabb& box)
+  {
+    Box32 out;
+    for (int k = 0; k < 3; ++k)
+    {
+      out.min[k] = widened(box.min[k], -1.0);
+      out.max[k] = widened(box.max[k], 1.0);
+    }
+    return out;
+  }
+  bool overlaps(const Box32& o) const
+  {
+    // all six tests and one branch: whether neighbouring boxes overlap is hard to predict
+    return static_cast<bool>(static_cast<int>(min[0] <= o.max[0]) & static_cast<int>(o.min[0] <= max[0]) &
+                             static_cast<int>(min[1] <= o.max[1]) & static_cast<int>(o.min[1] <= max[1]) &
+                             static_cast<int>(min[2] <= o.max[2]) & static_cast<int>(o.min[2] <= max[2]));
+  }
+  Aabb toAabb() const
+  {
+    return {Vec3(min[0], min[1], min[2]), Vec3(max[0], max[1], max[2])};
+  }
+
+private:
+  /// A float a little beyond d on the side `side` (-1 or 1), without branches: d is moved
+  /// out by one float spacing (2^-23 of itself, and at least 1e-37) before it is rounded
+  /// to the nearest float, which is at most half a spacing back; beyond the floats' range,
+  /// the largest float or infinity, whichever lies on that side.
+  static float widened(double d, double side)
+  {
+    constexpr double kMax = std::numeric_limits<float>::max();
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    const double w = d + side * (std::min(std::abs(d) * 0x1p-23, kMax) + 1e-37);
+    return static_cast<float>(side < 0 ? std::clamp(w, -kInf, kMax) : std::clamp(w, -kMax, kInf));
   }
 };
 
@@ -99,19 +143,16 @@ public:
   /// Starts a step of n items; `up` picks the grid's two axes. Then setBox() for each
   /// item, then build().
   void start(std::size_t n, const Vec3& up);
-  void setBox(std::uint32_t i, const Aabb& box)
-  {
-    boxes_[i] = box;
-    extents_[i] = std::max(box.max[ax_] - box.min[ax_], box.max[ay_] - box.min[ay_]);
-  }
+  void setBox(std::uint32_t i, const Aabb& box) { boxes_[i] = Box32::around(box); }
   /// Bins the boxes.
   void build();
-  const Aabb& box(std::uint32_t i) const { return boxes_[i]; }
+  /// Item i's current box (rounded outward).
+  const Box32& box(std::uint32_t i) const { return boxes_[i]; }
   /// True when order() lists the items cell by cell, row by row.
   bool inCellOrder() const { return dense_; }
   const std::vector<std::uint32_t>& order() const { return entries_; }
   /// Notes which cells binned items could reach the given boxes (walls) from.
-  void markObstacles(const std::vector<Aabb>& obstacles);
+  void markObstacles(const std::vector<Box32>& obstacles);
   /// False when item i's box cannot overlap any of the boxes given to markObstacles().
   bool nearObstacle(std::uint32_t i) const
   {
@@ -135,11 +176,13 @@ private:
   /// A whole number of cells as an index, clamped so that far-away items cannot overflow
   /// (they then share cells, which costs time, never a pair).
   static std::int64_t index(double cells) { return static_cast<std::int64_t>(std::clamp(cells, -1e15, 1e15)); }
-  bool fits(std::uint32_t i, const Aabb& box) const;
+  bool fits(std::uint32_t i, const Box32& box) const;
+  /// Lists item i (with its current box) among the moved items instead of in its cell.
+  void moveOut(std::uint32_t i);
   /// Calls f(item) for the binned items of the cells [x0, x1] x [y0, y1] whose boxes
   /// overlap `box`.
   template <class F>
-  void scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, const Aabb& box, F&& f) const;
+  void scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, const Box32& box, F&& f) const;
   std::size_t bucketOf(std::int64_t cx, std::int64_t cy) const
   {
     // Fibonacci hashing of the two cell indices
@@ -159,7 +202,7 @@ private:
   double cell_ = 1.0;
   double inv_cell_ = 1.0;
   int shift_ = 60;
-  std::vector<Aabb> boxes_;             ///< per item: its current box
+  std::vector<Box32> boxes_;            ///< per item: its current box
   std::vector<std::int64_t> cx_;        ///< per item: its cell
   std::vector<std::int64_t> cy_;
   std::vector<std::uint32_t> slot_pos_; ///< per item: its place in `entries_`
@@ -168,10 +211,9 @@ private:
   std::vector<std::uint32_t> entries_;  ///< items in order of their buckets
   /// The binned items' boxes in the order of `entries_`; an item that moved out has an
   /// empty box here, which overlaps nothing.
-  std::vector<Aabb> sorted_boxes_;
+  std::vector<Box32> sorted_boxes_;
   std::vector<std::uint32_t> next_;
   std::vector<std::uint8_t> near_obstacle_;  ///< dense mode, per cell
-  std::vector<double> extents_;
   /// Dense mode: cells in a row-major array over the items' cells with a border of one;
   /// otherwise hashed buckets (items spread far apart).
   bool dense_ = false;
@@ -187,7 +229,7 @@ private:
 };
 
 template <class F>
-void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, const Aabb& box,
+void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, const Box32& box,
                          F&& f) const
 {
   if (dense_)
@@ -225,18 +267,19 @@ void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std:
 template <class F>
 void StepGrid::query(std::uint32_t i, F&& f) const
 {
-  const Aabb& box = boxes_[i];
+  const Box32& box = boxes_[i];
   if (!moved_list_.empty())
   {
     const auto moved = [&](std::uint32_t j) {
       if (j != i && boxes_[j].overlaps(box))
         f(j);
     };
-    if (moved_list_.size() <= kFewMoved || moved_grid_.oversized(box))
+    const Aabb wide = box.toAabb();
+    if (moved_list_.size() <= kFewMoved || moved_grid_.oversized(wide))
       for (std::uint32_t j : moved_list_)  // few, or too many cells to look up: all that moved
         moved(j);
     else
-      moved_grid_.query(box, moved);
+      moved_grid_.query(wide, moved);
   }
   const auto binned = [&](std::uint32_t j) {
     if (j != i)
@@ -248,10 +291,10 @@ void StepGrid::query(std::uint32_t i, F&& f) const
     return;
   }
   // Cells c whose reach ((c - 1/2) h, (c + 3/2) h) meets the box.
-  const std::int64_t x0 = index(std::floor(box.min[ax_] * inv_cell_ - 1.5));
-  const std::int64_t x1 = index(std::floor(box.max[ax_] * inv_cell_ + 0.5));
-  const std::int64_t y0 = index(std::floor(box.min[ay_] * inv_cell_ - 1.5));
-  const std::int64_t y1 = index(std::floor(box.max[ay_] * inv_cell_ + 0.5));
+  const std::int64_t x0 = index(std::floor(static_cast<double>(box.min[ax_]) * inv_cell_ - 1.5));
+  const std::int64_t x1 = index(std::floor(static_cast<double>(box.max[ax_]) * inv_cell_ + 0.5));
+  const std::int64_t y0 = index(std::floor(static_cast<double>(box.min[ay_]) * inv_cell_ - 1.5));
+  const std::int64_t y1 = index(std::floor(static_cast<double>(box.max[ay_]) * inv_cell_ + 0.5));
   if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) > static_cast<double>(cx_.size()) + 16)
   {
     for (std::uint32_t k = 0; k < entries_.size(); ++k)  // a huge box: every binned item
@@ -294,7 +337,7 @@ void StepGrid::forEachPair(F&& f) const
       const std::uint32_t begin = starts_[s], end = starts_[s + 1];
       for (std::uint32_t k = begin; k < end; ++k)
       {
-        const Aabb& box = sorted_boxes_[k];
+        const Box32& box = sorted_boxes_[k];
         const std::uint32_t item = entries_[k];
         for (std::uint32_t l = k + 1; l < starts_[s + 2]; ++l)  // the rest of this cell, then east
           if (sorted_boxes_[l].overlaps(box))

@@ -185,7 +185,7 @@ private:
   std::vector<Event> event_pool_;
   std::vector<std::uint32_t> free_slots_;
   StepGrid grid_;
-  std::vector<Aabb> wall_boxes_;
+  std::vector<Box32> wall_boxes_;
   std::vector<Vec3> floor_normals_;
   std::vector<Vec2> floor_uv_;  ///< curved floors: each ball's last foot point, Newton's guess
   std::vector<CollisionEvent> events_;
