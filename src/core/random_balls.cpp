@@ -32,14 +32,13 @@ constexpr double kClearance = 1e-6;
 
 std::vector<BallDef> placeRandomBalls(const Scene& scene)
 {
-  std::vector<BallDef> out;
   if (!scene.random_balls || !scene.floor || scene.random_balls->count <= 0)
-    return out;
+    return {};
   const RandomBallsDef& def = *scene.random_balls;
   const Placement placement(scene);
   const Floor& floor = *placement.floor();
 
-  // The explicit balls, placed, are obstacles too.
+  // The explicit balls, placed, are obstacles too; the balls placed here follow them.
   std::vector<BallDef> obstacles;
   double max_radius = def.radius.max;
   for (BallDef ball : scene.balls)
@@ -48,10 +47,15 @@ std::vector<BallDef> placeRandomBalls(const Scene& scene)
       obstacles.push_back(ball);
       max_radius = std::max(max_radius, ball.radius);
     }
+  const std::size_t listed = obstacles.size();
+  // Each obstacle is listed in the one cell of its centre; a new ball looks in the cells
+  // within reach of any centre that could be too close.
   UniformGrid grid;
-  grid.reset(2 * max_radius, obstacles.size() + static_cast<std::size_t>(def.count));
+  // (sized for the balls asked for up to a point: the grid grows as it fills, and a count
+  // far beyond the room is refused without its table)
+  grid.reset(2 * max_radius, obstacles.size() + std::min<std::size_t>(static_cast<std::size_t>(def.count), 1 << 16));
   for (std::size_t k = 0; k < obstacles.size(); ++k)
-    grid.insert(static_cast<std::uint32_t>(k), sweptBox(obstacles[k].position, obstacles[k].position, obstacles[k].radius));
+    grid.insert(static_cast<std::uint32_t>(k), sweptBox(obstacles[k].position, obstacles[k].position, 0));
 
   // Parameters to draw from: the whole floor, or the part under the region.
   Vec2 uv_min(0, 0), uv_max(1, 1);
@@ -79,8 +83,8 @@ std::vector<BallDef> placeRandomBalls(const Scene& scene)
   // far beyond the room (up to 10^7) takes 100 attempts a ball, minutes, to be refused.
   constexpr long kMaxMissesInARow = 100000;
   long misses = 0;
-  for (long attempt = 0; attempt < max_attempts && static_cast<int>(out.size()) < def.count && misses < kMaxMissesInARow;
-       ++attempt)
+  const auto placed = [&] { return static_cast<long>(obstacles.size() - listed); };
+  for (long attempt = 0; attempt < max_attempts && placed() < def.count && misses < kMaxMissesInARow; ++attempt)
   {
     ++misses;  // until this attempt places its ball
     BallDef ball;
@@ -113,10 +117,10 @@ std::vector<BallDef> placeRandomBalls(const Scene& scene)
     tangentBasis(n, e1, e2);
     ball.velocity = speed * (std::cos(angle) * e1 + std::sin(angle) * e2);
     obstacles.push_back(ball);
-    grid.insert(static_cast<std::uint32_t>(obstacles.size() - 1), sweptBox(ball.position, ball.position, ball.radius));
-    out.push_back(ball);
+    grid.insert(static_cast<std::uint32_t>(obstacles.size() - 1), sweptBox(ball.position, ball.position, 0));
     misses = 0;
   }
-  return out;
+  obstacles.erase(obstacles.begin(), obstacles.begin() + static_cast<std::ptrdiff_t>(listed));
+  return obstacles;
 }
 }  // namespace ball_collision_sim::core
