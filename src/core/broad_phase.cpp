@@ -162,14 +162,22 @@ void StepGrid::build()
   const auto extent = [&](const Box32& box) {
     return std::max(static_cast<double>(box.max[ax_]) - box.min[ax_], static_cast<double>(box.max[ay_]) - box.min[ay_]);
   };
-  double sum = 0;
+  double sum = 0, widest = 0;
   for (const Box32& box : boxes)
-    sum += extent(box);
+  {
+    const double e = extent(box);
+    sum += e;
+    widest = std::max(widest, e);
+  }
   const double outlier = 4 * sum / static_cast<double>(n);
-  double widest = 0;
-  for (const Box32& box : boxes)
-    if (const double e = extent(box); e <= outlier)
-      widest = std::max(widest, e);
+  const bool outliers = widest > outlier;
+  if (outliers)
+  {
+    widest = 0;
+    for (const Box32& box : boxes)
+      if (const double e = extent(box); e <= outlier)
+        widest = std::max(widest, e);
+  }
   cell_ = widest * (1 + 1e-9) + 1e-12;
   inv_cell_ = 1.0 / cell_;
 
@@ -210,9 +218,10 @@ void StepGrid::build()
     sorted_boxes_[k] = boxes[i];
     slot_pos_[i] = k;
   }
-  for (std::size_t i = 0; i < n; ++i)
-    if (extent(boxes[i]) > widest && !fits(static_cast<std::uint32_t>(i), boxes[i]))
-      moveOut(static_cast<std::uint32_t>(i));
+  if (outliers)
+    for (std::size_t i = 0; i < n; ++i)
+      if (extent(boxes[i]) > widest && !fits(static_cast<std::uint32_t>(i), boxes[i]))
+        moveOut(static_cast<std::uint32_t>(i));
 }
 
 void StepGrid::markObstacles(const std::vector<Box32>& obstacles)
