@@ -16,13 +16,6 @@ struct Aabb
 {
   Vec3 min;
   Vec3 max;
-  bool overlaps(const Aabb& o) const
-  {
-    // all six tests and one branch: whether neighbouring boxes overlap is hard to predict
-    return static_cast<bool>(static_cast<int>(min.x() <= o.max.x()) & static_cast<int>(o.min.x() <= max.x()) &
-                             static_cast<int>(min.y() <= o.max.y()) & static_cast<int>(o.min.y() <= max.y()) &
-                             static_cast<int>(min.z() <= o.max.z()) & static_cast<int>(o.min.z() <= max.z()));
-  }
 };
 
 /// An Aabb in single precision, rounded outward so that it holds the box it was made
