@@ -267,12 +267,11 @@ void StepGrid::query(std::uint32_t i, F&& f) const
       if (j != i && boxes_[j].overlaps(box))
         f(j);
     };
-    const Aabb wide = box.toAabb();
-    if (moved_list_.size() <= kFewMoved || moved_grid_.oversized(wide))
+    if (moved_list_.size() <= kFewMoved || moved_grid_.oversized(box.toAabb()))
       for (std::uint32_t j : moved_list_)  // few, or too many cells to look up: all that moved
         moved(j);
     else
-      moved_grid_.query(wide, moved);
+      moved_grid_.query(box.toAabb(), moved);
   }
   const auto binned = [&](std::uint32_t j) {
     if (j != i)
