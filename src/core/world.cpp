@@ -52,19 +52,26 @@ void sincCos(double x, double& sinc, double& c)
 
 /// A ball's straight motion inside the current step, in the step fraction x shared by all
 /// balls: centre c(x) = p0 + (x - x0) b for x in [x0, 1]. A new one starts at every event.
-struct World::Motion
+/// What detection reads of a ball's motion, in one cache line. Its velocity at x0 is
+/// kept in the ball itself while the step runs.
+struct alignas(64) World::Motion
 {
-  // what detection reads, in the first 64 bytes
   double x0 = 0.0;               ///< where this motion starts, fraction of the step
   Vec3 p0 = Vec3::Zero();        ///< centre at x0 [m]
   Vec3 b = Vec3::Zero();         ///< displacement per unit of x [m]; zero while frozen
   double radius = 0.0;           ///< the ball's [m]
+};
+static_assert(sizeof(Vec3) == 24, "a Motion fills one cache line");
+
+/// The rest of a ball's state in the step.
+struct World::MotionState
+{
   std::uint32_t epoch = 0;       ///< bumped at every event of this ball
-  std::uint32_t events = 0;      ///< events of this ball in this step
+  std::uint16_t events = 0;      ///< events of this ball in this step (at most one past the cap)
   bool frozen = false;
   std::int32_t blocked = -1;     ///< its BlockedSet this step, if any
-  Vec3 v0 = Vec3::Zero();        ///< velocity at x0 [m/s]
 };
+static_assert(kMaxEventsPerBallStep < 0xffff, "MotionState::events holds one past the cap");
 
 /// Unit directions a ball may not move along for the rest of the step: toward a wall it
 /// leans on, or toward a ball that cannot give way. A ball in a corner or in a pile at
@@ -110,13 +117,15 @@ struct World::BlockedSet
   }
 };
 
-Vec3 World::allowed(const Motion& m, const Vec3& w) const
+Vec3 World::allowed(std::size_t i, const Vec3& w) const
 {
-  return m.blocked < 0 ? w : blocked_sets_[static_cast<std::size_t>(m.blocked)].allowed(w);
+  const std::int32_t blocked = states_[i].blocked;
+  return blocked < 0 ? w : blocked_sets_[static_cast<std::size_t>(blocked)].allowed(w);
 }
 
-void World::addBlocked(Motion& m, const Vec3& direction)
+void World::addBlocked(std::size_t i, const Vec3& direction)
 {
+  MotionState& m = states_[i];
   if (m.blocked < 0)
   {
     m.blocked = static_cast<std::int32_t>(blocked_sets_.size());
@@ -256,22 +265,42 @@ void World::step()
   ++stats_.steps;
 }
 
+void World::prefetchBall(std::size_t k, bool write) const
+{
+  if (k >= order_.size())
+    return;
+  const char* at = reinterpret_cast<const char*>(&balls_[order_[k]]);
+  if (write)
+  {
+    __builtin_prefetch(at, 1);
+    __builtin_prefetch(at + 64, 1);
+    __builtin_prefetch(at + sizeof(Ball) - 1, 1);
+  }
+  else
+  {
+    __builtin_prefetch(at);
+    __builtin_prefetch(at + 64);
+  }
+}
+
 void World::predictMotions()
 {
   motions_.resize(balls_.size());
+  states_.resize(balls_.size());
   floor_uv_.resize(floor_ && !plane_ ? balls_.size() : 0);
   grid_.start(balls_.size(), up_);
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
+    prefetchBall(i + kPrefetchAhead, false);
     const Ball& ball = balls_[order_[i]];
     Motion& m = motions_[i];
     m = Motion{};
+    states_[i] = MotionState{};
     m.radius = ball.radius;
     m.p0 = ball.position;
-    m.v0 = ball.velocity;
     if (!floor_uv_.empty())
       floor_uv_[i] = ball.uv;
-    const Vec3 end = predictedEnd(i, m.p0, m.v0, dt_);
+    const Vec3 end = predictedEnd(i, m.p0, ball.velocity, dt_);
     m.b = end - m.p0;
     if (!plane_ && floor_)
       keepEnergy(i);  // on a plane the first chord ends where the exact path does
@@ -322,7 +351,7 @@ void World::resolveEventsInTimeOrder()
     heap_.pop_back();
     const Event event = event_pool_[slot];
     free_slots_.push_back(slot);
-    if (motions_[event.i].epoch != event.epoch_i || (!event.wall && motions_[event.j].epoch != event.epoch_j))
+    if (states_[event.i].epoch != event.epoch_i || (!event.wall && states_[event.j].epoch != event.epoch_j))
     {
       ++stats_.stale_events;  // a ball involved has had an event since this was found
       continue;
@@ -343,6 +372,7 @@ void World::commitToFloor()
     floor_normals_.resize(balls_.size());
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
+    prefetchBall(i + kPrefetchAhead, true);
     Motion& m = motions_[i];
     Ball& ball = balls_[order_[i]];
     Vec3 p = positionAt(i, 1.0);
@@ -365,7 +395,7 @@ void World::commitToFloor()
     }
     const Vec3 moved = p - ball.position;
     ball.position = p;
-    ball.velocity = m.frozen ? Vec3::Zero() : onFloorVelocity(m, 1.0, p, normal);
+    ball.velocity = states_[i].frozen ? Vec3::Zero() : onFloorVelocity(i, 1.0, p, normal);
     if (!settle)
       roll(i, normal, moved);
     else
@@ -375,13 +405,13 @@ void World::commitToFloor()
     return;
   // Resting contacts keep no closing speed into the step that follows.
   for (std::size_t i = 0; i < balls_.size(); ++i)
-    balls_[order_[i]].velocity = allowed(motions_[i], balls_[order_[i]].velocity);
+    balls_[order_[i]].velocity = allowed(i, balls_[order_[i]].velocity);
   for (const RestingContact& contact : resting_)
   {
     Ball& a = balls_[order_[contact.ball]];
     Ball& b = balls_[order_[contact.other]];
-    const double inv_a = motions_[contact.ball].frozen ? 0.0 : 1.0 / a.mass;
-    const double inv_b = motions_[contact.other].frozen ? 0.0 : 1.0 / b.mass;
+    const double inv_a = states_[contact.ball].frozen ? 0.0 : 1.0 / a.mass;
+    const double inv_b = states_[contact.other].frozen ? 0.0 : 1.0 / b.mass;
     const double closing = a.velocity.dot(contact.dir_ball) - b.velocity.dot(contact.dir_other);
     if (closing > 0)
     {
@@ -452,7 +482,7 @@ void World::detect(std::size_t i)
 void World::detectWalls(std::size_t i)
 {
   const Motion& m = motions_[i];
-  if (m.frozen || !grid_.nearObstacle(static_cast<std::uint32_t>(i)))
+  if (states_[i].frozen || !grid_.nearObstacle(static_cast<std::uint32_t>(i)))
     return;
   const Box32& box = grid_.box(static_cast<std::uint32_t>(i));
   for (std::size_t w = 0; w < wall_boxes_.size(); ++w)
@@ -462,7 +492,7 @@ void World::detectWalls(std::size_t i)
     const Wall& wall = walls_[w];
     const auto hit = sweepWall(wall, m.p0, m.b, m.radius, 1 - m.x0);
     if (hit)
-      pushEvent(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0,
+      pushEvent(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), states_[i].epoch, 0,
                       true, hit->feature, hit->normal});
   }
 }
@@ -478,7 +508,7 @@ void World::detectBall(std::size_t i, std::size_t j)
   const Vec3 d = (ma.p0 + (xs - ma.x0) * ma.b) - (mb.p0 + (xs - mb.x0) * mb.b);
   const auto t = sphereSweep(d, ma.b - mb.b, ma.radius + mb.radius, 1 - xs);
   if (t)
-    pushEvent(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), ma.epoch, mb.epoch,
+    pushEvent(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), states_[a].epoch, states_[b].epoch,
                     false, WallFeature::kFace, Vec3::Zero()});
 }
 
@@ -499,9 +529,11 @@ Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
   return floor_->project(position, floor_uv_[i]).normal;
 }
 
-Vec3 World::onFloorVelocity(const Motion& m, double x, const Vec3& position, const Vec3& normal) const
+Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
-  Vec3 v = m.v0 + ((x - m.x0) * dt_) * gravity_;
+  const Motion& m = motions_[i];
+  const Vec3& v0 = startVelocity(i);
+  Vec3 v = v0 + ((x - m.x0) * dt_) * gravity_;
   if (floor_)
     v -= v.dot(normal) * normal;
   if (straight_)
@@ -511,7 +543,7 @@ Vec3 World::onFloorVelocity(const Motion& m, double x, const Vec3& position, con
   // the velocity the force gave by then does not go with the height the chord reached.
   // Keep the frictionless ball's |v|^2 = |v0|^2 + 2 <g, p - p0> (the course code's
   // correction on its curved floor).
-  const double target = m.v0.squaredNorm() + 2 * gravity_.dot(position - m.p0);
+  const double target = v0.squaredNorm() + 2 * gravity_.dot(position - m.p0);
   const double norm = v.norm();
   if (target <= 0 || norm == 0)
     return Vec3::Zero();
@@ -529,17 +561,18 @@ double World::restingSpeed(const Vec3& floor_normal) const
 void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity)
 {
   Motion& m = motions_[i];
+  Vec3& v0 = startVelocity(i);
   m.x0 = x;
   m.p0 = position;
-  if (m.frozen)
+  if (states_[i].frozen)
   {
-    m.v0 = m.b = Vec3::Zero();
+    v0 = m.b = Vec3::Zero();
     return;
   }
-  m.v0 = allowed(m, velocity);
+  v0 = allowed(i, velocity);
   const double rest = 1 - x;
-  m.b = rest > 0 ? Vec3((predictedEnd(i, position, m.v0, rest * dt_) - position) / rest) : Vec3(dt_ * m.v0);
-  m.b = allowed(m, m.b);
+  m.b = rest > 0 ? Vec3((predictedEnd(i, position, v0, rest * dt_) - position) / rest) : Vec3(dt_ * v0);
+  m.b = allowed(i, m.b);
   endOnFloor(i);
   keepEnergy(i);
 }
@@ -552,12 +585,12 @@ void World::endOnFloor(std::size_t i)
   // them again, in turn, until both hold.
   Motion& m = motions_[i];
   const double rest = 1 - m.x0;
-  if (plane_ || !floor_ || m.frozen || !(rest > 0))
+  if (plane_ || !floor_ || states_[i].frozen || !(rest > 0))
     return;
   for (int pass = 0; pass < 32; ++pass)
   {
     const Vec3 on = (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest;
-    const Vec3 free = allowed(m, on);
+    const Vec3 free = allowed(i, on);
     const bool done = (free - on).squaredNorm() <= 1e-30 * on.squaredNorm();
     m.b = done ? on : free;
     if (done)
@@ -578,16 +611,17 @@ void World::keepEnergy(std::size_t i)
 {
   Motion& m = motions_[i];
   const double rest = 1 - m.x0;
-  if (straight_ || m.frozen || !(rest > 0))
+  if (straight_ || states_[i].frozen || !(rest > 0))
     return;
+  const Vec3& v0 = startVelocity(i);
   // |v|^2 at the end of the step with the displacement b per unit of x, put on the floor
   const auto speedSquaredWith = [&](const Vec3& b) {
-    return m.v0.squaredNorm() + 2 * gravity_.dot(onFloor(i, m.p0 + rest * b) - m.p0);
+    return v0.squaredNorm() + 2 * gravity_.dot(onFloor(i, m.p0 + rest * b) - m.p0);
   };
   // ... with the motion cut to the fraction s of its chord
   const auto speedSquared = [&](double s) { return speedSquaredWith(s * m.b); };
   // (on a curved floor the chord already ends on it, see endOnFloor: no projection needed)
-  const double full = plane_ || !floor_ ? speedSquared(1.0) : m.v0.squaredNorm() + 2 * rest * gravity_.dot(m.b);
+  const double full = plane_ || !floor_ ? speedSquared(1.0) : v0.squaredNorm() + 2 * rest * gravity_.dot(m.b);
   if (full >= 0)
     return;
   // The chord ends higher than the ball's energy reaches (a turning point on a curved
@@ -615,7 +649,7 @@ void World::keepEnergy(std::size_t i)
     return;
   if (lo > 0)
   {
-    m.b = allowed(m, (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest);
+    m.b = allowed(i, (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest);
     return;
   }
   // A motion that starts at an impact inside the step starts on the chord, below or
@@ -629,7 +663,7 @@ void World::keepEnergy(std::size_t i)
   // (a short way only: the chord's sag is small next to the ball; else it stays put)
   for (double reach = std::max(-start / slope, 1e-12 * m.radius); reach < 0.5 * m.radius; reach *= 2)
   {
-    const Vec3 b = allowed(m, (onFloor(i, foot + (reach / slope) * downhill) - m.p0) / rest);
+    const Vec3 b = allowed(i, (onFloor(i, foot + (reach / slope) * downhill) - m.p0) / rest);
     if (speedSquaredWith(b) >= 0)
     {
       m.b = b;
@@ -640,13 +674,13 @@ void World::keepEnergy(std::size_t i)
 
 void World::countEvent(std::size_t i)
 {
-  Motion& m = motions_[i];
+  MotionState& m = states_[i];
   ++m.epoch;  // what was predicted for this ball before is stale now
   if (++m.events > kMaxEventsPerBallStep && !m.frozen)
   {
     m.frozen = true;
-    m.v0 = Vec3::Zero();
-    m.b = Vec3::Zero();
+    startVelocity(i) = Vec3::Zero();
+    motions_[i].b = Vec3::Zero();
     ++stats_.frozen_balls;
   }
   // its new motion may reach beyond where the grid has it
@@ -680,7 +714,7 @@ void World::resolveBallWall(const Event& event)
   const Ball& ball = balls_[order_[i]];
   const Vec3 p = positionAt(i, event.x);
   const Vec3 floor_normal = floorNormalAt(i, p);
-  Vec3 v = onFloorVelocity(motions_[i], event.x, p, floor_normal);
+  Vec3 v = onFloorVelocity(i, event.x, p, floor_normal);
 
   const Vec3 n = -event.normal;  // from the ball toward the wall
   Vec3 dir = floor_ ? tangentPart(n, floor_normal) : n;
@@ -689,7 +723,7 @@ void World::resolveBallWall(const Event& event)
   dir.normalize();
   const double closing = v.dot(dir);
   const bool resting = closing <= restingSpeed(floor_normal);
-  const double inv_mass = motions_[i].frozen ? 0.0 : 1.0 / ball.mass;
+  const double inv_mass = states_[i].frozen ? 0.0 : 1.0 / ball.mass;
   const double impulse =
       collisionImpulse(std::max(closing, 0.0), inv_mass, dir, 0.0, dir, resting ? 0.0 : wall.restitution);
   v -= (impulse * inv_mass) * dir;
@@ -698,9 +732,9 @@ void World::resolveBallWall(const Event& event)
   {
     // leaning on the wall until the step ends; where the floor is not square to the wall,
     // also no motion into the wall itself (else it comes back at once, again and again)
-    addBlocked(motions_[i], dir);
+    addBlocked(i, dir);
     if (dir.dot(n) < 1 - 1e-12)
-      addBlocked(motions_[i], n);
+      addBlocked(i, n);
   }
   startMotion(i, event.x, p, v);
   recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
@@ -718,11 +752,11 @@ void World::resolveBallBall(const Event& event)
   const Vec3 pb = positionAt(j, event.x);
   const Vec3 na = floorNormalAt(i, pa);
   const Vec3 nb = floorNormalAt(j, pb);
-  Vec3 va = onFloorVelocity(motions_[i], event.x, pa, na);
-  Vec3 vb = onFloorVelocity(motions_[j], event.x, pb, nb);
-  if (motions_[i].frozen)
+  Vec3 va = onFloorVelocity(i, event.x, pa, na);
+  Vec3 vb = onFloorVelocity(j, event.x, pb, nb);
+  if (states_[i].frozen)
     va = Vec3::Zero();
-  if (motions_[j].frozen)
+  if (states_[j].frozen)
     vb = Vec3::Zero();
 
   Vec3 n = pb - pa;
@@ -734,10 +768,10 @@ void World::resolveBallBall(const Event& event)
   // part toward what it leans on (that part of the impulse goes into the wall).
   const Vec3 along_a = floor_ ? tangentPart(n, na) : n;
   const Vec3 along_b = floor_ ? tangentPart(n, nb) : n;
-  const Vec3 ta = -allowed(ma, -along_a);
-  const Vec3 tb = allowed(mb, along_b);
-  const double inv_a = ma.frozen ? 0.0 : 1.0 / a.mass;
-  const double inv_b = mb.frozen ? 0.0 : 1.0 / b.mass;
+  const Vec3 ta = -allowed(i, -along_a);
+  const Vec3 tb = allowed(j, along_b);
+  const double inv_a = states_[i].frozen ? 0.0 : 1.0 / a.mass;
+  const double inv_b = states_[j].frozen ? 0.0 : 1.0 / b.mass;
   const double closing = va.dot(ta) - vb.dot(tb);
   const bool resting = closing <= std::max(restingSpeed(na), restingSpeed(nb));
   const double impulse =
@@ -757,9 +791,9 @@ void World::resolveBallBall(const Event& event)
     const bool a_fixed = both_still || inv_a * ta.squaredNorm() < 1e-12 * inv_b * tb.squaredNorm();
     const bool b_fixed = both_still || inv_b * tb.squaredNorm() < 1e-12 * inv_a * ta.squaredNorm();
     if (a_fixed && along_b.squaredNorm() > 0)
-      addBlocked(mb, -along_b.normalized());
+      addBlocked(j, -along_b.normalized());
     if (b_fixed && along_a.squaredNorm() > 0)
-      addBlocked(ma, along_a.normalized());
+      addBlocked(i, along_a.normalized());
   }
   startMotion(i, event.x, pa, va);
   startMotion(j, event.x, pb, vb);

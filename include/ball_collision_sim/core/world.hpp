@@ -94,6 +94,7 @@ public:
 
 private:
   struct Motion;
+  struct MotionState;
   struct BlockedSet;
   struct Event;
   /// The queue holds the time of each pending event and its place in `event_pool_`.
@@ -123,6 +124,10 @@ private:
 
   // The stages of a step, in order.
   void predictMotions();
+  /// Asks for the k-th visited ball's record ahead of its use: the visiting order is
+  /// known, but it reaches `balls_` out of memory order.
+  void prefetchBall(std::size_t k, bool write) const;
+  static constexpr std::size_t kPrefetchAhead = 8;
   void buildBroadPhase();
   void findFirstImpacts();
   void resolveEventsInTimeOrder();
@@ -144,8 +149,11 @@ private:
                    double impulse, double closing, bool resting, const Event& event);
   Vec3 positionAt(std::size_t i, double x) const;
   /// `w` less its parts along the directions the ball may not move this step.
-  Vec3 allowed(const Motion& m, const Vec3& w) const;
-  void addBlocked(Motion& m, const Vec3& direction);
+  Vec3 allowed(std::size_t i, const Vec3& w) const;
+  void addBlocked(std::size_t i, const Vec3& direction);
+  /// While the step runs, a ball's velocity is the one at the start of its motion.
+  Vec3& startVelocity(std::size_t i) { return balls_[order_[i]].velocity; }
+  const Vec3& startVelocity(std::size_t i) const { return balls_[order_[i]].velocity; }
   Vec3 floorNormalAt(std::size_t i, const Vec3& position) const;
   /// Where the ball i centred at q is put back on the floor (q itself without a floor).
   Vec3 onFloor(std::size_t i, const Vec3& q) const;
@@ -153,7 +161,7 @@ private:
   void endOnFloor(std::size_t i);
   /// Shortens ball i's motion where its end would lie higher than its energy reaches.
   void keepEnergy(std::size_t i);
-  Vec3 onFloorVelocity(const Motion& m, double x, const Vec3& position, const Vec3& normal) const;
+  Vec3 onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const;
   double restingSpeed(const Vec3& floor_normal) const;
 
   Scene scene_;
@@ -181,6 +189,7 @@ private:
   std::vector<std::uint32_t> next_order_;
   // per-step work space, kept between steps to avoid allocation
   std::vector<Motion> motions_;
+  std::vector<MotionState> states_;
   std::vector<QueuedEvent> heap_;
   std::vector<Event> event_pool_;
   std::vector<std::uint32_t> free_slots_;
