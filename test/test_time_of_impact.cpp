@@ -3,9 +3,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
 
 using namespace ball_collision_sim::core;
 
@@ -189,4 +195,115 @@ TEST(Box32, HoldsTheBoxItIsRoundedFromAndIsNoMoreThanTwoFloatSpacingsWider)
   EXPECT_TRUE(left.overlaps(Box32::around(Aabb{Vec3(1, 0.5, 0.5), Vec3(2, 2, 2)})));
   EXPECT_FALSE(left.overlaps(Box32::around(Aabb{Vec3(1 + 1e-6, 0, 0), Vec3(2, 1, 1)})));
   EXPECT_FALSE(left.overlaps(Box32::around(Aabb{Vec3(0, 0, 1 + 1e-6), Vec3(1, 1, 2)})));
+}
+
+namespace
+{
+using Pairs = std::set<std::pair<std::uint32_t, std::uint32_t>>;
+
+/// Every pair the grid reports, and every pair of overlapping boxes by brute force, each
+/// as (lower, higher); and each item's query against brute force.
+void expectGridFindsExactlyTheOverlaps(const StepGrid& grid, std::size_t n)
+{
+  Pairs expected;
+  for (std::uint32_t i = 0; i < n; ++i)
+    for (std::uint32_t j = i + 1; j < n; ++j)
+      if (grid.box(i).overlaps(grid.box(j)))
+        expected.emplace(i, j);
+  Pairs found;
+  grid.forEachPair([&](std::uint32_t i, std::uint32_t j) {
+    ASSERT_NE(i, j);
+    found.emplace(std::min(i, j), std::max(i, j));
+  });
+  // (a reported pair may be one whose boxes do not overlap: a candidate, never a miss)
+  for (const auto& pair : expected)
+    ASSERT_TRUE(found.count(pair)) << "pair " << pair.first << ", " << pair.second << " missed";
+  for (std::uint32_t i = 0; i < n; ++i)
+  {
+    std::set<std::uint32_t> near;
+    grid.query(i, [&](std::uint32_t j) {
+      ASSERT_NE(i, j);
+      near.insert(j);
+    });
+    for (std::uint32_t j = 0; j < n; ++j)
+      if (j != i && grid.box(i).overlaps(grid.box(j)))
+      {
+        ASSERT_TRUE(near.count(j)) << "query of " << i << " missed " << j;
+      }
+  }
+}
+
+Aabb randomBox(std::mt19937_64& rng, double spread, double size)
+{
+  std::uniform_real_distribution<double> unit(0, 1);
+  const Vec3 c(spread * unit(rng), spread * unit(rng), 0.1 * unit(rng));
+  const Vec3 h(size * unit(rng), size * unit(rng), 0.05);
+  return {c - h, c + h};
+}
+}  // namespace
+
+TEST(StepGrid, FindsEveryOverlapAsBoxesAreBinnedThenMovedDuringTheStep)
+{
+  // Dense cells (balls packed on a floor) and hashed buckets (balls spread thin), each
+  // with a few boxes far wider than the rest, then boxes replaced one by one as events
+  // change motions: a few (scanned in a list) and then many (in the moved grid).
+  for (const double spread : {4.0, 400.0})
+    for (int seed = 1; seed <= 3; ++seed)
+    {
+      std::mt19937_64 rng(static_cast<std::uint64_t>(seed));
+      const std::size_t n = 600;
+      StepGrid grid;
+      grid.start(n, Vec3::UnitZ());
+      for (std::uint32_t i = 0; i < n; ++i)
+        grid.setBox(i, randomBox(rng, spread, i == 5 ? spread : i % 97 == 0 ? 1.0 : 0.08));  // one huge
+      grid.build();
+      SCOPED_TRACE("spread " + std::to_string(spread) + ", seed " + std::to_string(seed));
+      expectGridFindsExactlyTheOverlaps(grid, n);
+      for (int round = 0; round < 3; ++round)
+      {
+        for (int k = 0; k < 30; ++k)
+        {
+          const auto i = static_cast<std::uint32_t>(rng() % n);
+          const Aabb now = grid.box(i).toAabb();
+          // most stay close by, some leave their cell, a few go far
+          const double jump = k % 10 == 0 ? spread : k % 3 == 0 ? 0.3 : 0.01;
+          const Vec3 shift(jump * (2 * (rng() % 2) - 1.0), jump * (2 * (rng() % 2) - 1.0), 0);
+          grid.update(i, Aabb{now.min + shift, now.max + shift});
+        }
+        expectGridFindsExactlyTheOverlaps(grid, n);
+      }
+    }
+}
+
+TEST(StepGrid, ReordersValuesIntoItsCellOrder)
+{
+  std::mt19937_64 rng(3);
+  const std::size_t n = 500;
+  StepGrid grid;
+  grid.start(n, Vec3::UnitZ());
+  for (std::uint32_t i = 0; i < n; ++i)
+    grid.setBox(i, randomBox(rng, 3.0, 0.06));
+  grid.build();
+  ASSERT_TRUE(grid.inCellOrder());
+  std::vector<std::uint32_t> values(n);
+  for (std::uint32_t i = 0; i < n; ++i)
+    values[i] = 1000 + i;
+  grid.reorder(values);
+  ASSERT_EQ(values.size(), n);
+  // a permutation of the values that lists the items row by row of cells: the cells'
+  // rows (along y) never decrease
+  std::vector<std::uint32_t> sorted = values;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::uint32_t i = 0; i < n; ++i)
+    ASSERT_EQ(sorted[i], 1000 + i);
+  std::vector<double> ys;
+  for (const std::uint32_t v : values)
+  {
+    const Box32& box = grid.box(v - 1000);
+    ys.push_back(0.5 * (static_cast<double>(box.min[1]) + box.max[1]));
+  }
+  int descents = 0;
+  for (std::size_t k = 1; k < n; ++k)
+    descents += ys[k] < ys[k - 1] - 0.2 ? 1 : 0;  // more than a cell back
+  EXPECT_EQ(descents, 0);
 }

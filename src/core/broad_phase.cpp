@@ -143,11 +143,9 @@ void StepGrid::build()
   const std::vector<Box32>& boxes = boxes_;
   cx_.resize(n);
   cy_.resize(n);
-  slot_pos_.resize(n);
   moved_.assign(n, 0);
   moved_list_.clear();
   entries_.resize(n);
-  sorted_boxes_.resize(n);
   dense_ = false;
   if (n == 0)
   {
@@ -205,23 +203,26 @@ void StepGrid::build()
       slots *= 2;
       --shift_;
     }
+  // Counting sort by slot: starts_[b] counts slot b, then (summed) is where slot b ends,
+  // then (each item put in front of its slot's, last item first) where it starts.
   starts_.assign(slots + 1, 0);
   for (std::size_t i = 0; i < n; ++i)
-    ++starts_[slotOf(cx_[i], cy_[i]) + 1];
-  for (std::size_t b = 0; b < slots; ++b)  // counting sort by slot
+    ++starts_[slotOf(cx_[i], cy_[i])];
+  for (std::size_t b = 0; b < slots; ++b)
     starts_[b + 1] += starts_[b];
-  next_.assign(starts_.begin(), starts_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const std::uint32_t k = next_[slotOf(cx_[i], cy_[i])]++;
-    entries_[k] = static_cast<std::uint32_t>(i);
-    sorted_boxes_[k] = boxes[i];
-    slot_pos_[i] = k;
-  }
+  for (std::size_t i = n; i-- > 0;)
+    entries_[--starts_[slotOf(cx_[i], cy_[i])]] = static_cast<std::uint32_t>(i);
   if (outliers)
     for (std::size_t i = 0; i < n; ++i)
       if (extent(boxes[i]) > widest && !fits(static_cast<std::uint32_t>(i), boxes[i]))
         moveOut(static_cast<std::uint32_t>(i));
+}
+
+void StepGrid::reorder(std::vector<std::uint32_t>& values)
+{
+  for (std::uint32_t& item : entries_)
+    item = values[item];
+  values.swap(entries_);
 }
 
 void StepGrid::markObstacles(const std::vector<Box32>& obstacles)
@@ -255,10 +256,7 @@ void StepGrid::update(std::uint32_t i, const Aabb& box)
 {
   boxes_[i] = Box32::around(box);
   if (!moved_[i] && fits(i, boxes_[i]))
-  {
-    sorted_boxes_[slot_pos_[i]] = boxes_[i];
     return;
-  }
   moveOut(i);
 }
 
@@ -267,10 +265,7 @@ void StepGrid::moveOut(std::uint32_t i)
   if (!moved_[i])
   {
     moved_[i] = 1;
-    moved_list_.push_back(i);
-    // out of the cells: an empty box there overlaps nothing
-    const float inf = std::numeric_limits<float>::infinity();
-    sorted_boxes_[slot_pos_[i]] = Box32{{inf, inf, inf}, {-inf, -inf, -inf}};
+    moved_list_.push_back(i);  // (scans of the cells pass it by from now on)
     if (moved_list_.size() == kFewMoved + 1)
     {
       // too many to scan from now on: the moved grid takes over, with the boxes so far

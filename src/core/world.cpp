@@ -255,13 +255,7 @@ void World::step()
   // The next step visits the balls in this step's cell order, so that neighbours in
   // space are neighbours in memory too.
   if (grid_.inCellOrder())
-  {
-    const std::vector<std::uint32_t>& cell_order = grid_.order();
-    next_order_.resize(order_.size());
-    for (std::size_t k = 0; k < order_.size(); ++k)
-      next_order_[k] = order_[cell_order[k]];
-    order_.swap(next_order_);
-  }
+    grid_.reorder(order_);
   ++stats_.steps;
 }
 

@@ -128,8 +128,8 @@ void UniformGrid::query(const Aabb& box, F&& f) const
 /// strictly within half a cell of its own cell, and two overlapping boxes sit in the same
 /// or neighbouring cells. An item whose box leaves that reach during the step (after a
 /// bounce), or that was too large to bin, is listed again in a UniformGrid of every cell
-/// its box touches. The grid keeps each item's current box, and a copy in cell order so
-/// that a scan of neighbouring cells reads memory in sequence.
+/// its box touches. The items come in the last step's cell order, so the cell order read
+/// by a scan of neighbouring cells is nearly the items' own.
 class StepGrid
 {
 public:
@@ -141,9 +141,11 @@ public:
   void build();
   /// Item i's current box (rounded outward).
   const Box32& box(std::uint32_t i) const { return boxes_[i]; }
-  /// True when order() lists the items cell by cell, row by row.
+  /// True when the grid lists the items cell by cell, row by row.
   bool inCellOrder() const { return dense_; }
-  const std::vector<std::uint32_t>& order() const { return entries_; }
+  /// Puts `values` (one per item) in the grid's order of the items, in the grid's own
+  /// storage for that order: the grid needs build() again after this.
+  void reorder(std::vector<std::uint32_t>& values);
   /// Notes which cells binned items could reach the given boxes (walls) from.
   void markObstacles(const std::vector<Box32>& obstacles);
   /// False when item i's box cannot overlap any of the boxes given to markObstacles().
@@ -198,14 +200,9 @@ private:
   std::vector<Box32> boxes_;            ///< per item: its current box
   std::vector<std::int64_t> cx_;        ///< per item: its cell
   std::vector<std::int64_t> cy_;
-  std::vector<std::uint32_t> slot_pos_; ///< per item: its place in `entries_`
   std::vector<std::uint8_t> moved_;     ///< per item: listed in `moved_grid_` instead
   std::vector<std::uint32_t> starts_;   ///< bucket b holds entries_[starts_[b] .. starts_[b + 1])
   std::vector<std::uint32_t> entries_;  ///< items in order of their buckets
-  /// The binned items' boxes in the order of `entries_`; an item that moved out has an
-  /// empty box here, which overlaps nothing.
-  std::vector<Box32> sorted_boxes_;
-  std::vector<std::uint32_t> next_;
   std::vector<std::uint8_t> near_obstacle_;  ///< dense mode, per cell
   /// Dense mode: cells in a row-major array over the items' cells with a border of one;
   /// otherwise hashed buckets (items spread far apart).
@@ -239,8 +236,8 @@ void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std:
       const std::size_t first = slotOf(x0, iy);
       const std::size_t last = first + static_cast<std::size_t>(x1 - x0) + 1;
       for (std::uint32_t k = starts_[first]; k < starts_[last]; ++k)
-        if (sorted_boxes_[k].overlaps(box))
-          f(entries_[k]);
+        if (const std::uint32_t j = entries_[k]; boxes_[j].overlaps(box) && !moved_[j])
+          f(j);
     }
     return;
   }
@@ -251,7 +248,7 @@ void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std:
       for (std::uint32_t k = starts_[b]; k < starts_[b + 1]; ++k)
       {
         const std::uint32_t j = entries_[k];
-        if (cx_[j] == ix && cy_[j] == iy && sorted_boxes_[k].overlaps(box))
+        if (cx_[j] == ix && cy_[j] == iy && boxes_[j].overlaps(box) && !moved_[j])
           f(j);
       }
     }
@@ -289,9 +286,9 @@ void StepGrid::query(std::uint32_t i, F&& f) const
   const std::int64_t y1 = index(std::floor(static_cast<double>(box.max[ay_]) * inv_cell_ + 0.5));
   if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) > static_cast<double>(cx_.size()) + 16)
   {
-    for (std::uint32_t k = 0; k < entries_.size(); ++k)  // a huge box: every binned item
-      if (sorted_boxes_[k].overlaps(box))
-        binned(entries_[k]);
+    for (const std::uint32_t j : entries_)  // a huge box: every binned item
+      if (boxes_[j].overlaps(box) && !moved_[j])
+        binned(j);
     return;
   }
   scanCells(x0, x1, y0, y1, box, binned);
@@ -329,14 +326,18 @@ void StepGrid::forEachPair(F&& f) const
       const std::uint32_t begin = starts_[s], end = starts_[s + 1];
       for (std::uint32_t k = begin; k < end; ++k)
       {
-        const Box32& box = sorted_boxes_[k];
         const std::uint32_t item = entries_[k];
+        if (moved_[item])
+          continue;
+        const Box32& box = boxes_[item];
+        const auto pair = [&](std::uint32_t l) {
+          if (const std::uint32_t j = entries_[l]; boxes_[j].overlaps(box) && !moved_[j])
+            f(item, j);
+        };
         for (std::uint32_t l = k + 1; l < starts_[s + 2]; ++l)  // the rest of this cell, then east
-          if (sorted_boxes_[l].overlaps(box))
-            f(item, entries_[l]);
+          pair(l);
         for (std::uint32_t l = starts_[s + w - 1]; l < starts_[s + w + 2]; ++l)  // the row above
-          if (sorted_boxes_[l].overlaps(box))
-            f(item, entries_[l]);
+          pair(l);
       }
     }
   }

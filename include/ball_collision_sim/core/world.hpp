@@ -186,7 +186,6 @@ private:
   /// The step visits ball balls_[order_[k]] as its k-th: the balls in the last step's
   /// cell order (the step's work space is indexed by k). Reset by any edit.
   std::vector<std::uint32_t> order_;
-  std::vector<std::uint32_t> next_order_;
   // per-step work space, kept between steps to avoid allocation
   std::vector<Motion> motions_;
   std::vector<MotionState> states_;
