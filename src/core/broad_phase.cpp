@@ -182,12 +182,14 @@ void StepGrid::build()
   std::int64_t max_x = 0, max_y = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
-    cx_[i] = index(std::floor(0.5 * (static_cast<double>(boxes[i].min[ax_]) + boxes[i].max[ax_]) * inv_cell_));
-    cy_[i] = index(std::floor(0.5 * (static_cast<double>(boxes[i].min[ay_]) + boxes[i].max[ay_]) * inv_cell_));
-    min_x_ = i == 0 ? cx_[i] : std::min(min_x_, cx_[i]);
-    min_y_ = i == 0 ? cy_[i] : std::min(min_y_, cy_[i]);
-    max_x = i == 0 ? cx_[i] : std::max(max_x, cx_[i]);
-    max_y = i == 0 ? cy_[i] : std::max(max_y, cy_[i]);
+    const std::int64_t x = index(std::floor(0.5 * (static_cast<double>(boxes[i].min[ax_]) + boxes[i].max[ax_]) * inv_cell_));
+    const std::int64_t y = index(std::floor(0.5 * (static_cast<double>(boxes[i].min[ay_]) + boxes[i].max[ay_]) * inv_cell_));
+    cx_[i] = static_cast<std::int32_t>(x);
+    cy_[i] = static_cast<std::int32_t>(y);
+    min_x_ = i == 0 ? x : std::min(min_x_, x);
+    min_y_ = i == 0 ? y : std::min(min_y_, y);
+    max_x = i == 0 ? x : std::max(max_x, x);
+    max_y = i == 0 ? y : std::max(max_y, y);
   }
   // A dense array of cells when the items are not spread too thin, else hashed buckets.
   width_ = max_x - min_x_ + 3;

@@ -169,8 +169,10 @@ public:
 
 private:
   /// A whole number of cells as an index, clamped so that far-away items cannot overflow
-  /// (they then share cells, which costs time, never a pair).
-  static std::int64_t index(double cells) { return static_cast<std::int64_t>(std::clamp(cells, -1e15, 1e15)); }
+  /// the 32 bits an item's cell is kept in, nor reach them one cell on (they then share
+  /// cells, which costs time, never a pair: indices of overlapping boxes differ by at
+  /// most one, and clamping keeps that).
+  static std::int64_t index(double cells) { return static_cast<std::int64_t>(std::clamp(cells, -1e9, 1e9)); }
   bool fits(std::uint32_t i, const Box32& box) const;
   /// Lists item i (with its current box) among the moved items instead of in its cell.
   void moveOut(std::uint32_t i);
@@ -198,8 +200,8 @@ private:
   double inv_cell_ = 1.0;
   int shift_ = 60;
   std::vector<Box32> boxes_;            ///< per item: its current box
-  std::vector<std::int64_t> cx_;        ///< per item: its cell
-  std::vector<std::int64_t> cy_;
+  std::vector<std::int32_t> cx_;        ///< per item: its cell (see index())
+  std::vector<std::int32_t> cy_;
   std::vector<std::uint8_t> moved_;     ///< per item: listed in `moved_grid_` instead
   std::vector<std::uint32_t> starts_;   ///< bucket b holds entries_[starts_[b] .. starts_[b + 1])
   std::vector<std::uint32_t> entries_;  ///< items in order of their buckets

@@ -4,11 +4,12 @@
 #include "ball_collision_sim/core/types.hpp"
 
 #include <array>
+#include <cstdint>
 
 namespace ball_collision_sim::core
 {
 /// Which part of a wall a ball touches.
-enum class WallFeature
+enum class WallFeature : std::uint8_t
 {
   kFace,
   kEdge,
