@@ -52,8 +52,8 @@ void sincCos(double x, double& sinc, double& c)
 
 /// A ball's straight motion inside the current step, in the step fraction x shared by all
 /// balls: centre c(x) = p0 + (x - x0) b for x in [x0, 1]. A new one starts at every event.
-/// What detection reads of a ball's motion, in one cache line. Its velocity at x0 is
-/// kept in the ball itself while the step runs.
+/// It holds what detection reads, in one cache line; the ball's velocity at x0 is kept in
+/// the ball itself while the step runs (startVelocity()), its counters in a MotionState.
 struct alignas(64) World::Motion
 {
   double x0 = 0.0;               ///< where this motion starts, fraction of the step
@@ -61,7 +61,6 @@ struct alignas(64) World::Motion
   Vec3 b = Vec3::Zero();         ///< displacement per unit of x [m]; zero while frozen
   double radius = 0.0;           ///< the ball's [m]
 };
-static_assert(sizeof(Vec3) == 24, "a Motion fills one cache line");
 
 /// The rest of a ball's state in the step.
 struct World::MotionState
@@ -279,6 +278,7 @@ void World::prefetchBall(std::size_t k, bool write) const
 
 void World::predictMotions()
 {
+  static_assert(sizeof(Motion) == 64, "a Motion fills one cache line");
   motions_.resize(balls_.size());
   states_.resize(balls_.size());
   floor_uv_.resize(floor_ && !plane_ ? balls_.size() : 0);
