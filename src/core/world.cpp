@@ -66,11 +66,11 @@ struct alignas(64) World::Motion
 struct World::MotionState
 {
   std::uint32_t epoch = 0;       ///< bumped at every event of this ball
-  std::uint16_t events = 0;      ///< events of this ball in this step (at most one past the cap)
+  std::uint16_t events = 0;      ///< events of this ball in this step, until it is frozen
   bool frozen = false;
   std::int32_t blocked = -1;     ///< its BlockedSet this step, if any
 };
-static_assert(kMaxEventsPerBallStep < 0xffff, "MotionState::events holds one past the cap");
+static_assert(kMaxEventsPerBallStep < 0xffff, "MotionState::events counts to one past the cap");
 
 /// Unit directions a ball may not move along for the rest of the step: toward a wall it
 /// leans on, or toward a ball that cannot give way. A ball in a corner or in a pile at
@@ -670,7 +670,8 @@ void World::countEvent(std::size_t i)
 {
   MotionState& m = states_[i];
   ++m.epoch;  // what was predicted for this ball before is stale now
-  if (++m.events > kMaxEventsPerBallStep && !m.frozen)
+  // (counted up to one past the cap only: a frozen ball can still be hit by many others)
+  if (!m.frozen && ++m.events > kMaxEventsPerBallStep)
   {
     m.frozen = true;
     startVelocity(i) = Vec3::Zero();
