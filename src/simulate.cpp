@@ -209,7 +209,7 @@ int run(const SimulateOptions& options)
     const std::string error = csv.open(options.csv_path);
     if (!error.empty())
     {
-      return reportBadInput(error);
+      return reportBadInput("--csv: " + error);
     }
   }
 
@@ -223,7 +223,7 @@ int run(const SimulateOptions& options)
     }
     catch (const rosbag::BagException& e)
     {
-      return reportBadInput(options.bag_path + ": cannot write the bag (" + e.what() + ")");
+      return reportBadInput("--bag: " + options.bag_path + ": cannot write the bag (" + e.what() + ")");
     }
   }
 

@@ -43,6 +43,21 @@ TEST(ToYaml, KeepsTypesSoTheReaderJudgesThemAlike)
   XmlRpc::XmlRpcValue nan;
   nan["dt"] = std::nan("");
   EXPECT_TRUE(std::isnan(yaml::parseScene(bridge::toYaml(nan), "params").dt));
+  // rosparam (YAML 1.1) leaves `dt: 1e-3` and `-.5` as strings; YAML 1.2 and `simulate`
+  // read numbers, and so does the node. A string YAML 1.1 reads as a number was quoted
+  // in the file, and stays a string (refused where a number is expected).
+  const auto readDt = [](const std::string& text) {
+    XmlRpc::XmlRpcValue params;
+    params["dt"] = text;
+    return yaml::parseScene(bridge::toYaml(params), "params").dt;
+  };
+  EXPECT_EQ(readDt("1e-3"), 1e-3);
+  EXPECT_EQ(readDt("1.5e3"), 1.5e3);
+  EXPECT_EQ(readDt("+.5"), 0.5);
+  EXPECT_THROW(readDt("0.01"), yaml::SceneError);
+  EXPECT_THROW(readDt("2.5E-3"), yaml::SceneError);
+  EXPECT_THROW(readDt("1e"), yaml::SceneError);
+  EXPECT_THROW(readDt("1e-3 s"), yaml::SceneError);
   // unknown keys are named
   XmlRpc::XmlRpcValue unknown;
   unknown["dtt"] = 0.1;

@@ -303,7 +303,38 @@ TEST_F(SimulateCli, UnwritableBagIsABadCommandLine)
 {
   const RunResult result = run({kGoodScene, "--duration", "1", "--bag", path("no/such/dir/x.bag")});
   EXPECT_EQ(result.exit_code, 2);
-  EXPECT_TRUE(contains(result.err, "no/such/dir/x.bag")) << result.err;
+  EXPECT_TRUE(startsWith(result.err, "simulate: error: --bag: " + path("no/such/dir/x.bag"))) << result.err;
+}
+
+// The bag keeps the node's rates and switches: tf at tf_rate of simulated time (none at
+// 0), a collision message per handled collision unless publish_collisions is false.
+TEST_F(SimulateCli, BagFollowsTheScenesTfRateAndCollisionSwitch)
+{
+  const auto bagCounts = [&](const std::string& extra, std::string* summary) {
+    const std::string scene = path("scene.yaml");
+    {
+      std::ofstream out(scene);
+      out << readFile(kGoodScene) << extra;
+    }
+    const RunResult result = run({scene, "--duration", "0.5", "--bag", path("x.bag")});
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    *summary = result.out;
+    std::map<std::string, int> counts;
+    rosbag::Bag bag(path("x.bag"), rosbag::bagmode::Read);
+    for (const rosbag::MessageInstance& m : rosbag::View(bag))
+      ++counts[m.getTopic()];
+    return counts;
+  };
+  std::string summary;
+  auto counts = bagCounts("tf_rate: 20\npublish_collisions: true\n", &summary);
+  EXPECT_EQ(counts["/tf"], 11);  // steps 0, 5, ..., 50
+  const int events = static_cast<int>(field(lines(summary).back(), "events"));
+  EXPECT_GT(events, 0);
+  EXPECT_EQ(counts["/ball_sim/collisions"], events);
+  counts = bagCounts("tf_rate: 0\npublish_collisions: false\n", &summary);
+  EXPECT_EQ(counts["/tf"], 0);
+  EXPECT_EQ(counts["/ball_sim/collisions"], 0);
+  EXPECT_EQ(counts["/ball_sim/ball_states"], 51);
 }
 
 // Ctrl-C during a long run: exit 130, and a valid bag of the run so far under the final
@@ -360,7 +391,7 @@ TEST_F(SimulateCli, UnwritableCsvIsAnErrorNamingThePath)
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_EQ(result.out, "");
   EXPECT_EQ(lines(result.err).size(), 1u) << result.err;
-  EXPECT_TRUE(startsWith(result.err, "simulate: error: " + csv + ": cannot open")) << result.err;
+  EXPECT_TRUE(startsWith(result.err, "simulate: error: --csv: " + csv + ": cannot open")) << result.err;
 }
 
 struct Summary

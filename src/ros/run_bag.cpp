@@ -18,7 +18,7 @@ RunBag::RunBag(const std::string& path, const core::World& world, const std::str
     , active_path_(path + ".active")
     , frame_id_(world.scene().frame_id)
     , state_every_(stepsPer(world.scene().node.state_rate, world.dt()))
-    , tf_every_(stepsPer(world.scene().node.tf_rate, world.dt()))
+    , tf_every_(world.scene().node.tf_rate > 0 ? stepsPer(world.scene().node.tf_rate, world.dt()) : 0)
     , marker_every_(marker_rate > 0 ? stepsPer(marker_rate, world.dt()) : 0)
     , tf_max_balls_(static_cast<std::size_t>(world.scene().node.tf_max_balls))
     , coloring_(ballColoring(world))
@@ -49,7 +49,7 @@ void RunBag::write(const std::string& topic, const ros::Time& stamp, const Msg& 
 
 void RunBag::writeView(const core::World& world, const ros::Time& stamp)
 {
-  if (world.stats().steps % tf_every_ == 0 && tf_max_balls_ > 0)
+  if (tf_every_ > 0 && world.stats().steps % tf_every_ == 0 && tf_max_balls_ > 0)
     write("/tf", stamp, transformsMessage(world, frame_id_, stamp, tf_max_balls_));
   if (world.stats().steps == 0 || (marker_every_ > 0 && world.stats().steps % marker_every_ == 0))
   {
@@ -65,11 +65,12 @@ void RunBag::afterStep(const core::World& world)
 {
   const ros::Time stamp(world.time());
   write("/clock", stamp, clockMessage(stamp));
-  for (const core::CollisionEvent& event : world.lastEvents())
-  {
-    const auto msg = toMsg(event, frame_id_);
-    write("/ball_sim/collisions", msg.header.stamp, msg);
-  }
+  if (world.scene().node.publish_collisions)
+    for (const core::CollisionEvent& event : world.lastEvents())
+    {
+      const auto msg = toMsg(event, frame_id_);
+      write("/ball_sim/collisions", msg.header.stamp, msg);
+    }
   if (world.stats().steps % state_every_ == 0)
     write("/ball_sim/ball_states", stamp, statesMessage(world, frame_id_, stamp));
   if (marker_every_ > 0 && world.scene().node.collision_flashes)

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <regex>
 #include <string>
 
 namespace ball_collision_sim::bridge
@@ -25,6 +26,20 @@ std::string quoted(const std::string& text)
     out += c;
   }
   return out + "\"";
+}
+
+/// rosparam reads files as YAML 1.1 (PyYAML), where a real with an exponent needs a
+/// decimal point and a signed exponent, and a signed real a digit before its point:
+/// `1e-3`, `1.5e3` and `-.5` arrive as strings. The reader and `simulate` follow YAML
+/// 1.2, where they are numbers. So a string that is a number in YAML 1.2 but would not
+/// have been one in YAML 1.1 was a number in the file: it goes on unquoted. (A string
+/// that YAML 1.1 reads as a number was quoted in the file, and stays a string.)
+bool numberReadAsString(const std::string& text)
+{
+  static const std::regex yaml12(R"([-+]?(\.[0-9]+|[0-9]+(\.[0-9]*)?)([eE][-+]?[0-9]+)?)");
+  static const std::regex yaml11(
+      R"([-+]?[0-9][0-9_]*\.[0-9_]*([eE][-+][0-9]+)?|\.[0-9][0-9_]*([eE][-+][0-9]+)?|[-+]?(0|[1-9][0-9_]*)|[-+]?0[0-7_]+)");
+  return std::regex_match(text, yaml12) && !std::regex_match(text, yaml11);
 }
 
 std::string real(double value)
@@ -53,7 +68,10 @@ std::string toYaml(XmlRpc::XmlRpcValue& value)
     case XmlRpc::XmlRpcValue::TypeDouble:
       return real(static_cast<double>(value));
     case XmlRpc::XmlRpcValue::TypeString:
-      return quoted(static_cast<std::string>(value));
+    {
+      const std::string text = static_cast<std::string>(value);
+      return numberReadAsString(text) ? text : quoted(text);
+    }
     case XmlRpc::XmlRpcValue::TypeArray:
     {
       std::string out = "[";

@@ -11,7 +11,8 @@ namespace ball_collision_sim::bridge
 {
 /// A parameter tree as YAML text (flow style), so that the parameter server and YAML
 /// files go through one reader: the same keys, types, defaults and messages. Reals keep
-/// a decimal point so that they stay reals.
+/// a decimal point so that they stay reals; strings that rosparam's YAML 1.1 left as
+/// strings but YAML 1.2 reads as numbers (`1e-3`) go back to numbers.
 std::string toYaml(XmlRpc::XmlRpcValue& value);
 
 /// The scene under the namespace of `nh` (where the launch file's
