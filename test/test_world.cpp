@@ -314,6 +314,18 @@ TEST(Determinism, SameSceneSameBits)
   d.reset();
   World fresh(gas(11));
   EXPECT_EQ(d.stateHash(), fresh.stateHash());
+  // a copy taken between steps goes on as the original does
+  World e(gas(11));
+  for (int k = 0; k < 13; ++k)
+    e.step();
+  World f = e;
+  for (int k = 0; k < 287; ++k)
+  {
+    e.step();
+    f.step();
+  }
+  EXPECT_EQ(e.stateHash(), a.stateHash());
+  EXPECT_EQ(f.stateHash(), a.stateHash());
 }
 
 TEST(Editing, RefusedAddChangesNothing)
@@ -359,6 +371,66 @@ TEST(Editing, RefusedAddChangesNothing)
   EXPECT_FALSE(world.removeBall(42));
   EXPECT_FALSE(world.removeWall(42));
   EXPECT_EQ(world.stateHash(), before);
+}
+
+// Removing or adding a ball between steps takes effect in the very next step.
+TEST(Editing, EditsBetweenStepsTakeEffectAtOnce)
+{
+  Scene scene = flatScene(-5, 5, -5, 5);
+  scene.balls = {ball(-3, 0, 1, 0), ball(0, 0, 0, 0), ball(0, 2, 0, 0.5), ball(-2, -3, 0.5, 0)};
+  World world(scene);
+  const double dt = world.dt();
+  for (int k = 0; k < 20; ++k)
+    world.step();
+  // ball 1 was in ball 0's way (they would meet at 2.8 s); without it ball 0 runs on
+  ASSERT_TRUE(world.removeBall(1));
+  for (int k = 0; k < 300; ++k)
+    world.step();
+  EXPECT_NEAR(world.findBall(0)->position.x(), -3 + 320 * dt, 1e-9);
+  EXPECT_NEAR(world.findBall(0)->velocity.x(), 1, 1e-12);
+  EXPECT_NEAR(world.findBall(2)->position.y(), 2 + 320 * dt * 0.5, 1e-9);
+  EXPECT_NEAR(world.findBall(3)->position.x(), -2 + 320 * dt * 0.5, 1e-9);
+  // a ball put in its way 0.6 s ahead takes all of its speed when they meet
+  const AddResult added = world.addBall(ball(1.0, 0, 0, 0));
+  ASSERT_TRUE(added.ok) << added.error;
+  for (int k = 0; k < 100; ++k)
+    world.step();
+  EXPECT_NEAR(world.findBall(0)->velocity.norm(), 0, 1e-12);
+  EXPECT_NEAR(world.findBall(added.id)->velocity.x(), 1, 1e-12);
+  EXPECT_NEAR(world.findBall(added.id)->position.x(), 1.0 + 0.4, 1e-9);
+  EXPECT_NEAR(world.findBall(0)->position.x(), 1.0 - 0.2, 1e-9);
+  EXPECT_NEAR(world.energy().kinetic, 0.5 * (1 + 0.25 + 0.25), 1e-12);
+}
+
+// Rolling without slip on a flat floor: a ball that has rolled a distance s in a straight
+// line has turned by s / r about up x v and spins at |v| / r; for turns per step from a
+// small part of a radian to several radians.
+TEST(Rolling, TurnsByDistanceOverRadius)
+{
+  struct Case
+  {
+    double speed;
+    double radius;
+  };
+  const Vec3 dir = Vec3(3, 4, 0) / 5;
+  const Vec3 axis = Vec3::UnitZ().cross(dir);
+  for (const Case c : {Case{0.7, 0.2}, Case{20, 0.2}, Case{19.9, 0.2}, Case{20.1, 0.2}, Case{60, 0.05}})
+  {
+    Scene scene = flatScene(-100, 100, -100, 100);
+    scene.balls = {ball(-90 * dir.x(), -90 * dir.y(), c.speed * dir.x(), c.speed * dir.y(), c.radius)};
+    World world(scene);
+    const Vec3 start = world.balls()[0].position;
+    const int steps = 250;
+    for (int k = 0; k < steps; ++k)
+      world.step();
+    const Ball& b = world.balls()[0];
+    const double s = c.speed * steps * world.dt();
+    EXPECT_NEAR((b.position - start).norm(), s, 1e-12 * s) << c.speed;
+    const Quat expected(Eigen::AngleAxisd(s / c.radius, axis));
+    EXPECT_LT(b.orientation.angularDistance(expected), 1e-10) << c.speed;
+    EXPECT_NEAR(b.orientation.norm(), 1, 1e-15) << c.speed;
+    EXPECT_TRUE(b.angular_velocity.isApprox(axis * (c.speed / c.radius), 1e-12)) << c.speed;
+  }
 }
 
 TEST(Editing, AddedBallSitsOnTheFloorAndMoves)

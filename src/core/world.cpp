@@ -26,13 +26,15 @@ constexpr double kRestingSteps = 2.0;
 constexpr double kRestingSpeedFloor = 1e-9;
 
 
-/// sin(x) / x and cos(x): series where |x| is small, the usual way elsewhere. The series
-/// are summed in pairs of terms (Estrin's scheme) so that they take a few dependent
-/// steps rather than one per term.
-void sincCos(double x, double& sinc, double& c)
+/// sin(x) / x and cos(x) from y = x^2 (both are even in x): series where |x| is small,
+/// the usual way elsewhere; so a caller that has x^2 takes no square root. The series are
+/// summed in pairs of terms (Estrin's scheme) so that they take a few dependent steps
+/// rather than one per term.
+void sincCosOfSquare(double y, double& sinc, double& c)
 {
-  if (!(std::abs(x) <= 0.5))
+  if (!(y <= 0.25))
   {
+    const double x = std::sqrt(y);
     sinc = std::sin(x) / x;
     c = std::cos(x);
     return;
@@ -44,7 +46,7 @@ void sincCos(double x, double& sinc, double& c)
   constexpr double c1 = -1.0 / 2, c2 = 1.0 / 24, c3 = -1.0 / 720, c4 = 1.0 / 40320, c5 = -1.0 / 3628800,
                    c6 = 1.0 / 479001600, c7 = -1.0 / 87178291200, c8 = 1.0 / 20922789888000,
                    c9 = -1.0 / 6402373705728000;
-  const double x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
+  const double x2 = y, x4 = x2 * x2, x8 = x4 * x4;
   sinc = ((1 + s1 * x2) + x4 * (s2 + s3 * x2)) + x8 * (((s4 + s5 * x2) + x4 * (s6 + s7 * x2)) + x8 * s8);
   c = ((1 + c1 * x2) + x4 * (c2 + c3 * x2)) + x8 * (((c4 + c5 * x2) + x4 * (c6 + c7 * x2)) + x8 * (c8 + c9 * x2));
 }
@@ -206,12 +208,19 @@ void World::load()
     balls_.push_back(makeBall(next_ball_id_++, def));
   stats_ = WorldStats{};
   events_.clear();
-  order_.clear();
+  forgetOrder();
 }
 
 void World::reset()
 {
   load();
+}
+
+void World::forgetOrder()
+{
+  order_.clear();
+  order_age_ = 0;
+  motions_ready_ = false;
 }
 
 Ball World::makeBall(int id, const BallDef& def) const
@@ -250,11 +259,19 @@ void World::step()
   buildBroadPhase();           // the swept boxes into a uniform grid
   findFirstImpacts();          // exact times of impact of nearby pairs and walls
   resolveEventsInTimeOrder();  // earliest first; re-detect only the balls involved
-  commitToFloor();             // every ball to the step's end, back on the floor
   // The next step visits the balls in this step's cell order, so that neighbours in
-  // space are neighbours in memory too.
-  if (grid_.inCellOrder())
+  // space are neighbours in memory too; not after every step, as balls move less than a
+  // cell in one: while the order stays, the commit predicts the next step's motions, with
+  // each ball's record at hand.
+  const bool reorder = grid_.inCellOrder() && (order_age_ == 0 || order_age_ >= kReorderSteps);
+  commitToFloor(!reorder);     // every ball to the step's end, back on the floor
+  if (reorder)
+  {
     grid_.reorder(order_);
+    order_age_ = 0;
+  }
+  ++order_age_;
+  motions_ready_ = !reorder;
   ++stats_.steps;
 }
 
@@ -279,28 +296,35 @@ void World::prefetchBall(std::size_t k, bool write) const
 void World::predictMotions()
 {
   static_assert(sizeof(Motion) == 64, "a Motion fills one cache line");
+  grid_.start(balls_.size(), up_);
+  if (motions_ready_)
+    return;  // the last step's commit predicted them
   motions_.resize(balls_.size());
   states_.resize(balls_.size());
   floor_uv_.resize(floor_ && !plane_ ? balls_.size() : 0);
-  grid_.start(balls_.size(), up_);
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     prefetchBall(i + kPrefetchAhead, false);
-    const Ball& ball = balls_[order_[i]];
-    Motion& m = motions_[i];
-    m = Motion{};
-    states_[i] = MotionState{};
-    m.radius = ball.radius;
-    m.p0 = ball.position;
-    if (!floor_uv_.empty())
-      floor_uv_[i] = ball.uv;
-    const Vec3 end = predictedEnd(i, m.p0, ball.velocity, dt_);
-    m.b = end - m.p0;
-    if (!plane_ && floor_)
-      keepEnergy(i);  // on a plane the first chord ends where the exact path does
-    const Vec3 reach = m.p0 + m.b;
-    grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, reach, ball.radius));
+    predictMotion(i);
   }
+}
+
+void World::predictMotion(std::size_t i)
+{
+  const Ball& ball = balls_[order_[i]];
+  Motion& m = motions_[i];
+  m = Motion{};
+  states_[i] = MotionState{};
+  m.radius = ball.radius;
+  m.p0 = ball.position;
+  if (!floor_uv_.empty())
+    floor_uv_[i] = ball.uv;
+  const Vec3 end = predictedEnd(i, m.p0, ball.velocity, dt_);
+  m.b = end - m.p0;
+  if (!plane_ && floor_)
+    keepEnergy(i);  // on a plane the first chord ends where the exact path does
+  const Vec3 reach = m.p0 + m.b;
+  grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, reach, ball.radius));
 }
 
 Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span)
@@ -357,7 +381,7 @@ void World::resolveEventsInTimeOrder()
   }
 }
 
-void World::commitToFloor()
+void World::commitToFloor(bool predict_next)
 {
   // Without resting contacts every ball is finished in one pass; with them, velocities
   // are settled across the contacts first.
@@ -391,7 +415,11 @@ void World::commitToFloor()
     ball.position = p;
     ball.velocity = states_[i].frozen ? Vec3::Zero() : onFloorVelocity(i, 1.0, p, normal);
     if (!settle)
+    {
       roll(i, normal, moved);
+      if (predict_next)
+        predictMotion(i);
+    }
     else
       m.p0 = moved;  // the motion is done with: p0 keeps the step's move for roll()
   }
@@ -421,6 +449,8 @@ void World::commitToFloor()
     if (floor_ && !resting_.empty())
       ball.velocity -= ball.velocity.dot(normal) * normal;
     roll(i, normal, motions_[i].p0);
+    if (predict_next)
+      predictMotion(i);
   }
 }
 
@@ -431,12 +461,12 @@ void World::roll(std::size_t i, const Vec3& normal, const Vec3& d)
   Ball& ball = balls_[order_[i]];
   const double half_inv_radius = 0.5 / ball.radius;
   const Vec3 axis = normal.cross(d);
-  const double axis_norm = axis.norm();
-  if (axis_norm > 0)
+  const double axis_squared = axis.squaredNorm();
+  if (axis_squared > 0)
   {
     // the half angle x = |n x d| / 2r; sin(x) / |n x d| = sinc(x) / 2r
     double sinc_half = 1, cos_half = 1;
-    sincCos(axis_norm * half_inv_radius, sinc_half, cos_half);
+    sincCosOfSquare(axis_squared * (half_inv_radius * half_inv_radius), sinc_half, cos_half);
     const Vec3 k = (sinc_half * half_inv_radius) * axis;
     Quat q = Quat(cos_half, k.x(), k.y(), k.z()) * ball.orientation;
     // back to unit length: the product of unit quaternions is off by round-off only, so
@@ -928,7 +958,7 @@ AddResult World::addBall(const BallDef& def)
   result.ok = true;
   result.id = next_ball_id_++;
   balls_.push_back(makeBall(result.id, def));
-  order_.clear();
+  forgetOrder();
   return result;
 }
 
@@ -961,7 +991,7 @@ bool World::removeBall(int id)
   if (it == balls_.end())
     return false;
   balls_.erase(it);
-  order_.clear();
+  forgetOrder();
   return true;
 }
 

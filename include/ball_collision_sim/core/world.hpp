@@ -118,12 +118,16 @@ private:
   };
 
   void load();
+  /// After an edit: the next step visits the balls in id order and predicts afresh.
+  void forgetOrder();
   Ball makeBall(int id, const BallDef& def) const;
   /// Unit vector against gravity (the floor's normal side).
   const Vec3& up() const { return up_; }
 
   // The stages of a step, in order.
   void predictMotions();
+  /// Ball i's free motion over the next step from its record, and its swept box.
+  void predictMotion(std::size_t i);
   /// Asks for the k-th visited ball's record ahead of its use: the visiting order is
   /// known, but it reaches `balls_` out of memory order.
   void prefetchBall(std::size_t k, bool write) const;
@@ -131,7 +135,9 @@ private:
   void buildBroadPhase();
   void findFirstImpacts();
   void resolveEventsInTimeOrder();
-  void commitToFloor();
+  /// With predict_next, also predicts each ball's motion for the next step (which keeps
+  /// this step's visiting order).
+  void commitToFloor(bool predict_next);
   /// Turns ball i by its rolling over the step's move d and sets its angular velocity.
   void roll(std::size_t i, const Vec3& floor_normal, const Vec3& d);
 
@@ -186,6 +192,11 @@ private:
   /// The step visits ball balls_[order_[k]] as its k-th: the balls in the last step's
   /// cell order (the step's work space is indexed by k). Reset by any edit.
   std::vector<std::uint32_t> order_;
+  /// Steps since order_ was set; it is set anew every kReorderSteps steps.
+  std::uint32_t order_age_ = 0;
+  static constexpr std::uint32_t kReorderSteps = 8;
+  /// motions_ (and states_, the grid's boxes) hold the next step's predicted motions.
+  bool motions_ready_ = false;
   // per-step work space, kept between steps to avoid allocation
   std::vector<Motion> motions_;
   std::vector<MotionState> states_;
