@@ -134,16 +134,12 @@ void StepGrid::start(std::size_t n, const Vec3& up)
   up.cwiseAbs().maxCoeff(&drop);
   ax_ = drop == 0 ? 1 : 0;
   ay_ = drop == 2 ? 1 : 2;
-  boxes_.resize(n);
+  items_.resize(n);
 }
 
 void StepGrid::build()
 {
-  const std::size_t n = boxes_.size();
-  const std::vector<Box32>& boxes = boxes_;
-  cx_.resize(n);
-  cy_.resize(n);
-  moved_.assign(n, 0);
+  const std::size_t n = items_.size();
   moved_list_.clear();
   entries_.resize(n);
   dense_ = false;
@@ -161,9 +157,9 @@ void StepGrid::build()
     return std::max(static_cast<double>(box.max[ax_]) - box.min[ax_], static_cast<double>(box.max[ay_]) - box.min[ay_]);
   };
   double sum = 0, widest = 0;
-  for (const Box32& box : boxes)
+  for (const Item& item : items_)
   {
-    const double e = extent(box);
+    const double e = extent(item.box);
     sum += e;
     widest = std::max(widest, e);
   }
@@ -172,8 +168,8 @@ void StepGrid::build()
   if (outliers)
   {
     widest = 0;
-    for (const Box32& box : boxes)
-      if (const double e = extent(box); e <= outlier)
+    for (const Item& item : items_)
+      if (const double e = extent(item.box); e <= outlier)
         widest = std::max(widest, e);
   }
   cell_ = widest * (1 + 1e-9) + 1e-12;
@@ -182,10 +178,10 @@ void StepGrid::build()
   std::int64_t max_x = 0, max_y = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
-    const std::int64_t x = index(std::floor(0.5 * (static_cast<double>(boxes[i].min[ax_]) + boxes[i].max[ax_]) * inv_cell_));
-    const std::int64_t y = index(std::floor(0.5 * (static_cast<double>(boxes[i].min[ay_]) + boxes[i].max[ay_]) * inv_cell_));
-    cx_[i] = static_cast<std::int32_t>(x);
-    cy_[i] = static_cast<std::int32_t>(y);
+    const std::int64_t x = index(std::floor(0.5 * (static_cast<double>(items_[i].box.min[ax_]) + items_[i].box.max[ax_]) * inv_cell_));
+    const std::int64_t y = index(std::floor(0.5 * (static_cast<double>(items_[i].box.min[ay_]) + items_[i].box.max[ay_]) * inv_cell_));
+    items_[i].cx = static_cast<std::int32_t>(x);
+    items_[i].cy = static_cast<std::int32_t>(y);
     min_x_ = i == 0 ? x : std::min(min_x_, x);
     min_y_ = i == 0 ? y : std::min(min_y_, y);
     max_x = i == 0 ? x : std::max(max_x, x);
@@ -209,14 +205,14 @@ void StepGrid::build()
   // then (each item put in front of its slot's, last item first) where it starts.
   starts_.assign(slots + 1, 0);
   for (std::size_t i = 0; i < n; ++i)
-    ++starts_[slotOf(cx_[i], cy_[i])];
+    ++starts_[slotOf(items_[i].cx, items_[i].cy)];
   for (std::size_t b = 0; b < slots; ++b)
     starts_[b + 1] += starts_[b];
   for (std::size_t i = n; i-- > 0;)
-    entries_[--starts_[slotOf(cx_[i], cy_[i])]] = static_cast<std::uint32_t>(i);
+    entries_[--starts_[slotOf(items_[i].cx, items_[i].cy)]] = static_cast<std::uint32_t>(i);
   if (outliers)
     for (std::size_t i = 0; i < n; ++i)
-      if (extent(boxes[i]) > widest && !fits(static_cast<std::uint32_t>(i), boxes[i]))
+      if (extent(items_[i].box) > widest && !fits(static_cast<std::uint32_t>(i), items_[i].box))
         moveOut(static_cast<std::uint32_t>(i));
 }
 
@@ -249,35 +245,35 @@ void StepGrid::markObstacles(const std::vector<Box32>& obstacles)
 bool StepGrid::fits(std::uint32_t i, const Box32& box) const
 {
   // strictly within half a cell of the item's own cell
-  const double lo_x = (static_cast<double>(cx_[i]) - 0.5) * cell_, hi_x = (static_cast<double>(cx_[i]) + 1.5) * cell_;
-  const double lo_y = (static_cast<double>(cy_[i]) - 0.5) * cell_, hi_y = (static_cast<double>(cy_[i]) + 1.5) * cell_;
+  const double lo_x = (static_cast<double>(items_[i].cx) - 0.5) * cell_, hi_x = (static_cast<double>(items_[i].cx) + 1.5) * cell_;
+  const double lo_y = (static_cast<double>(items_[i].cy) - 0.5) * cell_, hi_y = (static_cast<double>(items_[i].cy) + 1.5) * cell_;
   return box.min[ax_] > lo_x && box.max[ax_] < hi_x && box.min[ay_] > lo_y && box.max[ay_] < hi_y;
 }
 
 void StepGrid::update(std::uint32_t i, const Aabb& box)
 {
-  boxes_[i] = Box32::around(box);
-  if (!moved_[i] && fits(i, boxes_[i]))
+  items_[i].box = Box32::around(box);
+  if (!moved(i) && fits(i, items_[i].box))
     return;
   moveOut(i);
 }
 
 void StepGrid::moveOut(std::uint32_t i)
 {
-  if (!moved_[i])
+  if (!moved(i))
   {
-    moved_[i] = 1;
+    items_[i].cx = kMoved;
     moved_list_.push_back(i);  // (scans of the cells pass it by from now on)
     if (moved_list_.size() == kFewMoved + 1)
     {
       // too many to scan from now on: the moved grid takes over, with the boxes so far
-      moved_grid_.reset(cell_, boxes_.size() / 8 + 16);
+      moved_grid_.reset(cell_, items_.size() / 8 + 16);
       for (std::uint32_t j : moved_list_)
-        moved_grid_.insert(j, boxes_[j].toAabb());
+        moved_grid_.insert(j, items_[j].box.toAabb());
       return;
     }
   }
   if (moved_list_.size() > kFewMoved)
-    moved_grid_.insert(i, boxes_[i].toAabb());
+    moved_grid_.insert(i, items_[i].box.toAabb());
 }
 }  // namespace ball_collision_sim::core

@@ -136,11 +136,11 @@ public:
   /// Starts a step of n items; `up` picks the grid's two axes. Then setBox() for each
   /// item, then build().
   void start(std::size_t n, const Vec3& up);
-  void setBox(std::uint32_t i, const Aabb& box) { boxes_[i] = Box32::around(box); }
+  void setBox(std::uint32_t i, const Aabb& box) { items_[i].box = Box32::around(box); }
   /// Bins the boxes.
   void build();
   /// Item i's current box (rounded outward).
-  const Box32& box(std::uint32_t i) const { return boxes_[i]; }
+  const Box32& box(std::uint32_t i) const { return items_[i].box; }
   /// True when the grid lists the items cell by cell, row by row.
   bool inCellOrder() const { return dense_; }
   /// Puts `values` (one per item) in the grid's order of the items, in the grid's own
@@ -151,7 +151,7 @@ public:
   /// False when item i's box cannot overlap any of the boxes given to markObstacles().
   bool nearObstacle(std::uint32_t i) const
   {
-    return moved_[i] || !dense_ || near_obstacle_[slotOf(cx_[i], cy_[i])];
+    return moved(i) || !dense_ || near_obstacle_[slotOf(items_[i].cx, items_[i].cy)];
   }
   /// Calls f(i) for every item that nearObstacle() may be true for, each once.
   template <class F>
@@ -199,10 +199,16 @@ private:
   double cell_ = 1.0;
   double inv_cell_ = 1.0;
   int shift_ = 60;
-  std::vector<Box32> boxes_;            ///< per item: its current box
-  std::vector<std::int32_t> cx_;        ///< per item: its cell (see index())
-  std::vector<std::int32_t> cy_;
-  std::vector<std::uint8_t> moved_;     ///< per item: listed in `moved_grid_` instead
+  /// What the grid keeps of an item, in half a cache line.
+  struct Item
+  {
+    Box32 box;            ///< its current box
+    std::int32_t cx = 0;  ///< its cell (see index()), or kMoved once it is listed as moved
+    std::int32_t cy = 0;
+  };
+  static constexpr std::int32_t kMoved = std::numeric_limits<std::int32_t>::min();  ///< no index() is this
+  bool moved(std::uint32_t i) const { return items_[i].cx == kMoved; }
+  std::vector<Item> items_;             ///< per item
   std::vector<std::uint32_t> starts_;   ///< bucket b holds entries_[starts_[b] .. starts_[b + 1])
   std::vector<std::uint32_t> entries_;  ///< items in order of their buckets
   std::vector<std::uint8_t> near_obstacle_;  ///< dense mode, per cell
@@ -238,7 +244,7 @@ void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std:
       const std::size_t first = slotOf(x0, iy);
       const std::size_t last = first + static_cast<std::size_t>(x1 - x0) + 1;
       for (std::uint32_t k = starts_[first]; k < starts_[last]; ++k)
-        if (const std::uint32_t j = entries_[k]; boxes_[j].overlaps(box) && !moved_[j])
+        if (const std::uint32_t j = entries_[k]; items_[j].box.overlaps(box) && !moved(j))
           f(j);
     }
     return;
@@ -250,7 +256,7 @@ void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std:
       for (std::uint32_t k = starts_[b]; k < starts_[b + 1]; ++k)
       {
         const std::uint32_t j = entries_[k];
-        if (cx_[j] == ix && cy_[j] == iy && boxes_[j].overlaps(box) && !moved_[j])
+        if (items_[j].cx == ix && items_[j].cy == iy && items_[j].box.overlaps(box) && !moved(j))
           f(j);
       }
     }
@@ -259,26 +265,26 @@ void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std:
 template <class F>
 void StepGrid::query(std::uint32_t i, F&& f) const
 {
-  const Box32& box = boxes_[i];
+  const Box32& box = items_[i].box;
   if (!moved_list_.empty())
   {
-    const auto moved = [&](std::uint32_t j) {
-      if (j != i && boxes_[j].overlaps(box))
+    const auto other_moved = [&](std::uint32_t j) {
+      if (j != i && items_[j].box.overlaps(box))
         f(j);
     };
     if (moved_list_.size() <= kFewMoved || moved_grid_.oversized(box.toAabb()))
       for (std::uint32_t j : moved_list_)  // few, or too many cells to look up: all that moved
-        moved(j);
+        other_moved(j);
     else
-      moved_grid_.query(box.toAabb(), moved);
+      moved_grid_.query(box.toAabb(), other_moved);
   }
   const auto binned = [&](std::uint32_t j) {
     if (j != i)
       f(j);
   };
-  if (!moved_[i])
+  if (!moved(i))
   {
-    scanCells(cx_[i] - 1, cx_[i] + 1, cy_[i] - 1, cy_[i] + 1, box, binned);
+    scanCells(items_[i].cx - 1, items_[i].cx + 1, items_[i].cy - 1, items_[i].cy + 1, box, binned);
     return;
   }
   // Cells c whose reach ((c - 1/2) h, (c + 3/2) h) meets the box.
@@ -286,10 +292,10 @@ void StepGrid::query(std::uint32_t i, F&& f) const
   const std::int64_t x1 = index(std::floor(static_cast<double>(box.max[ax_]) * inv_cell_ + 0.5));
   const std::int64_t y0 = index(std::floor(static_cast<double>(box.min[ay_]) * inv_cell_ - 1.5));
   const std::int64_t y1 = index(std::floor(static_cast<double>(box.max[ay_]) * inv_cell_ + 0.5));
-  if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) > static_cast<double>(cx_.size()) + 16)
+  if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) > static_cast<double>(items_.size()) + 16)
   {
     for (const std::uint32_t j : entries_)  // a huge box: every binned item
-      if (boxes_[j].overlaps(box) && !moved_[j])
+      if (items_[j].box.overlaps(box) && !moved(j))
         binned(j);
     return;
   }
@@ -301,14 +307,14 @@ void StepGrid::forEachNearObstacle(F&& f) const
 {
   if (!dense_)
   {
-    for (std::uint32_t i = 0; i < boxes_.size(); ++i)
+    for (std::uint32_t i = 0; i < items_.size(); ++i)
       f(i);
     return;
   }
   for (std::size_t s = 0; s + 1 < starts_.size(); ++s)
     if (near_obstacle_[s])
       for (std::uint32_t k = starts_[s]; k < starts_[s + 1]; ++k)
-        if (!moved_[entries_[k]])
+        if (!moved(entries_[k]))
           f(entries_[k]);
   for (std::uint32_t i : moved_list_)
     f(i);
@@ -329,11 +335,11 @@ void StepGrid::forEachPair(F&& f) const
       for (std::uint32_t k = begin; k < end; ++k)
       {
         const std::uint32_t item = entries_[k];
-        if (moved_[item])
+        if (moved(item))
           continue;
-        const Box32& box = boxes_[item];
+        const Box32& box = items_[item].box;
         const auto pair = [&](std::uint32_t l) {
-          if (const std::uint32_t j = entries_[l]; boxes_[j].overlaps(box) && !moved_[j])
+          if (const std::uint32_t j = entries_[l]; items_[j].box.overlaps(box) && !moved(j))
             f(item, j);
         };
         for (std::uint32_t l = k + 1; l < starts_[s + 2]; ++l)  // the rest of this cell, then east
@@ -348,9 +354,9 @@ void StepGrid::forEachPair(F&& f) const
     for (std::uint32_t k = 0; k < entries_.size(); ++k)
     {
       const std::uint32_t i = entries_[k];
-      if (moved_[i])
+      if (moved(i))
         continue;
-      scanCells(cx_[i] - 1, cx_[i] + 1, cy_[i] - 1, cy_[i] + 1, boxes_[i], [&](std::uint32_t j) {
+      scanCells(items_[i].cx - 1, items_[i].cx + 1, items_[i].cy - 1, items_[i].cy + 1, items_[i].box, [&](std::uint32_t j) {
         if (j > i)
           f(i, j);
       });
@@ -360,7 +366,7 @@ void StepGrid::forEachPair(F&& f) const
   // from the lower one's side.
   for (std::uint32_t i : moved_list_)
     query(i, [&](std::uint32_t j) {
-      if (!moved_[j] || j > i)
+      if (!moved(j) || j > i)
         f(i, j);
     });
 }
