@@ -153,10 +153,11 @@ TEST(SweepWall, NoTunnellingAtAnySpeed)
   EXPECT_NEAR(hit->t, (3 - 0.01) / 1e6, 1e-20);
 }
 
-TEST(Box32, HoldsTheBoxItIsRoundedFromAndIsNoMoreThanTwoFloatSpacingsWider)
+TEST(Box32, HoldsTheBoxItIsRoundedFromAndIsTheTightestFloatBoxThatDoes)
 {
   // The broad phase keeps its boxes in floats: a box that lost a sliver of the double box
-  // it came from could miss a pair.
+  // it came from could miss a pair; one wider than needed costs candidate pairs.
+  const float finf = std::numeric_limits<float>::infinity();
   const double inf = std::numeric_limits<double>::infinity(), fmax = std::numeric_limits<float>::max();
   const auto check = [&](double lo, double hi) {
     const Box32 f = Box32::around(Aabb{Vec3(lo, -hi, lo), Vec3(hi, -lo, hi)});
@@ -165,6 +166,14 @@ TEST(Box32, HoldsTheBoxItIsRoundedFromAndIsNoMoreThanTwoFloatSpacingsWider)
       const double a = k == 1 ? -hi : lo, b = k == 1 ? -lo : hi;
       ASSERT_LE(f.min[k], a) << a;
       ASSERT_GE(f.max[k], b) << b;
+      if (std::isfinite(a))
+      {
+        ASSERT_GT(std::nextafter(f.min[k], finf), a) << a;
+      }
+      if (std::isfinite(b))
+      {
+        ASSERT_LT(std::nextafter(f.max[k], -finf), b) << b;
+      }
       if (std::abs(a) <= fmax)
       {
         ASSERT_GE(f.min[k], a - 3 * std::abs(a) * 0x1p-23 - 1e-36) << a;

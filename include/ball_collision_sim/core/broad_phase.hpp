@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -29,8 +30,8 @@ struct Box32
     Box32 out;
     for (int k = 0; k < 3; ++k)
     {
-      out.min[k] = widened(box.min[k], -1.0);
-      out.max[k] = widened(box.max[k], 1.0);
+      out.min[k] = below(box.min[k]);
+      out.max[k] = above(box.max[k]);
     }
     return out;
   }
@@ -47,16 +48,25 @@ struct Box32
   }
 
 private:
-  /// A float a little beyond d on the side `side` (-1 or 1), without branches: d is moved
-  /// out by one float spacing (2^-23 of itself, and at least 1e-37) before it is rounded
-  /// to the nearest float, which is at most half a spacing back; beyond the floats' range,
-  /// the largest float or infinity, whichever lies on that side.
-  static float widened(double d, double side)
+  /// The largest float <= d (the smallest float >= d): d rounded to the nearest float,
+  /// then one float further where that went past d, without branches. Beyond the floats'
+  /// range that is the largest float or infinity, whichever lies on that side.
+  static float below(double d) { return stepped(d, false); }
+  static float above(double d) { return stepped(d, true); }
+  static float stepped(double d, bool up)
   {
-    constexpr double kMax = std::numeric_limits<float>::max();
-    constexpr double kInf = std::numeric_limits<double>::infinity();
-    const double w = d + side * (std::min(std::abs(d) * 0x1p-23, kMax) + 1e-37);
-    return static_cast<float>(side < 0 ? std::clamp(w, -kInf, kMax) : std::clamp(w, -kMax, kInf));
+    const float f = static_cast<float>(d);
+    const double back = f;
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &f, sizeof bits);
+    const auto past = static_cast<std::uint32_t>(up ? back < d : back > d);
+    // one float on is the next bit pattern where that grows the magnitude (up from a
+    // positive float, down from a negative one, -0 included), else the one before
+    const std::uint32_t away = static_cast<std::uint32_t>(up) ^ (bits >> 31);
+    bits += past * (2 * away - 1);
+    float out = 0;
+    std::memcpy(&out, &bits, sizeof out);
+    return out;
   }
 };
 
