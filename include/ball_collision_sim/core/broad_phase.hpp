@@ -140,7 +140,7 @@ void UniformGrid::query(const Aabb& box, F&& f) const
 /// strictly within half a cell of its own cell, and two overlapping boxes sit in the same
 /// or neighbouring cells. An item whose box leaves that reach during the step (after a
 /// bounce), or that was too large to bin, is listed again in a UniformGrid of every cell
-/// its box touches. The items come in the last step's cell order, so the cell order read
+/// its box touches. The items come in a recent step's cell order, so the cell order read
 /// by a scan of neighbouring cells is nearly the items' own.
 class StepGrid
 {

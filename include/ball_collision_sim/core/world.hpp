@@ -189,7 +189,7 @@ private:
   int next_wall_id_ = 0;
   WorldStats stats_;
 
-  /// The step visits ball balls_[order_[k]] as its k-th: the balls in the last step's
+  /// The step visits ball balls_[order_[k]] as its k-th: the balls in a recent step's
   /// cell order (the step's work space is indexed by k). Reset by any edit.
   std::vector<std::uint32_t> order_;
   /// Steps since order_ was set; it is set anew every kReorderSteps steps.
