@@ -48,6 +48,62 @@ inline BallDef ball(double x, double y, double vx, double vy, double radius = 0.
   return b;
 }
 
+/// The biquadratic with control z = f_i + f_j, f = (h, -h, h), over [-L/2, L/2]^2: its
+/// height is exactly the paraboloid z = 4 h (x^2 + y^2) / L^2.
+inline FloorDef bowl(double L, double h)
+{
+  FloorDef f;
+  f.type = FloorDef::Type::kBiquadratic;
+  const double c[3] = {-L / 2, 0, L / 2};
+  const double z[3] = {h, -h, h};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      f.control_points[i][j] = Vec3(c[i], c[j], z[i] + z[j]);
+  return f;
+}
+
+/// 80 balls (radius 0.05-0.08 m, 0.5-2 kg, up to 1 m/s) dropped on a 2 m square slope
+/// falling 0.4 m along +x, walled in, at restitution 0.5: they settle into a pile.
+inline Scene slopePile()
+{
+  Scene scene;
+  FloorDef f;
+  f.point = Vec3(-1, -1, 0);
+  f.u = Vec3(2, 0, -0.4);  // downhill along +x
+  f.v = Vec3(0, 2, 0);
+  scene.floor = f;
+  scene.restitution = 0.5;
+  const Vec3 up = f.u.cross(f.v).normalized();
+  scene.walls = {{f.point, f.u, 0.5 * up, {}},
+                 {f.point + f.v, f.u, 0.5 * up, {}},
+                 {f.point, f.v, 0.5 * up, {}},
+                 {f.point + f.u, f.v, 0.5 * up, {}}};
+  core::RandomBallsDef rb;
+  rb.count = 80;
+  rb.seed = 4;
+  rb.radius = {0.05, 0.08};
+  rb.mass = {0.5, 2};
+  rb.speed = {0, 1};
+  scene.random_balls = rb;
+  return scene;
+}
+
+/// Adds a ball of radius 0.01 m, on the floor, at the first free place of a 20 x 20 grid
+/// over [x0, x1] x [y0, y1] and removes it again; false when there was no room.
+inline bool addAndRemoveABall(core::World& world, double x0, double x1, double y0, double y1)
+{
+  for (int k = 0; k < 400; ++k)
+  {
+    BallDef b = ball(x0 + (x1 - x0) * (k % 20 + 0.5) / 20, y0 + (y1 - y0) * (k / 20 + 0.5) / 20, 0, 0, 0.01);
+    if (world.floor())
+      b.position = world.floor()->ballCentre(world.floor()->project(b.position, core::Vec2(0.5, 0.5)), b.radius);
+    const core::AddResult added = world.addBall(b);
+    if (added.ok)
+      return world.removeBall(added.id);
+  }
+  return false;
+}
+
 /// Deepest overlap between any two balls [m] (<= 0 when none overlap), by a sweep in x.
 inline double deepestOverlap(const std::vector<core::Ball>& balls)
 {

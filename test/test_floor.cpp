@@ -9,23 +9,6 @@
 using namespace ball_collision_sim::core;
 using namespace ball_collision_sim::test;
 
-namespace
-{
-/// The biquadratic with control z = f_i + f_j, f = (h, -h, h), over [-L/2, L/2]^2: its
-/// height is exactly the paraboloid z = 4 h (x^2 + y^2) / L^2.
-FloorDef bowl(double L, double h)
-{
-  FloorDef f;
-  f.type = FloorDef::Type::kBiquadratic;
-  const double c[3] = {-L / 2, 0, L / 2};
-  const double z[3] = {h, -h, h};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      f.control_points[i][j] = Vec3(c[i], c[j], z[i] + z[j]);
-  return f;
-}
-}  // namespace
-
 TEST(Floor, BiquadraticBowlIsAParaboloid)
 {
   const double L = 4, h = 0.5;

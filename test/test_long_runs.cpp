@@ -88,25 +88,7 @@ TEST(LongRun, MomentumWithoutWalls)
 // inside and unbroken, comes (all but) to rest, and costs about one event per contact per step.
 TEST(LongRun, PileSettlesOnASlope)
 {
-  Scene scene;
-  FloorDef f;
-  f.point = Vec3(-1, -1, 0);
-  f.u = Vec3(2, 0, -0.4);  // downhill along +x
-  f.v = Vec3(0, 2, 0);
-  scene.floor = f;
-  scene.restitution = 0.5;
-  const Vec3 up = f.u.cross(f.v).normalized();
-  scene.walls = {{f.point, f.u, 0.5 * up, {}},
-                 {f.point + f.v, f.u, 0.5 * up, {}},
-                 {f.point, f.v, 0.5 * up, {}},
-                 {f.point + f.u, f.v, 0.5 * up, {}}};
-  RandomBallsDef rb;
-  rb.count = 80;
-  rb.seed = 4;
-  rb.radius = {0.05, 0.08};
-  rb.mass = {0.5, 2};
-  rb.speed = {0, 1};
-  scene.random_balls = rb;
+  const Scene scene = slopePile();
   World world(scene);
   for (int k = 0; k < 1000; ++k)
     world.step();

@@ -184,7 +184,8 @@ TEST(Box32, HoldsTheBoxItIsRoundedFromAndIsTheTightestFloatBoxThatDoes)
       }
     }
   };
-  const double specials[] = {0.0, 1e-300, 1e-40, 1.0, 0.1, 3.4e38, 3.5e38, 1e300, inf};
+  // (fmax (1 + 2^-26) rounds to fmax, so its upper bound is the step to infinity)
+  const double specials[] = {0.0, 1e-300, 1e-40, 1.0, 0.1, 3.4e38, fmax, fmax * (1 + 0x1p-26), 3.5e38, 1e300, inf};
   for (const double a : specials)
     for (const double b : specials)
     {

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace ball_collision_sim::core
 {
@@ -150,16 +151,18 @@ struct World::Event
 
 bool World::EventLater::operator()(const QueuedEvent& qa, const QueuedEvent& qb) const
 {
-  // Earliest first; ties broken by indices so that runs are deterministic.
+  // Earliest first; ties broken by the balls' ids (their places in `balls_`), not by the
+  // order the step visits them in, so that a run is the same whatever that order was.
   if (qa.x != qb.x)
     return qa.x > qb.x;
   const Event& a = (*pool)[qa.slot];
   const Event& b = (*pool)[qb.slot];
-  if (a.i != b.i)
-    return a.i > b.i;
-  if (a.wall != b.wall)
-    return !a.wall;
-  return a.j > b.j;
+  const auto key = [&](const Event& e) {
+    const std::uint32_t i = (*order)[e.i];
+    const std::uint32_t j = e.wall ? e.j : (*order)[e.j];
+    return e.wall ? std::array<std::uint32_t, 3>{i, 0, j} : std::array<std::uint32_t, 3>{std::min(i, j), 1, std::max(i, j)};
+  };
+  return key(a) > key(b);
 }
 
 World::World(const Scene& scene) : scene_(scene), dt_(scene.dt), gravity_(scene.gravity)
@@ -297,7 +300,8 @@ void World::predictMotions()
 {
   static_assert(sizeof(Motion) == 64, "a Motion fills one cache line");
   grid_.start(balls_.size(), up_);
-  if (motions_ready_)
+  // (taken back at once, so that a step cut short by an exception leaves none ready)
+  if (std::exchange(motions_ready_, false))
     return;  // the last step's commit predicted them
   motions_.resize(balls_.size());
   states_.resize(balls_.size());
@@ -361,7 +365,7 @@ void World::findFirstImpacts()
 
 void World::resolveEventsInTimeOrder()
 {
-  const EventLater later{&event_pool_};
+  const EventLater later{&event_pool_, &order_};
   while (!heap_.empty())
   {
     {
@@ -511,7 +515,7 @@ void World::pushEvent(const Event& event)
     event_pool_[slot] = event;
   }
   heap_.push_back({event.x, slot});
-  std::push_heap(heap_.begin(), heap_.end(), EventLater{&event_pool_});
+  std::push_heap(heap_.begin(), heap_.end(), EventLater{&event_pool_, &order_});
 }
 
 void World::detect(std::size_t i)

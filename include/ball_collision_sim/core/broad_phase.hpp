@@ -212,7 +212,7 @@ private:
   double inv_cell_ = 1.0;
   int shift_ = 60;
   /// What the grid keeps of an item, in half a cache line.
-  struct Item
+  struct alignas(32) Item
   {
     Box32 box;            ///< its current box
     std::int32_t cx = 0;  ///< its cell (see index()), or kMoved once it is listed as moved

@@ -106,6 +106,7 @@ private:
   struct EventLater
   {
     const std::vector<Event>* pool;
+    const std::vector<std::uint32_t>* order;
     bool operator()(const QueuedEvent& a, const QueuedEvent& b) const;
   };
   /// Two balls resting on each other: no closing speed is left at the step's end.
