@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace ball_collision_sim::test
@@ -48,6 +49,20 @@ inline BallDef ball(double x, double y, double vx, double vy, double radius = 0.
   return b;
 }
 
+/// `count` random balls drawn with `seed`, their radius, mass and speed uniform in the
+/// given ranges.
+inline core::RandomBallsDef randomBalls(int count, std::uint64_t seed, core::Range radius, core::Range mass,
+                                        core::Range speed)
+{
+  core::RandomBallsDef rb;
+  rb.count = count;
+  rb.seed = seed;
+  rb.radius = radius;
+  rb.mass = mass;
+  rb.speed = speed;
+  return rb;
+}
+
 /// The biquadratic with control z = f_i + f_j, f = (h, -h, h), over [-L/2, L/2]^2: its
 /// height is exactly the paraboloid z = 4 h (x^2 + y^2) / L^2.
 inline FloorDef bowl(double L, double h)
@@ -78,13 +93,7 @@ inline Scene slopePile()
                  {f.point + f.v, f.u, 0.5 * up, {}},
                  {f.point, f.v, 0.5 * up, {}},
                  {f.point + f.u, f.v, 0.5 * up, {}}};
-  core::RandomBallsDef rb;
-  rb.count = 80;
-  rb.seed = 4;
-  rb.radius = {0.05, 0.08};
-  rb.mass = {0.5, 2};
-  rb.speed = {0, 1};
-  scene.random_balls = rb;
+  scene.random_balls = randomBalls(80, 4, {0.05, 0.08}, {0.5, 2}, {0, 1});
   return scene;
 }
 

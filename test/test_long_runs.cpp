@@ -13,13 +13,7 @@ Scene closedBox(int count, double half)
 {
   Scene scene = flatScene(-half, half, -half, half);
   addBox(scene, -half, half, -half, half);
-  RandomBallsDef rb;
-  rb.count = count;
-  rb.seed = 2024;
-  rb.radius = {0.05, 0.1};
-  rb.mass = {0.5, 3};
-  rb.speed = {0, 2};
-  scene.random_balls = rb;
+  scene.random_balls = randomBalls(count, 2024, {0.05, 0.1}, {0.5, 3}, {0, 2});
   return scene;
 }
 }  // namespace
@@ -64,12 +58,7 @@ TEST(LongRun, ThousandBallsHundredSeconds)
 TEST(LongRun, MomentumWithoutWalls)
 {
   Scene scene = flatScene(-50, 50, -50, 50);
-  RandomBallsDef rb;
-  rb.count = 1000;
-  rb.seed = 5;
-  rb.radius = {0.05, 0.1};
-  rb.mass = {0.5, 3};
-  rb.speed = {0, 2};
+  RandomBallsDef rb = randomBalls(1000, 5, {0.05, 0.1}, {0.5, 3}, {0, 2});
   rb.region = RandomBallsDef::Region{Vec2(-4, -4), Vec2(4, 4)};
   scene.random_balls = rb;
   World world(scene);

@@ -282,13 +282,7 @@ Scene gas(std::uint64_t seed)
 {
   Scene scene = flatScene(-2, 2, -2, 2);
   addBox(scene, -2, 2, -2, 2);
-  RandomBallsDef rb;
-  rb.count = 300;
-  rb.seed = seed;
-  rb.radius = {0.04, 0.08};
-  rb.mass = {0.5, 2};
-  rb.speed = {0, 3};
-  scene.random_balls = rb;
+  scene.random_balls = randomBalls(300, seed, {0.04, 0.08}, {0.5, 2}, {0, 3});
   return scene;
 }
 }  // namespace
@@ -442,13 +436,7 @@ TEST(Editing, AnEditUndoneChangesNothing)
   Scene bowl_pile;
   bowl_pile.floor = bowl(3, 0.3);
   bowl_pile.restitution = 0.5;
-  RandomBallsDef rb;
-  rb.count = 60;
-  rb.seed = 5;
-  rb.radius = {0.05, 0.08};
-  rb.mass = {0.5, 2};
-  rb.speed = {0, 1};
-  bowl_pile.random_balls = rb;
+  bowl_pile.random_balls = randomBalls(60, 5, {0.05, 0.08}, {0.5, 2}, {0, 1});
   const Scene scenes[] = {gas(11), slopePile(), bowl_pile};
   for (const Scene& scene : scenes)
   {
