@@ -269,11 +269,8 @@ void World::step()
   const bool reorder = grid_.inCellOrder() && (order_age_ == 0 || order_age_ >= kReorderSteps);
   commitToFloor(!reorder);     // every ball to the step's end, back on the floor
   if (reorder)
-  {
     grid_.reorder(order_);
-    order_age_ = 0;
-  }
-  ++order_age_;
+  order_age_ = reorder ? 1 : order_age_ + 1;
   motions_ready_ = !reorder;
   ++stats_.steps;
 }
@@ -370,16 +367,15 @@ void World::resolveEventsInTimeOrder()
   {
     {
       // the first event's balls' data are fetched while the queue is put in order
+      const auto fetch = [&](std::uint32_t k) {
+        __builtin_prefetch(&states_[k]);
+        __builtin_prefetch(&motions_[k]);
+        __builtin_prefetch(&order_[k]);
+      };
       const Event& next = event_pool_[heap_.front().slot];
-      __builtin_prefetch(&states_[next.i]);
-      __builtin_prefetch(&motions_[next.i]);
-      __builtin_prefetch(&order_[next.i]);
+      fetch(next.i);
       if (!next.wall)
-      {
-        __builtin_prefetch(&states_[next.j]);
-        __builtin_prefetch(&motions_[next.j]);
-        __builtin_prefetch(&order_[next.j]);
-      }
+        fetch(next.j);
     }
     std::pop_heap(heap_.begin(), heap_.end(), later);
     const std::uint32_t slot = heap_.back().slot;

@@ -191,7 +191,8 @@ private:
   WorldStats stats_;
 
   /// The step visits ball balls_[order_[k]] as its k-th: the balls in a recent step's
-  /// cell order (the step's work space is indexed by k). Reset by any edit.
+  /// cell order (the step's work space is indexed by k). Reset when a ball is added or
+  /// removed (walls do not enter the prediction).
   std::vector<std::uint32_t> order_;
   /// Steps since order_ was set; it is set anew every kReorderSteps steps.
   std::uint32_t order_age_ = 0;
