@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -25,6 +26,14 @@ constexpr std::uint32_t kMaxEventsPerBallStep = 256;
 constexpr double kRestingSteps = 2.0;
 /// ... and below this [m/s] always (flat floors, where gravity adds nothing).
 constexpr double kRestingSpeedFloor = 1e-9;
+
+/// A length [m] below the round-off of positions around p (with a ball of radius r):
+/// where the corrections of a ball's motion on a curved floor are down to this, putting
+/// it on the floor and out of what it leans on only trade round-off back and forth.
+double roundoffAt(const Vec3& p, double r)
+{
+  return 16 * std::numeric_limits<double>::epsilon() * (p.cwiseAbs().maxCoeff() + r);
+}
 
 
 /// sin(x) / x and cos(x) from y = x^2 (both are even in x): series where |x| is small,
@@ -628,13 +637,18 @@ void World::endOnFloor(std::size_t i)
   const double rest = 1 - m.x0;
   if (plane_ || !floor_ || states_[i].frozen || !(rest > 0))
     return;
+  const double roundoff = roundoffAt(m.p0, m.radius);
   for (int pass = 0; pass < 32; ++pass)
   {
     const Vec3 on = (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest;
     const Vec3 free = allowed(i, on);
-    const bool done = (free - on).squaredNorm() <= 1e-30 * on.squaredNorm();
+    const double off = (free - on).norm();
+    const bool done = off <= 1e-15 * on.norm() || rest * off <= roundoff;
+    // (a pass that leaves the motion as it was would be repeated as it is: fully blocked
+    // off the floor, say)
+    const bool same = free == m.b;
     m.b = done ? on : free;
-    if (done)
+    if (done || same)
       return;
   }
 }
@@ -676,11 +690,42 @@ void World::keepEnergy(std::size_t i)
       lo = start / (start - full);  // linear in s
     else
     {
-      double hi = 1.0;
+      // the root of the speed on [0, 1], kept bracketed: false position with the
+      // Illinois rule (a stalled end's value halved), bisection where that gains less
+      double hi = 1.0, f_lo = start, f_hi = full;
+      int last = 0;  // the end moved last: +1 lo, -1 hi
       for (int k = 0; k < 50 && hi - lo > 1e-15; ++k)
       {
-        const double mid = 0.5 * (lo + hi);
-        (speedSquared(mid) >= 0 ? lo : hi) = mid;
+        const double width = hi - lo;
+        double mid = lo + width * (f_lo / (f_lo - f_hi));
+        if (!(mid > lo && mid < hi))
+          mid = 0.5 * (lo + hi);
+        const double f = speedSquared(mid);
+        if (f >= 0)
+        {
+          lo = mid;
+          f_lo = f;
+          if (last > 0)
+            f_hi *= 0.5;
+          last = 1;
+        }
+        else
+        {
+          hi = mid;
+          f_hi = f;
+          if (last < 0)
+            f_lo *= 0.5;
+          last = -1;
+        }
+        if (hi - lo > 0.5 * width && hi - lo > 1e-15)
+        {
+          // one end stuck: halve the bracket as well
+          const double half = 0.5 * (lo + hi);
+          const double g = speedSquared(half);
+          (g >= 0 ? lo : hi) = half;
+          (g >= 0 ? f_lo : f_hi) = g;
+          last = 0;
+        }
       }
     }
     // (round-off may leave the end a hair too high; the speed is clamped to zero then)
@@ -702,15 +747,35 @@ void World::keepEnergy(std::size_t i)
   if (!(slope > 0))
     return;
   // (a short way only: the chord's sag is small next to the ball; else it stays put)
-  for (double reach = std::max(-start / slope, 1e-12 * m.radius); reach < 0.5 * m.radius; reach *= 2)
+  // The reaches tried are first * 2^k below half the radius; the lower the end, the more
+  // energy is left, so the shortest that does is found by halving the range of k, after
+  // the longest has shown that one does.
+  const double first = std::max(-start / slope, 1e-12 * m.radius);
+  int count = 0;
+  while (count < 64 && std::ldexp(first, count) < 0.5 * m.radius)
+    ++count;
+  const auto motionTo = [&](int k) {
+    return allowed(i, (onFloor(i, foot + (std::ldexp(first, k) / slope) * downhill) - m.p0) / rest);
+  };
+  if (count == 0)
+    return;
+  Vec3 found = motionTo(count - 1);
+  if (!(speedSquaredWith(found) >= 0))
+    return;
+  int fails = -1, works = count - 1;  // the largest k known to fail, the smallest known to work
+  while (works - fails > 1)
   {
-    const Vec3 b = allowed(i, (onFloor(i, foot + (reach / slope) * downhill) - m.p0) / rest);
+    const int k = fails + (works - fails) / 2;
+    const Vec3 b = motionTo(k);
     if (speedSquaredWith(b) >= 0)
     {
-      m.b = b;
-      return;
+      works = k;
+      found = b;
     }
+    else
+      fails = k;
   }
+  m.b = found;
 }
 
 void World::countEvent(std::size_t i)
@@ -844,13 +909,16 @@ void World::resolveBallBall(const Event& event)
     // No approach left in the motions either (gravity along the floor would press them
     // together again at once). On a curved floor, putting the ends back on the floor can
     // bring some back: in turn, a few times.
+    // (until what approach is left is round-off of the positions)
     const bool curved = floor_ && !plane_;
+    const double rest = 1 - event.x;
+    const double roundoff = curved ? roundoffAt(pa, ma.radius) + roundoffAt(pb, mb.radius) : 0.0;
     for (int pass = 0; pass < (curved ? 32 : 1); ++pass)
     {
       const Vec3 ua = curved ? n : ta, ub = curved ? n : tb;
       const double into = ma.b.dot(ua) - mb.b.dot(ub);
       const double k = inv_a * ta.dot(ua) + inv_b * tb.dot(ub);
-      if (!(into > 0 && k > 0))
+      if (!(into > 0 && k > 0 && rest * into > roundoff))
         break;
       const double jb = into / k;
       ma.b -= (jb * inv_a) * ta;
