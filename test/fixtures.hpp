@@ -77,6 +77,17 @@ inline FloorDef bowl(double L, double h)
   return f;
 }
 
+/// 60 balls (radius 0.05-0.08 m, 0.5-2 kg, up to 1 m/s) dropped in a 3 m square bowl
+/// 0.6 m deep at restitution 0.5: they settle into a pile at its bottom.
+inline Scene bowlPile(std::uint32_t seed)
+{
+  Scene scene;
+  scene.floor = bowl(3, 0.3);
+  scene.restitution = 0.5;
+  scene.random_balls = randomBalls(60, seed, {0.05, 0.08}, {0.5, 2}, {0, 1});
+  return scene;
+}
+
 /// 80 balls (radius 0.05-0.08 m, 0.5-2 kg, up to 1 m/s) dropped on a 2 m square slope
 /// falling 0.4 m along +x, walled in, at restitution 0.5: they settle into a pile.
 inline Scene slopePile()

@@ -95,3 +95,57 @@ TEST(LongRun, PileSettlesOnASlope)
   for (const Ball& b : world.balls())
     EXPECT_GT(b.position.x(), 1 - 12 * 0.08 * 2) << "ball " << b.id << " is not in the pile";
 }
+
+// A dissipative gas in a bowl settles into a pile at its bottom, where balls on either
+// side of one can hold it off the floor: no step makes energy, the pile comes to rest, and
+// at rest it costs a few events per ball and step (one per contact, and now and then a
+// ball in a jam stopped by the per-step event cap), not one ball's whole cap per step.
+TEST(LongRun, PileSettlesInABowl)
+{
+  for (const std::uint32_t seed : {3u, 5u, 7u})
+  {
+    World world(bowlPile(seed));
+    double before = world.energy().total();
+    double largest_rise = 0;
+    for (int k = 0; k < 900; ++k)
+    {
+      world.step();
+      const double now = world.energy().total();
+      largest_rise = std::max(largest_rise, now - before);
+      before = now;
+    }
+    const std::uint64_t events = world.stats().events;
+    for (int k = 0; k < 100; ++k)
+      world.step();
+    const double per_ball_step = static_cast<double>(world.stats().events - events) / (100.0 * world.balls().size());
+    // (round-off of a total of about 60 J)
+    EXPECT_LT(largest_rise, 1e-11) << "seed " << seed;
+    EXPECT_LT(world.energy().kinetic, 1e-4) << "seed " << seed;
+    EXPECT_LT(per_ball_step, 8.0) << "seed " << seed;
+    EXPECT_LT(deepestOverlap(world.balls()), 1e-9) << "seed " << seed;
+    EXPECT_EQ(world.lostBalls(), 0) << "seed " << seed;
+  }
+}
+
+// Balls in a bowl pile pressed on all sides, whose motions kept out of what they lean on
+// point off the floor: no step lifts one higher than its energy reaches.
+TEST(LongRun, NoStepMakesEnergyInBowlPiles)
+{
+  for (const std::uint32_t seed : {11u, 14u})
+  {
+    World world(bowlPile(seed));
+    double before = world.energy().total();
+    double largest_rise = 0;
+    for (int k = 0; k < 2000; ++k)
+    {
+      world.step();
+      const double now = world.energy().total();
+      largest_rise = std::max(largest_rise, now - before);
+      before = now;
+    }
+    EXPECT_GT(world.stats().resting_events, 10000u) << "seed " << seed;
+    EXPECT_LT(largest_rise, 1e-11) << "seed " << seed;
+    EXPECT_LT(deepestOverlap(world.balls()), 1e-9) << "seed " << seed;
+    EXPECT_EQ(world.lostBalls(), 0) << "seed " << seed;
+  }
+}

@@ -433,11 +433,7 @@ TEST(Rolling, TurnsByDistanceOverRadius)
 // commit's settling pass) and in a pile settling in a bowl (a curved floor).
 TEST(Editing, AnEditUndoneChangesNothing)
 {
-  Scene bowl_pile;
-  bowl_pile.floor = bowl(3, 0.3);
-  bowl_pile.restitution = 0.5;
-  bowl_pile.random_balls = randomBalls(60, 5, {0.05, 0.08}, {0.5, 2}, {0, 1});
-  const Scene scenes[] = {gas(11), slopePile(), bowl_pile};
+  const Scene scenes[] = {gas(11), slopePile(), bowlPile(5)};
   for (const Scene& scene : scenes)
   {
     World plain(scene), edited(scene);

@@ -80,6 +80,9 @@ struct World::MotionState
   std::uint32_t epoch = 0;       ///< bumped at every event of this ball
   std::uint16_t events = 0;      ///< events of this ball in this step, until it is frozen
   bool frozen = false;
+  /// Jammed: all but still, pressed into another by what holds it; it stays where it is
+  /// through resting contacts for the rest of the step (an impact lets it go).
+  bool held = false;
   std::int32_t blocked = -1;     ///< its BlockedSet this step, if any
 };
 static_assert(kMaxEventsPerBallStep < 0xffff, "MotionState::events counts to one past the cap");
@@ -675,8 +678,11 @@ void World::keepEnergy(std::size_t i)
   };
   // ... with the motion cut to the fraction s of its chord
   const auto speedSquared = [&](double s) { return speedSquaredWith(s * m.b); };
+  // ... where the chord itself ends: a motion kept out of its blocked directions can end
+  // off the floor, higher than where the floor under its end is
+  const auto chordSpeedSquared = [&](const Vec3& b) { return v0.squaredNorm() + 2 * rest * gravity_.dot(b); };
   // (on a curved floor the chord already ends on it, see endOnFloor: no projection needed)
-  const double full = plane_ || !floor_ ? speedSquared(1.0) : v0.squaredNorm() + 2 * rest * gravity_.dot(m.b);
+  const double full = plane_ || !floor_ ? speedSquared(1.0) : chordSpeedSquared(m.b);
   if (full >= 0)
     return;
   // The chord ends higher than the ball's energy reaches (a turning point on a curved
@@ -735,12 +741,16 @@ void World::keepEnergy(std::size_t i)
     return;
   if (lo > 0)
   {
-    m.b = allowed(i, (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest);
+    const Vec3 b = allowed(i, (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest);
+    m.b = chordSpeedSquared(b) >= 0 ? b : Vec3::Zero();
+    states_[i].held = m.b == Vec3::Zero();
     return;
   }
   // A motion that starts at an impact inside the step starts on the chord, below or
   // above the floor; where the floor above it is higher than the energy reaches, the
   // ball slides downhill from there instead, as far as it takes to be low enough.
+  // (where it finds none, it is held: it stays put through the step's resting contacts)
+  states_[i].held = true;
   const Vec3 foot = onFloor(i, m.p0);
   const Vec3 downhill = tangentPart(gravity_, floorNormalAt(i, foot));
   const double slope = downhill.norm();
@@ -757,17 +767,18 @@ void World::keepEnergy(std::size_t i)
   const auto motionTo = [&](int k) {
     return allowed(i, (onFloor(i, foot + (std::ldexp(first, k) / slope) * downhill) - m.p0) / rest);
   };
+  const auto keeps = [&](const Vec3& b) { return speedSquaredWith(b) >= 0 && chordSpeedSquared(b) >= 0; };
   if (count == 0)
     return;
   Vec3 found = motionTo(count - 1);
-  if (!(speedSquaredWith(found) >= 0))
+  if (!keeps(found))
     return;
   int fails = -1, works = count - 1;  // the largest k known to fail, the smallest known to work
   while (works - fails > 1)
   {
     const int k = fails + (works - fails) / 2;
     const Vec3 b = motionTo(k);
-    if (speedSquaredWith(b) >= 0)
+    if (keeps(b))
     {
       works = k;
       found = b;
@@ -776,6 +787,7 @@ void World::keepEnergy(std::size_t i)
       fails = k;
   }
   m.b = found;
+  states_[i].held = false;
 }
 
 void World::countEvent(std::size_t i)
@@ -844,6 +856,10 @@ void World::resolveBallWall(const Event& event)
       addBlocked(i, n);
   }
   startMotion(i, event.x, p, v);
+  if (!resting)
+    states_[i].held = false;
+  else if (states_[i].held)
+    motions_[i].b = Vec3::Zero();
   recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
               event);
   countEvent(i);
@@ -902,10 +918,20 @@ void World::resolveBallBall(const Event& event)
     if (b_fixed && along_a.squaredNorm() > 0)
       addBlocked(i, along_a.normalized());
   }
+  MotionState& sa = states_[i];
+  MotionState& sb = states_[j];
+  if (!resting)
+    sa.held = sb.held = false;
   startMotion(i, event.x, pa, va);
   startMotion(j, event.x, pb, vb);
   if (resting)
   {
+    // (a held ball does not give way)
+    if (sa.held)
+      ma.b = Vec3::Zero();
+    if (sb.held)
+      mb.b = Vec3::Zero();
+    const double move_a = sa.held ? 0.0 : inv_a, move_b = sb.held ? 0.0 : inv_b;
     // No approach left in the motions either (gravity along the floor would press them
     // together again at once). On a curved floor, putting the ends back on the floor can
     // bring some back: in turn, a few times.
@@ -917,22 +943,29 @@ void World::resolveBallBall(const Event& event)
     {
       const Vec3 ua = curved ? n : ta, ub = curved ? n : tb;
       const double into = ma.b.dot(ua) - mb.b.dot(ub);
-      const double k = inv_a * ta.dot(ua) + inv_b * tb.dot(ub);
+      const double k = move_a * ta.dot(ua) + move_b * tb.dot(ub);
       if (!(into > 0 && k > 0 && rest * into > roundoff))
         break;
       const double jb = into / k;
-      ma.b -= (jb * inv_a) * ta;
-      mb.b += (jb * inv_b) * tb;
-      endOnFloor(i);
-      endOnFloor(j);
+      ma.b -= (jb * move_a) * ta;
+      mb.b += (jb * move_b) * tb;
+      if (!sa.held)
+        endOnFloor(i);
+      if (!sb.held)
+        endOnFloor(j);
     }
     // Two balls all but still whose motions still close in (a pile in a corner of a
     // curved floor, where the floor, the walls and each other leave no room to settle
-    // into): they stay where they are for the rest of the step.
+    // into): they stay where they are for the rest of the step, whatever resting
+    // contact comes next (else each such contact would start them again, and one the
+    // next, without end).
     keepEnergy(i);
     keepEnergy(j);
     if (both_still && ma.b.dot(n) - mb.b.dot(n) > 0)
+    {
       ma.b = mb.b = Vec3::Zero();
+      sa.held = sb.held = true;
+    }
     resting_.push_back({i, j, ta, tb});
   }
   recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, impulse, closing, resting, event);
