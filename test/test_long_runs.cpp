@@ -16,6 +16,21 @@ Scene closedBox(int count, double half)
   scene.random_balls = randomBalls(count, 2024, {0.05, 0.1}, {0.5, 3}, {0, 2});
   return scene;
 }
+
+/// The largest rise of the total energy in one step over the next `steps` steps.
+double largestEnergyRise(World& world, int steps)
+{
+  double before = world.energy().total();
+  double largest = 0;
+  for (int k = 0; k < steps; ++k)
+  {
+    world.step();
+    const double now = world.energy().total();
+    largest = std::max(largest, now - before);
+    before = now;
+  }
+  return largest;
+}
 }  // namespace
 
 // 1000 balls in a closed box for 100 s at restitution 1: kinetic energy to 1e-9
@@ -105,15 +120,7 @@ TEST(LongRun, PileSettlesInABowl)
   for (const std::uint32_t seed : {3u, 5u, 7u})
   {
     World world(bowlPile(seed));
-    double before = world.energy().total();
-    double largest_rise = 0;
-    for (int k = 0; k < 900; ++k)
-    {
-      world.step();
-      const double now = world.energy().total();
-      largest_rise = std::max(largest_rise, now - before);
-      before = now;
-    }
+    const double largest_rise = largestEnergyRise(world, 900);
     const std::uint64_t events = world.stats().events;
     for (int k = 0; k < 100; ++k)
       world.step();
@@ -134,15 +141,7 @@ TEST(LongRun, NoStepMakesEnergyInBowlPiles)
   for (const std::uint32_t seed : {11u, 14u})
   {
     World world(bowlPile(seed));
-    double before = world.energy().total();
-    double largest_rise = 0;
-    for (int k = 0; k < 2000; ++k)
-    {
-      world.step();
-      const double now = world.energy().total();
-      largest_rise = std::max(largest_rise, now - before);
-      before = now;
-    }
+    const double largest_rise = largestEnergyRise(world, 2000);
     EXPECT_GT(world.stats().resting_events, 10000u) << "seed " << seed;
     EXPECT_LT(largest_rise, 1e-11) << "seed " << seed;
     EXPECT_LT(deepestOverlap(world.balls()), 1e-9) << "seed " << seed;
