@@ -855,10 +855,10 @@ void World::resolveBallWall(const Event& event)
     if (dir.dot(n) < 1 - 1e-12)
       addBlocked(i, n);
   }
-  startMotion(i, event.x, p, v);
   if (!resting)
     states_[i].held = false;
-  else if (states_[i].held)
+  startMotion(i, event.x, p, v);
+  if (states_[i].held)
     motions_[i].b = Vec3::Zero();
   recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
               event);
