@@ -113,8 +113,8 @@ TEST(LongRun, PileSettlesOnASlope)
 
 // A dissipative gas in a bowl settles into a pile at its bottom, where balls on either
 // side of one can hold it off the floor: no step makes energy, the pile comes to rest, and
-// at rest it costs a few events per ball and step (one per contact, and now and then a
-// ball in a jam stopped by the per-step event cap), not one ball's whole cap per step.
+// at rest it costs about one event per contact per step, not a jammed ball's whole event
+// cap in every step.
 TEST(LongRun, PileSettlesInABowl)
 {
   for (const std::uint32_t seed : {3u, 5u, 7u})
@@ -128,7 +128,7 @@ TEST(LongRun, PileSettlesInABowl)
     // (round-off of a total of about 60 J)
     EXPECT_LT(largest_rise, 1e-11) << "seed " << seed;
     EXPECT_LT(world.energy().kinetic, 1e-4) << "seed " << seed;
-    EXPECT_LT(per_ball_step, 8.0) << "seed " << seed;
+    EXPECT_LT(per_ball_step, 3.0) << "seed " << seed;
     EXPECT_LT(deepestOverlap(world.balls()), 1e-9) << "seed " << seed;
     EXPECT_EQ(world.lostBalls(), 0) << "seed " << seed;
   }
@@ -141,7 +141,7 @@ TEST(LongRun, NoStepMakesEnergyInBowlPiles)
   for (const std::uint32_t seed : {11u, 14u})
   {
     World world(bowlPile(seed));
-    const double largest_rise = largestEnergyRise(world, 2000);
+    const double largest_rise = largestEnergyRise(world, 1000);
     EXPECT_GT(world.stats().resting_events, 10000u) << "seed " << seed;
     EXPECT_LT(largest_rise, 1e-11) << "seed " << seed;
     EXPECT_LT(deepestOverlap(world.balls()), 1e-9) << "seed " << seed;

@@ -20,6 +20,10 @@ namespace
 /// A ball with more events than this in one step is stopped for the rest of the step
 /// and acts as immovable: a guard against endless chatter in jammed piles.
 constexpr std::uint32_t kMaxEventsPerBallStep = 256;
+/// Two balls all but still at a resting contact, one of which has had this many events in
+/// the step, are in a jam that answers pair by pair only pass around (each pushes one of
+/// them into a third ball, which pushes it back): they are held for the rest of the step.
+constexpr std::uint32_t kJamEventsPerBallStep = 16;
 /// A closing speed below what gravity along the floor adds in this many steps is a
 /// resting contact: the motion is stopped along the normal instead of bounced, so a
 /// ball leaning on a wall neither jitters nor makes endless events.
@@ -956,12 +960,13 @@ void World::resolveBallBall(const Event& event)
     }
     // Two balls all but still whose motions still close in (a pile in a corner of a
     // curved floor, where the floor, the walls and each other leave no room to settle
-    // into): they stay where they are for the rest of the step, whatever resting
-    // contact comes next (else each such contact would start them again, and one the
-    // next, without end).
+    // into), or that are in a jam: they stay where they are for the rest of the step,
+    // whatever resting contact comes next (else each such contact would start them
+    // again, and one the next, without end).
     keepEnergy(i);
     keepEnergy(j);
-    if (both_still && ma.b.dot(n) - mb.b.dot(n) > 0)
+    const bool jammed = sa.events >= kJamEventsPerBallStep || sb.events >= kJamEventsPerBallStep;
+    if (both_still && (jammed || ma.b.dot(n) - mb.b.dot(n) > 0))
     {
       ma.b = mb.b = Vec3::Zero();
       sa.held = sb.held = true;
