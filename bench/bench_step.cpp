@@ -10,10 +10,10 @@ namespace
 {
 using ball_collision_sim::core::World;
 
-/// Steps the world once per iteration after a short warm-up.
-void runSteps(benchmark::State& state, World world)
+/// Steps the world once per iteration after a warm-up (a short one by default).
+void runSteps(benchmark::State& state, World world, int warm_up = 10)
 {
-  for (int k = 0; k < 10; ++k)
+  for (int k = 0; k < warm_up; ++k)
     world.step();
   const double balls = static_cast<double>(world.balls().size());
   const double k0 = world.energy().kinetic;
@@ -46,6 +46,13 @@ void BM_S3Bowl(benchmark::State& state)
   runSteps(state, World(ball_collision_sim::bench::bowl(static_cast<int>(state.range(0)))));
 }
 BENCHMARK(BM_S3Bowl)->Arg(1000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+/// The pile at rest, after 10 s of settling: resting contacts on a curved floor.
+void BM_S4BowlPile(benchmark::State& state)
+{
+  runSteps(state, World(ball_collision_sim::bench::bowlPile(static_cast<int>(state.range(0)))), 1000);
+}
+BENCHMARK(BM_S4BowlPile)->Arg(200)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -110,4 +110,14 @@ inline Scene bowl(int n, std::uint64_t seed = 3)
   s.random_balls = rb;
   return s;
 }
+/// S4 bowl pile: S3's bowl at restitution 0.5 with n balls of radius 0.05-0.08 m and
+/// mass 0.5-2 kg, which settle into a pile at its bottom (measured once settled).
+inline Scene bowlPile(int n, std::uint64_t seed = 4)
+{
+  Scene s = bowl(n, seed);
+  s.restitution = 0.5;
+  s.random_balls->radius = {0.05, 0.08};
+  s.random_balls->mass = {0.5, 2};
+  return s;
+}
 }  // namespace ball_collision_sim::bench
