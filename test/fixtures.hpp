@@ -124,6 +124,21 @@ inline bool addAndRemoveABall(core::World& world, double x0, double x1, double y
   return false;
 }
 
+/// Steps the world `steps` times: the largest rise of its total energy in one step.
+inline double largestEnergyRise(core::World& world, int steps)
+{
+  double before = world.energy().total();
+  double largest = 0;
+  for (int k = 0; k < steps; ++k)
+  {
+    world.step();
+    const double now = world.energy().total();
+    largest = std::max(largest, now - before);
+    before = now;
+  }
+  return largest;
+}
+
 /// Deepest overlap between any two balls [m] (<= 0 when none overlap), by a sweep in x.
 inline double deepestOverlap(const std::vector<core::Ball>& balls)
 {

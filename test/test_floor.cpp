@@ -130,14 +130,7 @@ TEST(TiltedPlane, ElasticImpactsMakeNoEnergy)
   World world(scene);
   const double scale = world.energy().kinetic + std::abs(world.energy().potential);
   const double start = world.energy().total();
-  double before = start, worst_rise = 0;
-  for (int k = 0; k < 250; ++k)
-  {
-    world.step();
-    const double now = world.energy().total();
-    worst_rise = std::max(worst_rise, now - before);
-    before = now;
-  }
+  const double worst_rise = largestEnergyRise(world, 250);
   ASSERT_GT(world.stats().events, 200u);
   ASSERT_EQ(world.stats().resting_events, 0u);  // all of them elastic
   EXPECT_LT(worst_rise / scale, 1e-13);

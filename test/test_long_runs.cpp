@@ -16,21 +16,6 @@ Scene closedBox(int count, double half)
   scene.random_balls = randomBalls(count, 2024, {0.05, 0.1}, {0.5, 3}, {0, 2});
   return scene;
 }
-
-/// The largest rise of the total energy in one step over the next `steps` steps.
-double largestEnergyRise(World& world, int steps)
-{
-  double before = world.energy().total();
-  double largest = 0;
-  for (int k = 0; k < steps; ++k)
-  {
-    world.step();
-    const double now = world.energy().total();
-    largest = std::max(largest, now - before);
-    before = now;
-  }
-  return largest;
-}
 }  // namespace
 
 // 1000 balls in a closed box for 100 s at restitution 1: kinetic energy to 1e-9

@@ -39,7 +39,6 @@ double roundoffAt(const Vec3& p, double r)
   return 16 * std::numeric_limits<double>::epsilon() * (p.cwiseAbs().maxCoeff() + r);
 }
 
-
 /// sin(x) / x and cos(x) from y = x^2 (both are even in x): series where |x| is small,
 /// the usual way elsewhere; so a caller that has x^2 takes no square root. The series are
 /// summed in pairs of terms (Estrin's scheme) so that they take a few dependent steps
@@ -176,7 +175,8 @@ bool World::EventLater::operator()(const QueuedEvent& qa, const QueuedEvent& qb)
   const auto key = [&](const Event& e) {
     const std::uint32_t i = (*order)[e.i];
     const std::uint32_t j = e.wall ? e.j : (*order)[e.j];
-    return e.wall ? std::array<std::uint32_t, 3>{i, 0, j} : std::array<std::uint32_t, 3>{std::min(i, j), 1, std::max(i, j)};
+    using Key = std::array<std::uint32_t, 3>;
+    return e.wall ? Key{i, 0, j} : Key{std::min(i, j), 1, std::max(i, j)};
   };
   return key(a) > key(b);
 }
@@ -616,10 +616,12 @@ double World::restingSpeed(const Vec3& floor_normal) const
   return kRestingSteps * dt_ * along.norm() + kRestingSpeedFloor;
 }
 
-void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity)
+void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact)
 {
   Motion& m = motions_[i];
   Vec3& v0 = startVelocity(i);
+  if (impact)
+    states_[i].held = false;
   m.x0 = x;
   m.p0 = position;
   if (states_[i].frozen)
@@ -633,6 +635,8 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   m.b = allowed(i, m.b);
   endOnFloor(i);
   keepEnergy(i);
+  if (states_[i].held)
+    m.b = Vec3::Zero();
 }
 
 void World::endOnFloor(std::size_t i)
@@ -863,11 +867,7 @@ void World::resolveBallWall(const Event& event)
     if (dir.dot(n) < 1 - 1e-12)
       addBlocked(i, n);
   }
-  if (!resting)
-    states_[i].held = false;
-  startMotion(i, event.x, p, v);
-  if (states_[i].held)
-    motions_[i].b = Vec3::Zero();
+  startMotion(i, event.x, p, v, !resting);
   recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
               event);
   countEvent(i);
@@ -931,17 +931,11 @@ void World::resolveBallBall(const Event& event)
   }
   MotionState& sa = states_[i];
   MotionState& sb = states_[j];
-  if (!resting)
-    sa.held = sb.held = false;
-  startMotion(i, event.x, pa, va);
-  startMotion(j, event.x, pb, vb);
+  startMotion(i, event.x, pa, va, !resting);
+  startMotion(j, event.x, pb, vb, !resting);
   if (resting)
   {
     // (a held ball does not give way)
-    if (sa.held)
-      ma.b = Vec3::Zero();
-    if (sb.held)
-      mb.b = Vec3::Zero();
     const double move_a = sa.held ? 0.0 : inv_a, move_b = sb.held ? 0.0 : inv_b;
     // No approach left in the motions either (gravity along the floor would press them
     // together again at once). On a curved floor, putting the ends back on the floor can

@@ -150,7 +150,9 @@ private:
   void detectBall(std::size_t i, std::size_t j);
   void resolveBallWall(const Event& event);
   void resolveBallBall(const Event& event);
-  void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity);
+  /// Ball i's new motion from x on; an impact (not a resting contact) lets a held ball
+  /// go, and a ball still held after it keeps no motion for the rest of the step.
+  void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact);
   void countEvent(std::size_t i);
   void recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,
                    double impulse, double closing, bool resting, const Event& event);
