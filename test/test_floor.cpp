@@ -175,6 +175,74 @@ TEST(Bowl, KeepsMechanicalEnergyForAMinute)
   EXPECT_GT(world.energy().kinetic, 0.01);
 }
 
+// A ball rolling in the bowl turns about n x v at |v| / r, n the bowl's normal under it:
+// n, read back from the angular velocity as r (v x w) / |v|^2, is the paraboloid's
+// normal at the foot c - r n, and that foot is on the paraboloid.
+TEST(Bowl, RollsAboutTheNormalUnderIt)
+{
+  const double a = 4 * 0.5 / 16, r = 0.1;
+  World world(bowlScene(0.01, Vec3(1.2, 0, 0.3), Vec3(0, 0.8, 0)));
+  for (int k = 1; k <= 300; ++k)
+  {
+    world.step();
+    if (k % 50 != 0)
+      continue;
+    const Vec3& c = world.balls()[0].position;
+    const Vec3& v = world.balls()[0].velocity;
+    const Vec3 w = world.angularVelocity(0);
+    ASSERT_GT(v.norm(), 0.1) << k;
+    EXPECT_NEAR(w.norm(), v.norm() / r, 1e-12 * v.norm() / r) << k;
+    const Vec3 n = r * v.cross(w) / v.squaredNorm();
+    const Vec3 foot = c - r * n;
+    EXPECT_NEAR(foot.z(), a * (foot.x() * foot.x() + foot.y() * foot.y()), 1e-9) << k;
+    EXPECT_TRUE(n.isApprox(Vec3(-2 * a * foot.x(), -2 * a * foot.y(), 1).normalized(), 1e-9)) << k;
+    EXPECT_GT(std::hypot(foot.x(), foot.y()), 0.3) << k;  // off the bottom, where n is not up
+  }
+}
+
+// After balls are removed and added, each ball still turns about the normal under it
+// (its own foot point, not another ball's), right after the edit and steps later.
+TEST(Bowl, EditsKeepEachBallOnItsOwnFoot)
+{
+  const double a = 4 * 0.5 / 16;
+  Scene scene;
+  scene.floor = bowl(4, 0.5);
+  for (const Vec2& at : {Vec2(1.2, 0), Vec2(0, 1.2), Vec2(-1.2, 0), Vec2(0, -1.2)})
+  {
+    BallDef b;
+    b.radius = 0.1;
+    b.position = Vec3(at.x(), at.y(), 0.3);
+    b.velocity = 0.8 * Vec3(-at.y(), at.x(), 0).normalized();
+    scene.balls.push_back(b);
+  }
+  World world(scene);
+  const auto check = [&](const char* when) {
+    for (std::size_t k = 0; k < world.balls().size(); ++k)
+    {
+      const Ball& ball = world.balls()[k];
+      const Vec3 w = world.angularVelocity(k);
+      const Vec3 n = ball.radius * ball.velocity.cross(w) / ball.velocity.squaredNorm();
+      const Vec3 foot = ball.position - ball.radius * n;
+      EXPECT_NEAR(foot.z(), a * (foot.x() * foot.x() + foot.y() * foot.y()), 1e-9) << when << ", ball " << ball.id;
+    }
+    EXPECT_EQ(world.lostBalls(), 0) << when;
+  };
+  for (int k = 0; k < 20; ++k)
+    world.step();
+  check("after 20 steps");
+  ASSERT_TRUE(world.removeBall(1));
+  check("after removing ball 1");
+  BallDef added;
+  added.radius = 0.1;
+  added.position = Vec3(0.9, 0.9, 0.3);
+  added.velocity = Vec3(0.5, -0.5, 0);
+  ASSERT_TRUE(world.addBall(added).ok);
+  check("after adding a ball");
+  for (int k = 0; k < 20; ++k)
+    world.step();
+  check("20 steps later");
+}
+
 // Small oscillations about the bottom: the centre rides on the offset surface, whose
 // radius of curvature there is 1 / (2 a) - r, so omega^2 = g / (1 / (2 a) - r).
 TEST(Bowl, SmallOscillationPeriod)

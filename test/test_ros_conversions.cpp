@@ -81,8 +81,7 @@ TEST(Conversions, BallStateAndTransform)
   ball.position = core::Vec3(1, 2, 0.2);
   ball.velocity = core::Vec3(0.5, 0, 0);
   ball.orientation = core::Quat(Eigen::AngleAxisd(0.3, core::Vec3::UnitY()));
-  ball.angular_velocity = core::Vec3(0, 2.5, 0);
-  const auto msg = bridge::toMsg(ball);
+  const auto msg = bridge::toMsg(ball, core::Vec3(0, 2.5, 0));
   EXPECT_EQ(msg.id, 7);
   EXPECT_EQ(msg.pose.position.y, 2);
   EXPECT_EQ(msg.twist.angular.y, 2.5);

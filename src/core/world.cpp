@@ -220,11 +220,19 @@ void World::load()
   for (const WallDef& def : scene_.walls)
     walls_.emplace_back(next_wall_id_++, def, scene_.restitution);
   balls_.clear();
+  feet_.clear();
   next_ball_id_ = 0;
   const std::vector<BallDef> defs = allBalls(scene_);
   balls_.reserve(defs.size());
+  if (floor_ && !plane_)
+    feet_.reserve(defs.size());
   for (const BallDef& def : defs)
-    balls_.push_back(makeBall(next_ball_id_++, def));
+  {
+    Vec2 foot;
+    balls_.push_back(makeBall(next_ball_id_++, def, foot));
+    if (floor_ && !plane_)
+      feet_.push_back(foot);
+  }
   stats_ = WorldStats{};
   events_.clear();
   forgetOrder();
@@ -242,19 +250,17 @@ void World::forgetOrder()
   motions_ready_ = false;
 }
 
-Ball World::makeBall(int id, const BallDef& def) const
+Ball World::makeBall(int id, const BallDef& def, Vec2& foot) const
 {
   BallDef placed = def;
   Ball ball;
-  placeOnFloor(placed, floor_, &ball.uv);
+  foot = Vec2(0.5, 0.5);
+  placeOnFloor(placed, floor_, &foot);
   ball.id = id;
   ball.radius = def.radius;
   ball.mass = def.mass;
   ball.position = placed.position;
   ball.velocity = placed.velocity;
-  ball.angular_velocity = up().cross(ball.velocity) / ball.radius;
-  if (floor_)
-    ball.angular_velocity = floor_->normal(ball.uv).cross(ball.velocity) / ball.radius;
   return ball;
 }
 
@@ -335,7 +341,7 @@ void World::predictMotion(std::size_t i)
   m.radius = ball.radius;
   m.p0 = ball.position;
   if (!floor_uv_.empty())
-    floor_uv_[i] = ball.uv;
+    floor_uv_[i] = feet_[order_[i]];
   const Vec3 end = predictedEnd(i, m.p0, ball.velocity, dt_);
   m.b = end - m.p0;
   if (!plane_ && floor_)
@@ -431,7 +437,6 @@ void World::commitToFloor(bool predict_next)
     if (plane_)
     {
       p = onFloor(i, p);
-      ball.uv = floor_->planeParameters(p);
       normal = plane_normal_;
     }
     else if (floor_)
@@ -441,7 +446,7 @@ void World::commitToFloor(bool predict_next)
       // chord's end, clear of everything, a little off the floor until the next step puts
       // it back.
       const FloorFoot foot = floor_->project(p, floor_uv_[i]);
-      ball.uv = foot.uv;
+      feet_[order_[i]] = foot.uv;
       normal = foot.normal;
       floor_normals_[i] = normal;
     }
@@ -491,7 +496,7 @@ void World::commitToFloor(bool predict_next)
 void World::roll(std::size_t i, const Vec3& normal, const Vec3& d)
 {
   // Rolling without slip: turned by |d| / r about n x d, d the move along the floor
-  // (|n x d| is its length).
+  // (|n x d| is its length). Its angular velocity follows from n and v when asked for.
   Ball& ball = balls_[order_[i]];
   const double half_inv_radius = 0.5 / ball.radius;
   const Vec3 axis = normal.cross(d);
@@ -508,7 +513,6 @@ void World::roll(std::size_t i, const Vec3& normal, const Vec3& d)
     q.coeffs() *= 1.5 - 0.5 * q.coeffs().squaredNorm();
     ball.orientation = q;
   }
-  ball.angular_velocity = normal.cross(ball.velocity) * (2 * half_inv_radius);
 }
 
 // ---- detection -----------------------------------------------------------------------
@@ -821,6 +825,11 @@ void World::countEvent(std::size_t i)
 void World::recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,
                         double impulse, double closing, bool resting, const Event& event)
 {
+  ++stats_.events;
+  if (resting)
+    ++stats_.resting_events;
+  if (!record_events_)
+    return;
   CollisionEvent out;
   out.kind = kind;
   out.time = (static_cast<double>(stats_.steps) + event.x) * dt_;
@@ -833,9 +842,13 @@ void World::recordEvent(CollisionEvent::Kind kind, int ball, int other, const Ve
   out.approach_speed = closing;
   out.resting = resting;
   events_.push_back(out);
-  ++stats_.events;
-  if (resting)
-    ++stats_.resting_events;
+}
+
+void World::recordEvents(bool record)
+{
+  record_events_ = record;
+  if (!record)
+    std::vector<CollisionEvent>().swap(events_);
 }
 
 void World::resolveBallWall(const Event& event)
@@ -1007,9 +1020,12 @@ int World::lostBalls() const
   int lost = 0;
   if (floor_)
   {
-    for (const Ball& ball : balls_)
-      if (!((ball.uv.array() >= -1e-9).all() && (ball.uv.array() <= 1 + 1e-9).all()))
+    for (std::size_t k = 0; k < balls_.size(); ++k)
+    {
+      const Vec2 uv = plane_ ? floor_->planeParameters(balls_[k].position) : feet_[k];
+      if (!((uv.array() >= -1e-9).all() && (uv.array() <= 1 + 1e-9).all()))
         ++lost;
+    }
     return lost;
   }
   if (walls_.empty())
@@ -1050,6 +1066,13 @@ const Ball* World::findBall(int id) const
   return it != balls_.end() && it->id == id ? &*it : nullptr;
 }
 
+Vec3 World::angularVelocity(std::size_t k) const
+{
+  const Ball& ball = balls_.at(k);
+  const Vec3 normal = plane_ ? plane_normal_ : floor_ ? floor_->normal(feet_[k]) : up_;
+  return normal.cross(ball.velocity) * (2 * (0.5 / ball.radius));
+}
+
 // ---- editing -------------------------------------------------------------------------
 
 std::string World::checkBall(const BallDef& def) const
@@ -1080,8 +1103,12 @@ AddResult World::addBall(const BallDef& def)
   if (!result.error.empty())
     return result;
   result.ok = true;
+  Vec2 foot;
+  const Ball ball = makeBall(next_ball_id_, def, foot);
+  balls_.push_back(ball);
+  if (floor_ && !plane_)
+    feet_.push_back(foot);
   result.id = next_ball_id_++;
-  balls_.push_back(makeBall(result.id, def));
   forgetOrder();
   return result;
 }
@@ -1114,6 +1141,8 @@ bool World::removeBall(int id)
   const auto it = std::find_if(balls_.begin(), balls_.end(), [&](const Ball& b) { return b.id == id; });
   if (it == balls_.end())
     return false;
+  if (!feet_.empty())
+    feet_.erase(feet_.begin() + (it - balls_.begin()));
   balls_.erase(it);
   forgetOrder();
   return true;

@@ -48,7 +48,7 @@ geometry_msgs::Quaternion toQuaternion(const core::Quat& q)
 }
 }  // namespace
 
-ball_collision_sim::BallState toMsg(const core::Ball& ball)
+ball_collision_sim::BallState toMsg(const core::Ball& ball, const core::Vec3& angular_velocity)
 {
   ball_collision_sim::BallState msg;
   msg.id = ball.id;
@@ -57,7 +57,7 @@ ball_collision_sim::BallState toMsg(const core::Ball& ball)
   msg.pose.position = toPoint(ball.position);
   msg.pose.orientation = toQuaternion(ball.orientation);
   msg.twist.linear = toVector3(ball.velocity);
-  msg.twist.angular = toVector3(ball.angular_velocity);
+  msg.twist.angular = toVector3(angular_velocity);
   return msg;
 }
 

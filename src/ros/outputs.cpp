@@ -23,8 +23,8 @@ BallStateArray statesMessage(const core::World& world, const std::string& frame_
   msg.header.stamp = stamp;
   msg.header.frame_id = frame_id;
   msg.balls.reserve(world.balls().size());
-  for (const core::Ball& ball : world.balls())
-    msg.balls.push_back(toMsg(ball));
+  for (std::size_t k = 0; k < world.balls().size(); ++k)
+    msg.balls.push_back(toMsg(world.balls()[k], world.angularVelocity(k)));
   return msg;
 }
 

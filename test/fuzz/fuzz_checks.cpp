@@ -66,12 +66,15 @@ std::string notOneLine(const std::string& text)
 /// Why the world's balls are not all finite, or "".
 std::string nonFinite(const core::World& world)
 {
-  for (const core::Ball& b : world.balls())
+  for (std::size_t k = 0; k < world.balls().size(); ++k)
+  {
+    const core::Ball& b = world.balls()[k];
     if (!b.position.allFinite() || !b.velocity.allFinite() || !b.orientation.coeffs().allFinite() ||
-        !b.angular_velocity.allFinite())
+        !world.angularVelocity(k).allFinite())
       return "ball " + std::to_string(b.id) + " is not finite (position " + str(b.position.x()) + ", " +
              str(b.position.y()) + ", " + str(b.position.z()) + ", velocity " + str(b.velocity.x()) + ", " +
              str(b.velocity.y()) + ", " + str(b.velocity.z()) + ")";
+  }
   return "";
 }
 

@@ -4,7 +4,8 @@
 
 namespace ball_collision_sim::core
 {
-/// A ball. Physical fields carry units; `uv` is its foot point on the floor.
+/// A ball. Physical fields carry units. Its angular velocity is that of rolling without
+/// slip on the floor under it (World::angularVelocity()).
 struct Ball
 {
   int id = 0;
@@ -13,7 +14,5 @@ struct Ball
   Vec3 position = Vec3::Zero();           ///< centre [m]
   Vec3 velocity = Vec3::Zero();           ///< [m/s]
   Quat orientation = Quat::Identity();    ///< turns as the ball rolls
-  Vec3 angular_velocity = Vec3::Zero();   ///< of rolling without slip [rad/s]
-  Vec2 uv = Vec2(0.5, 0.5);               ///< foot point parameters on the floor
 };
 }  // namespace ball_collision_sim::core

@@ -68,8 +68,14 @@ public:
   const std::vector<Ball>& balls() const { return balls_; }
   const std::vector<Wall>& walls() const { return walls_; }
   const std::optional<Floor>& floor() const { return floor_; }
-  /// The collisions handled in the last step, in the order they were handled.
+  /// The collisions handled in the last step, in the order they were handled; empty
+  /// while events are not recorded.
   const std::vector<CollisionEvent>& lastEvents() const { return events_; }
+  /// Whether steps list their collisions in lastEvents() (on at first). Off, a large
+  /// world saves the list's memory (about 0.2 events per ball and step in a dense
+  /// scene, 88 bytes each); stats() counts them either way.
+  void recordEvents(bool record);
+  bool recordsEvents() const { return record_events_; }
   const WorldStats& stats() const { return stats_; }
 
   Energy energy() const;
@@ -80,6 +86,9 @@ public:
   std::uint64_t stateHash() const;
   /// The ball with this id, or nullptr.
   const Ball* findBall(int id) const;
+  /// The angular velocity of balls()[k], rolling without slip: n x v / r, n the floor's
+  /// normal under it (up without a floor) [rad/s].
+  Vec3 angularVelocity(std::size_t k) const;
 
   /// Adds a ball (put on the floor) unless it is invalid, overlaps something or is off
   /// the floor; then nothing changes.
@@ -121,7 +130,8 @@ private:
   void load();
   /// After an edit: the next step visits the balls in id order and predicts afresh.
   void forgetOrder();
-  Ball makeBall(int id, const BallDef& def) const;
+  /// The ball of `def` put on the floor; `foot` gets its foot point (u, v).
+  Ball makeBall(int id, const BallDef& def, Vec2& foot) const;
   /// Unit vector against gravity (the floor's normal side).
   const Vec3& up() const { return up_; }
 
@@ -188,6 +198,8 @@ private:
   bool straight_ = true;
   std::vector<Wall> walls_;
   std::vector<Ball> balls_;
+  /// Curved floors: each ball's foot point (u, v), beside balls_ (empty otherwise).
+  std::vector<Vec2> feet_;
   int next_ball_id_ = 0;
   int next_wall_id_ = 0;
   WorldStats stats_;
@@ -212,6 +224,7 @@ private:
   std::vector<Vec3> floor_normals_;
   std::vector<Vec2> floor_uv_;  ///< curved floors: each ball's last foot point, Newton's guess
   std::vector<CollisionEvent> events_;
+  bool record_events_ = true;
   std::vector<RestingContact> resting_;
   std::vector<BlockedSet> blocked_sets_;
 };

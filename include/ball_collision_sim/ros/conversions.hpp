@@ -25,7 +25,8 @@ core::Vec3 toVec3(const geometry_msgs::Vector3& v);
 /// The tf frame of a ball: "ball_<id>".
 std::string ballFrame(int id);
 
-ball_collision_sim::BallState toMsg(const core::Ball& ball);
+/// With the ball's angular velocity (core::World::angularVelocity()).
+ball_collision_sim::BallState toMsg(const core::Ball& ball, const core::Vec3& angular_velocity);
 /// Stamped with the exact time of impact.
 ball_collision_sim::CollisionEvent toMsg(const core::CollisionEvent& event, const std::string& frame_id);
 /// frame_id -> ball_<id>, with the ball's rolling orientation.
