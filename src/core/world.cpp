@@ -634,6 +634,11 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
     return;
   }
   v0 = allowed(i, velocity);
+  if (states_[i].held)
+  {
+    m.b = Vec3::Zero();  // still held (no impact let it go): it keeps no motion
+    return;
+  }
   const double rest = 1 - x;
   m.b = rest > 0 ? Vec3((predictedEnd(i, position, v0, rest * dt_) - position) / rest) : Vec3(dt_ * v0);
   m.b = allowed(i, m.b);
