@@ -44,6 +44,44 @@ TEST(Floor, ProjectionFindsTheFootPoint)
   }
 }
 
+// A twisted net, unlike the bowl symmetric in neither u and v nor x and y: S is the sum
+// of B_i(u) B_j(v) P_ij, its normal is square to the tangents by central differences,
+// and projections find foot points whose offset lies along that normal.
+TEST(Floor, TwistedNetMatchesItsDefinition)
+{
+  FloorDef def;
+  def.type = FloorDef::Type::kBiquadratic;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      def.control_points[i][j] = Vec3(1.5 * i + 0.4 * j + jitter(rng), 2.0 * j - 0.3 * i + jitter(rng), jitter(rng));
+  const Floor floor(def, Vec3(0, 0, -9.81));
+  const auto bernstein = [](int i, double t) { return i == 0 ? (1 - t) * (1 - t) : i == 1 ? 2 * t * (1 - t) : t * t; };
+  std::uniform_real_distribution<double> unit(0.05, 0.95);
+  for (int k = 0; k < 100; ++k)
+  {
+    const Vec2 uv(unit(rng), unit(rng));
+    Vec3 sum = Vec3::Zero();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        sum += bernstein(i, uv.x()) * bernstein(j, uv.y()) * def.control_points[i][j];
+    EXPECT_TRUE(floor.point(uv).isApprox(sum, 1e-14)) << k;
+    const double h = 1e-6;
+    const Vec3 su = (floor.point(uv + Vec2(h, 0)) - floor.point(uv - Vec2(h, 0))) / (2 * h);
+    const Vec3 sv = (floor.point(uv + Vec2(0, h)) - floor.point(uv - Vec2(0, h))) / (2 * h);
+    const Vec3 n = floor.normal(uv);
+    EXPECT_NEAR(n.dot(su) / su.norm(), 0, 1e-8) << k;
+    EXPECT_NEAR(n.dot(sv) / sv.norm(), 0, 1e-8) << k;
+    EXPECT_TRUE(n.isApprox(su.cross(sv).normalized(), 1e-8) || n.isApprox(-su.cross(sv).normalized(), 1e-8)) << k;
+    EXPECT_GT(n.z(), 0) << k;
+    // a point off the surface along the normal projects back to uv, from a guess elsewhere
+    const FloorFoot foot = floor.project(sum + 0.05 * n, Vec2(0.5, 0.5));
+    EXPECT_TRUE(foot.uv.isApprox(uv, 1e-9)) << k;
+    EXPECT_NEAR(foot.height, 0.05, 1e-12) << k;
+  }
+}
+
 TEST(Floor, PlaneProjectionIsExact)
 {
   FloorDef def;

@@ -1,6 +1,7 @@
 #include "ball_collision_sim/core/floor.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace ball_collision_sim::core
@@ -70,20 +71,25 @@ void Floor::derivatives(const Vec2& uv, Vec3& s, Vec3& su, Vec3& sv, Vec3& suu, 
     suu = suv = svv = Vec3::Zero();
     return;
   }
+  // Each row of control points along v first (the curves at this v, their v-derivatives
+  // and second v-derivatives), then those along u: 27 weighted sums of points and 18 of
+  // rows instead of 54 of points.
   const Bernstein bu(uv.x());
   const Bernstein bv(uv.y());
-  s = su = sv = suu = suv = svv = Vec3::Zero();
+  std::array<Vec3, 3> row, row_v, row_vv;
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-    {
-      const Vec3& p = def_.control_points[i][j];
-      s += bu.b[i] * bv.b[j] * p;
-      su += bu.d[i] * bv.b[j] * p;
-      sv += bu.b[i] * bv.d[j] * p;
-      suu += bu.dd[i] * bv.b[j] * p;
-      suv += bu.d[i] * bv.d[j] * p;
-      svv += bu.b[i] * bv.dd[j] * p;
-    }
+  {
+    const std::array<Vec3, 3>& p = def_.control_points[i];
+    row[i] = bv.b[0] * p[0] + bv.b[1] * p[1] + bv.b[2] * p[2];
+    row_v[i] = bv.d[0] * p[0] + bv.d[1] * p[1] + bv.d[2] * p[2];
+    row_vv[i] = bv.dd[0] * p[0] + bv.dd[1] * p[1] + bv.dd[2] * p[2];
+  }
+  s = bu.b[0] * row[0] + bu.b[1] * row[1] + bu.b[2] * row[2];
+  su = bu.d[0] * row[0] + bu.d[1] * row[1] + bu.d[2] * row[2];
+  suu = bu.dd[0] * row[0] + bu.dd[1] * row[1] + bu.dd[2] * row[2];
+  sv = bu.b[0] * row_v[0] + bu.b[1] * row_v[1] + bu.b[2] * row_v[2];
+  suv = bu.d[0] * row_v[0] + bu.d[1] * row_v[1] + bu.d[2] * row_v[2];
+  svv = bu.b[0] * row_vv[0] + bu.b[1] * row_vv[1] + bu.b[2] * row_vv[2];
 }
 
 Vec3 Floor::point(const Vec2& uv) const
