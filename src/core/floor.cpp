@@ -40,6 +40,12 @@ Floor::Floor(const FloorDef& def, const Vec3& gravity) : def_(def)
   {
     plane_normal_ = Vec3::UnitZ();
     plane_gram_inverse_ = Mat2::Identity();
+    const Bernstein any(0.5);  // (second derivatives of quadratics do not depend on t)
+    for (int i = 0; i < 3; ++i)
+    {
+      const std::array<Vec3, 3>& p = def_.control_points[i];
+      rows_vv_[i] = any.dd[0] * p[0] + any.dd[1] * p[1] + any.dd[2] * p[2];
+    }
   }
   // "Up" is against gravity; without gravity, the side of the surface's own normal at
   // its centre.
@@ -76,14 +82,14 @@ void Floor::derivatives(const Vec2& uv, Vec3& s, Vec3& su, Vec3& sv, Vec3& suu, 
   // rows instead of 54 of points.
   const Bernstein bu(uv.x());
   const Bernstein bv(uv.y());
-  std::array<Vec3, 3> row, row_v, row_vv;
+  std::array<Vec3, 3> row, row_v;
   for (int i = 0; i < 3; ++i)
   {
     const std::array<Vec3, 3>& p = def_.control_points[i];
     row[i] = bv.b[0] * p[0] + bv.b[1] * p[1] + bv.b[2] * p[2];
     row_v[i] = bv.d[0] * p[0] + bv.d[1] * p[1] + bv.d[2] * p[2];
-    row_vv[i] = bv.dd[0] * p[0] + bv.dd[1] * p[1] + bv.dd[2] * p[2];
   }
+  const std::array<Vec3, 3>& row_vv = rows_vv_;
   s = bu.b[0] * row[0] + bu.b[1] * row[1] + bu.b[2] * row[2];
   su = bu.d[0] * row[0] + bu.d[1] * row[1] + bu.d[2] * row[2];
   suu = bu.dd[0] * row[0] + bu.dd[1] * row[1] + bu.dd[2] * row[2];

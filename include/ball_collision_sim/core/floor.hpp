@@ -58,5 +58,7 @@ private:
   // plane only: unit normal and the inverse Gram matrix of (U, V)
   Vec3 plane_normal_;
   Mat2 plane_gram_inverse_;
+  /// biquadratic only: each row of control points' second derivative along v
+  std::array<Vec3, 3> rows_vv_{};
 };
 }  // namespace ball_collision_sim::core
