@@ -129,8 +129,12 @@ FloorFoot Floor::project(const Vec3& q, const Vec2& guess) const
   {
     // Newton's method on the gradient of |S(u, v) - q|^2 / 2; where its Hessian is not
     // positive definite (far from the surface), the Gauss-Newton step instead.
+    // It stops where the next step would be below 1e-15, without taking it: the
+    // derivatives at hand are then those at the foot point (and a guess that is already
+    // the foot, as for a ball at rest, costs one evaluation).
     Vec2 uv = guess;
     Vec3 s, su, sv, suu, suv, svv;
+    bool converged = false;
     for (int it = 0; it < kMaxNewtonIterations; ++it)
     {
       derivatives(uv, s, su, sv, suu, suv, svv);
@@ -143,13 +147,15 @@ FloorFoot Floor::project(const Vec3& q, const Vec2& guess) const
         h << su.dot(su), su.dot(sv), su.dot(sv), sv.dot(sv);
       Vec2 step = -h.inverse() * grad;
       const double len = step.norm();
+      converged = len < 1e-15;
+      if (converged)
+        break;
       if (len > 0.5)
         step *= 0.5 / len;
       uv += step;
-      if (len < 1e-15)
-        break;
     }
-    derivatives(uv, s, su, sv, suu, suv, svv);
+    if (!converged)
+      derivatives(uv, s, su, sv, suu, suv, svv);
     foot.uv = uv;
     foot.point = s;
     foot.normal = orient(su.cross(sv).normalized());
