@@ -8,19 +8,12 @@ namespace ball_collision_sim::core
 {
 namespace
 {
-/// Quadratic Bernstein weights and their first and second derivatives at t.
-struct Bernstein
+/// Three points as the coefficients of t^0, t^1 and t^2 of the quadratic Bezier curve
+/// they control: (1 - t)^2 p0 + 2 t (1 - t) p1 + t^2 p2.
+std::array<Vec3, 3> powerBasis(const Vec3& p0, const Vec3& p1, const Vec3& p2)
 {
-  double b[3];
-  double d[3];
-  double dd[3];
-  explicit Bernstein(double t)
-      : b{(1 - t) * (1 - t), 2 * t * (1 - t), t * t}
-      , d{-2 * (1 - t), 2 - 4 * t, 2 * t}
-      , dd{2, -4, 2}
-  {
-  }
-};
+  return {p0, 2 * (p1 - p0), (p0 - 2 * p1) + p2};
+}
 
 constexpr double kInsideTolerance = 1e-9;
 constexpr int kMaxNewtonIterations = 30;
@@ -40,11 +33,15 @@ Floor::Floor(const FloorDef& def, const Vec3& gravity) : def_(def)
   {
     plane_normal_ = Vec3::UnitZ();
     plane_gram_inverse_ = Mat2::Identity();
-    const Bernstein any(0.5);  // (second derivatives of quadratics do not depend on t)
+    // along v within each row of control points, then along u across the rows
+    std::array<std::array<Vec3, 3>, 3> rows;
     for (int i = 0; i < 3; ++i)
+      rows[i] = powerBasis(def_.control_points[i][0], def_.control_points[i][1], def_.control_points[i][2]);
+    for (int b = 0; b < 3; ++b)
     {
-      const std::array<Vec3, 3>& p = def_.control_points[i];
-      rows_vv_[i] = any.dd[0] * p[0] + any.dd[1] * p[1] + any.dd[2] * p[2];
+      const std::array<Vec3, 3> column = powerBasis(rows[0][b], rows[1][b], rows[2][b]);
+      for (int a = 0; a < 3; ++a)
+        power_[a][b] = column[a];
     }
   }
   // "Up" is against gravity; without gravity, the side of the surface's own normal at
@@ -77,25 +74,22 @@ void Floor::derivatives(const Vec2& uv, Vec3& s, Vec3& su, Vec3& sv, Vec3& suu, 
     suu = suv = svv = Vec3::Zero();
     return;
   }
-  // Each row of control points along v first (the curves at this v, their v-derivatives
-  // and second v-derivatives), then those along u: 27 weighted sums of points and 18 of
-  // rows instead of 54 of points.
-  const Bernstein bu(uv.x());
-  const Bernstein bv(uv.y());
+  // S = sum over a, b of c_ab u^a v^b: the rows c_a0 + c_a1 v + c_a2 v^2 and their
+  // derivatives along v at this v, then those along u.
+  const double u = uv.x(), v = uv.y();
+  const auto& c = power_;
   std::array<Vec3, 3> row, row_v;
-  for (int i = 0; i < 3; ++i)
+  for (int a = 0; a < 3; ++a)
   {
-    const std::array<Vec3, 3>& p = def_.control_points[i];
-    row[i] = bv.b[0] * p[0] + bv.b[1] * p[1] + bv.b[2] * p[2];
-    row_v[i] = bv.d[0] * p[0] + bv.d[1] * p[1] + bv.d[2] * p[2];
+    row[a] = c[a][0] + v * (c[a][1] + v * c[a][2]);
+    row_v[a] = c[a][1] + (2 * v) * c[a][2];
   }
-  const std::array<Vec3, 3>& row_vv = rows_vv_;
-  s = bu.b[0] * row[0] + bu.b[1] * row[1] + bu.b[2] * row[2];
-  su = bu.d[0] * row[0] + bu.d[1] * row[1] + bu.d[2] * row[2];
-  suu = bu.dd[0] * row[0] + bu.dd[1] * row[1] + bu.dd[2] * row[2];
-  sv = bu.b[0] * row_v[0] + bu.b[1] * row_v[1] + bu.b[2] * row_v[2];
-  suv = bu.d[0] * row_v[0] + bu.d[1] * row_v[1] + bu.d[2] * row_v[2];
-  svv = bu.b[0] * row_vv[0] + bu.b[1] * row_vv[1] + bu.b[2] * row_vv[2];
+  s = row[0] + u * (row[1] + u * row[2]);
+  su = row[1] + (2 * u) * row[2];
+  suu = 2 * row[2];
+  sv = row_v[0] + u * (row_v[1] + u * row_v[2]);
+  suv = row_v[1] + (2 * u) * row_v[2];
+  svv = 2 * (c[0][2] + u * (c[1][2] + u * c[2][2]));
 }
 
 Vec3 Floor::point(const Vec2& uv) const

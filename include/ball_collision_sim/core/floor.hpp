@@ -58,7 +58,7 @@ private:
   // plane only: unit normal and the inverse Gram matrix of (U, V)
   Vec3 plane_normal_;
   Mat2 plane_gram_inverse_;
-  /// biquadratic only: each row of control points' second derivative along v
-  std::array<Vec3, 3> rows_vv_{};
+  /// biquadratic only: S(u, v) = sum of power_[a][b] u^a v^b
+  std::array<std::array<Vec3, 3>, 3> power_{};
 };
 }  // namespace ball_collision_sim::core
