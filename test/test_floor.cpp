@@ -45,8 +45,9 @@ TEST(Floor, ProjectionFindsTheFootPoint)
 }
 
 // A twisted net, unlike the bowl symmetric in neither u and v nor x and y: S is the sum
-// of B_i(u) B_j(v) P_ij, its normal is square to the tangents by central differences,
-// and projections find foot points whose offset lies along that normal.
+// of B_i(u) B_j(v) P_ij, its five derivatives are those of central differences, its
+// normal is square to the tangents, and projections find foot points whose offset lies
+// along the normal there.
 TEST(Floor, TwistedNetMatchesItsDefinition)
 {
   FloorDef def;
@@ -67,9 +68,26 @@ TEST(Floor, TwistedNetMatchesItsDefinition)
       for (int j = 0; j < 3; ++j)
         sum += bernstein(i, uv.x()) * bernstein(j, uv.y()) * def.control_points[i][j];
     EXPECT_TRUE(floor.point(uv).isApprox(sum, 1e-14)) << k;
-    const double h = 1e-6;
-    const Vec3 su = (floor.point(uv + Vec2(h, 0)) - floor.point(uv - Vec2(h, 0))) / (2 * h);
-    const Vec3 sv = (floor.point(uv + Vec2(0, h)) - floor.point(uv - Vec2(0, h))) / (2 * h);
+    // S is quadratic in each of u and v: central differences of S are exact but for
+    // round-off, and those of the first derivatives give the second ones
+    const double h = 1e-3;
+    const Vec2 du(h, 0), dv(0, h);
+    const Vec3 su = (floor.point(uv + du) - floor.point(uv - du)) / (2 * h);
+    const Vec3 sv = (floor.point(uv + dv) - floor.point(uv - dv)) / (2 * h);
+    Vec3 s, d_u, d_v, d_uu, d_uv, d_vv;
+    floor.derivatives(uv, s, d_u, d_v, d_uu, d_uv, d_vv);
+    EXPECT_TRUE(s.isApprox(sum, 1e-14)) << k;
+    EXPECT_LT((d_u - su).norm(), 1e-9) << k;
+    EXPECT_LT((d_v - sv).norm(), 1e-9) << k;
+    Vec3 a[6];  // the derivatives at uv +- du and uv +- dv
+    const Vec2 at[4] = {uv + du, uv - du, uv + dv, uv - dv};
+    Vec3 su_at[4], sv_at[4];
+    for (int m = 0; m < 4; ++m)
+      floor.derivatives(at[m], a[0], su_at[m], sv_at[m], a[3], a[4], a[5]);
+    EXPECT_LT((d_uu - (su_at[0] - su_at[1]) / (2 * h)).norm(), 1e-9) << k;
+    EXPECT_LT((d_uv - (sv_at[0] - sv_at[1]) / (2 * h)).norm(), 1e-9) << k;
+    EXPECT_LT((d_uv - (su_at[2] - su_at[3]) / (2 * h)).norm(), 1e-9) << k;
+    EXPECT_LT((d_vv - (sv_at[2] - sv_at[3]) / (2 * h)).norm(), 1e-9) << k;
     const Vec3 n = floor.normal(uv);
     EXPECT_NEAR(n.dot(su) / su.norm(), 0, 1e-8) << k;
     EXPECT_NEAR(n.dot(sv) / sv.norm(), 0, 1e-8) << k;
@@ -79,6 +97,8 @@ TEST(Floor, TwistedNetMatchesItsDefinition)
     const FloorFoot foot = floor.project(sum + 0.05 * n, Vec2(0.5, 0.5));
     EXPECT_TRUE(foot.uv.isApprox(uv, 1e-9)) << k;
     EXPECT_NEAR(foot.height, 0.05, 1e-12) << k;
+    EXPECT_TRUE(foot.point.isApprox(floor.point(foot.uv), 1e-15)) << k;
+    EXPECT_TRUE(foot.normal.isApprox(floor.normal(foot.uv), 1e-15)) << k;
   }
 }
 

@@ -1110,9 +1110,21 @@ AddResult World::addBall(const BallDef& def)
   result.ok = true;
   Vec2 foot;
   const Ball ball = makeBall(next_ball_id_, def, foot);
-  balls_.push_back(ball);
   if (floor_ && !plane_)
+  {
     feet_.push_back(foot);
+    try
+    {
+      balls_.push_back(ball);
+    }
+    catch (...)
+    {
+      feet_.pop_back();  // the two lists stay in step
+      throw;
+    }
+  }
+  else
+    balls_.push_back(ball);
   result.id = next_ball_id_++;
   forgetOrder();
   return result;

@@ -31,6 +31,8 @@ public:
   Vec3 point(const Vec2& uv) const;
   /// Unit normal at (u, v), on the side facing against gravity.
   Vec3 normal(const Vec2& uv) const;
+  /// S(u, v) and its first and second partial derivatives there.
+  void derivatives(const Vec2& uv, Vec3& s, Vec3& su, Vec3& sv, Vec3& suu, Vec3& suv, Vec3& svv) const;
   /// The foot point of q (nearest surface point), by Newton's method from `guess`.
   /// The polynomial surface is used past its edges too, so `inside` tells whether
   /// the foot is on the floor proper.
@@ -50,7 +52,6 @@ public:
   const Vec3& up() const { return up_; }
 
 private:
-  void derivatives(const Vec2& uv, Vec3& s, Vec3& su, Vec3& sv, Vec3& suu, Vec3& suv, Vec3& svv) const;
   Vec3 orient(Vec3 n) const;
 
   FloorDef def_;
