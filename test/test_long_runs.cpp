@@ -99,7 +99,7 @@ TEST(LongRun, PileSettlesOnASlope)
 // A dissipative gas in a bowl settles into a pile at its bottom, where balls on either
 // side of one can hold it off the floor: no step makes energy, the pile comes to rest, and
 // at rest it costs about one event per contact per step, not a jammed ball's whole event
-// cap in every step.
+// cap in every step; nor does any ball reach the cap on the way (which stops it dead).
 TEST(LongRun, PileSettlesInABowl)
 {
   for (const std::uint32_t seed : {3u, 5u, 7u})
@@ -116,7 +116,45 @@ TEST(LongRun, PileSettlesInABowl)
     EXPECT_LT(per_ball_step, 3.0) << "seed " << seed;
     EXPECT_LT(deepestOverlap(world.balls()), 1e-9) << "seed " << seed;
     EXPECT_EQ(world.lostBalls(), 0) << "seed " << seed;
+    EXPECT_EQ(world.stats().frozen_balls, 0u) << "seed " << seed;
+    EXPECT_GT(world.stats().held_balls, 0u) << "seed " << seed;
   }
+}
+
+// Three balls in a ring at the bottom of a bowl, each pressed by the floor into the two
+// others while they still move: answering one contact pushes a ball into its other
+// neighbour. They are held once that has gone round 16 times, so no step comes near the
+// event cap and none is stopped dead; they settle without making energy or overlapping.
+TEST(LongRun, RingOfThreeInABowlSettlesWithoutTheCap)
+{
+  Scene scene;
+  scene.floor = bowl(4, 0.5);
+  scene.restitution = 0.5;
+  const double r = 0.1, circle = 2 * r / std::sqrt(3.0);  // neighbours 2r apart
+  for (int k = 0; k < 3; ++k)
+  {
+    BallDef b;
+    b.radius = r;
+    const double a = 2 * M_PI * k / 3;
+    b.position = Vec3(circle * std::cos(a), circle * std::sin(a), 0.2);
+    scene.balls.push_back(b);
+  }
+  World world(scene);
+  std::size_t most = 0;
+  double rise = 0;
+  for (int k = 0; k < 500; ++k)
+  {
+    const double before = world.energy().total();
+    world.step();
+    rise = std::max(rise, world.energy().total() - before);
+    most = std::max(most, world.lastEvents().size());
+  }
+  EXPECT_EQ(world.stats().frozen_balls, 0u);
+  EXPECT_LT(most, 64u);
+  EXPECT_GT(world.stats().held_balls, 0u);
+  EXPECT_LT(rise, 1e-12);
+  EXPECT_LT(deepestOverlap(world.balls()), 1e-9);
+  EXPECT_LT(world.energy().kinetic, 1e-9);
 }
 
 // Balls in a bowl pile pressed on all sides, whose motions kept out of what they lean on

@@ -763,20 +763,19 @@ void World::keepEnergy(std::size_t i)
     const Vec3 b = allowed(i, (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest);
     m.b = chordSpeedSquared(b) >= 0 ? b : Vec3::Zero();
     if (m.b == Vec3::Zero())
-      states_[i].held = true;
+      hold(i);
     return;
   }
   // A motion that starts at an impact inside the step starts on the chord, below or
   // above the floor; where the floor above it is higher than the energy reaches, the
   // ball slides downhill from there instead, as far as it takes to be low enough.
   // Where it finds no way, it is held: it stays put through the step's resting contacts.
-  // (the flag is only ever set here: an impact, not a new motion, lets a held ball go)
-  const auto hold = [&] { states_[i].held = true; };
+  // (keepEnergy only ever holds a ball: an impact, not a new motion, lets it go)
   const Vec3 foot = onFloor(i, m.p0);
   const Vec3 downhill = tangentPart(gravity_, floorNormalAt(i, foot));
   const double slope = downhill.norm();
   if (!(slope > 0))
-    return hold();
+    return hold(i);
   // (a short way only: the chord's sag is small next to the ball; else it stays put)
   // The reaches tried are first * 2^k below half the radius. Where the energy left grows
   // with the reach (the lower the end, the more), halving the range of k after the
@@ -791,10 +790,10 @@ void World::keepEnergy(std::size_t i)
   };
   const auto keeps = [&](const Vec3& b) { return speedSquaredWith(b) >= 0 && chordSpeedSquared(b) >= 0; };
   if (count == 0)
-    return hold();
+    return hold(i);
   Vec3 found = motionTo(count - 1);
   if (!keeps(found))
-    return hold();
+    return hold(i);
   int fails = -1, works = count - 1;  // the largest k known to fail, the smallest known to work
   while (works - fails > 1)
   {
@@ -825,6 +824,13 @@ void World::countEvent(std::size_t i)
   }
   // its new motion may reach beyond where the grid has it
   grid_.update(static_cast<std::uint32_t>(i), currentBox(i));
+}
+
+void World::hold(std::size_t i)
+{
+  if (!states_[i].held)
+    ++stats_.held_balls;
+  states_[i].held = true;
 }
 
 void World::recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,
@@ -981,14 +987,19 @@ void World::resolveBallBall(const Event& event)
     // curved floor, where the floor, the walls and each other leave no room to settle
     // into), or that are in a jam: they stay where they are for the rest of the step,
     // whatever resting contact comes next (else each such contact would start them
-    // again, and one the next, without end).
+    // again, and one the next, without end). So do two whose motions keepEnergy turned
+    // back into each other (shortened or slid downhill) by more than detection lets
+    // pass: it would find this contact again at once, and again.
     keepEnergy(i);
     keepEnergy(j);
     const bool jammed = sa.events >= kJamEventsPerBallStep || sb.events >= kJamEventsPerBallStep;
-    if (both_still && (jammed || ma.b.dot(n) - mb.b.dot(n) > 0))
+    const double closing_in = rest * (ma.b.dot(n) - mb.b.dot(n));
+    const bool again = closing_in > kClosingSlop * (ma.radius + mb.radius);
+    if (jammed || (both_still && closing_in > 0) || again)
     {
       ma.b = mb.b = Vec3::Zero();
-      sa.held = sb.held = true;
+      hold(i);
+      hold(j);
     }
     resting_.push_back({i, j, ta, tb});
   }

@@ -32,6 +32,9 @@ struct WorldStats
   std::uint64_t resting_events = 0;
   std::uint64_t stale_events = 0;    ///< queued impacts dropped because a ball moved on
   std::uint64_t frozen_balls = 0;    ///< balls stopped for a step by the per-step event cap
+  /// balls held still for the rest of a step: jammed at a resting contact, or with no
+  /// motion their energy allows
+  std::uint64_t held_balls = 0;
 };
 
 /// Result of adding an object: ok, or the reason it was refused (the world unchanged).
@@ -165,6 +168,8 @@ private:
   /// go, and a ball still held after it keeps no motion for the rest of the step.
   void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact);
   void countEvent(std::size_t i);
+  /// Ball i stays where it is through the step's resting contacts (counted once a step).
+  void hold(std::size_t i);
   void recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,
                    double impulse, double closing, bool resting, const Event& event);
   Vec3 positionAt(std::size_t i, double x) const;
