@@ -2,6 +2,7 @@
 #include "ball_collision_sim/ros/conversions.hpp"
 #include "ball_collision_sim/ros/markers.hpp"
 #include "ball_collision_sim/ros/outputs.hpp"
+#include "ball_collision_sim/ros/rate_limit.hpp"
 #include "ball_collision_sim/ros/run_bag.hpp"
 #include "ball_collision_sim/ros/scene_param.hpp"
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
@@ -423,4 +424,31 @@ TEST(CollisionFlashes, InTheBagAtTheContactPointOnlyWhenSwitchedOn)
     EXPECT_NEAR(flashes[0].header.stamp.toSec(), 0.55, 1e-9);
     EXPECT_EQ(flashes[0].lifetime, ros::Duration(bridge::kFlashLifetime));
   }
+}
+
+// Views go out on the node's timer ticks (10 ms at dt = 0.01 s): 30 Hz is 30 a second,
+// not 25 (every fourth tick); a whole number of ticks stays exact; a gap starts the
+// count afresh rather than sending a burst; forcing sends at once.
+TEST(RateLimit, KeepsTheRateOnTicks)
+{
+  const auto sends = [](double rate, double tick, double seconds, bridge::RateLimit& limit, double start = 0) {
+    int count = 0;
+    for (int k = 0; k * tick < seconds - 1e-9; ++k)
+      count += limit.due(rate, start + k * tick, false) ? 1 : 0;
+    return count;
+  };
+  bridge::RateLimit thirty, twenty, zero;
+  EXPECT_EQ(sends(30, 0.01, 10, thirty), 300);
+  EXPECT_EQ(sends(20, 0.01, 10, twenty), 200);
+  EXPECT_EQ(sends(0, 0.01, 10, zero), 0);
+  // a stall of 2 s, then ticks again: one send at once, then 30 a second, no burst
+  EXPECT_TRUE(thirty.due(30, 12.0, false));
+  EXPECT_FALSE(thirty.due(30, 12.01, false));
+  EXPECT_EQ(sends(30, 0.01, 1, thirty, 12.02), 30);
+  // forced: at once, whenever, and the next a period after it
+  bridge::RateLimit forced;
+  EXPECT_TRUE(forced.due(30, 5.0, false));
+  EXPECT_TRUE(forced.due(30, 5.001, true));
+  EXPECT_FALSE(forced.due(30, 5.02, false));
+  EXPECT_TRUE(forced.due(30, 5.04, false));
 }

@@ -143,21 +143,12 @@ void SimulatorNode::publishStates(const ros::Time& stamp)
 
 void SimulatorNode::publishView(bool force)
 {
-  const ros::WallTime now = ros::WallTime::now();
+  const double now = ros::WallTime::now().toSec();
   const ros::Time stamp(world_.time());
-  const auto due = [&](double rate, const ros::WallTime& last) {
-    return rate > 0 && (force || (now - last).toSec() >= 1.0 / rate);
-  };
-  if (due(settings_.marker_rate, last_markers_))
-  {
+  if (markers_due_.due(settings_.marker_rate, now, force))
     publishBalls(stamp);
-    last_markers_ = now;
-  }
-  if (due(settings_.tf_rate, last_tf_))
-  {
+  if (tf_due_.due(settings_.tf_rate, now, force))
     publishTransforms(stamp);
-    last_tf_ = now;
-  }
 }
 
 void SimulatorNode::publishBalls(const ros::Time& stamp)

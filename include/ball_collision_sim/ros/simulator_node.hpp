@@ -3,6 +3,7 @@
 #include "ball_collision_sim/core/world.hpp"
 #include "ball_collision_sim/ros/markers.hpp"
 #include "ball_collision_sim/ros/outputs.hpp"
+#include "ball_collision_sim/ros/rate_limit.hpp"
 
 #include <ball_collision_sim/AddBall.h>
 #include <ball_collision_sim/AddWall.h>
@@ -84,8 +85,8 @@ private:
 
   ros::WallTime anchor_wall_;
   std::uint64_t anchor_steps_ = 0;
-  ros::WallTime last_markers_;
-  ros::WallTime last_tf_;
+  RateLimit markers_due_;
+  RateLimit tf_due_;
   std::vector<int> shown_balls_;  ///< ball ids drawn last time, to delete the removed
   int shown_lists_ = 0;           ///< sphere lists drawn last time (many balls)
   CollisionFlashes flashes_;      ///< collisions since the last ball markers
