@@ -199,6 +199,13 @@ TEST(TiltedPlane, ElasticImpactsMakeNoEnergy)
 
 namespace
 {
+/// The floor's normal under a rolling ball, read back from its spin w = n x v / r (n is
+/// square to v): r (v x w) / |v|^2.
+Vec3 normalFromSpin(const Ball& ball, const Vec3& w)
+{
+  return ball.radius * ball.velocity.cross(w) / ball.velocity.squaredNorm();
+}
+
 Scene bowlScene(double dt, const Vec3& start, const Vec3& velocity)
 {
   Scene scene;
@@ -250,7 +257,7 @@ TEST(Bowl, RollsAboutTheNormalUnderIt)
     const Vec3 w = world.angularVelocity(0);
     ASSERT_GT(v.norm(), 0.1) << k;
     EXPECT_NEAR(w.norm(), v.norm() / r, 1e-12 * v.norm() / r) << k;
-    const Vec3 n = r * v.cross(w) / v.squaredNorm();
+    const Vec3 n = normalFromSpin(world.balls()[0], w);
     const Vec3 foot = c - r * n;
     EXPECT_NEAR(foot.z(), a * (foot.x() * foot.x() + foot.y() * foot.y()), 1e-9) << k;
     EXPECT_TRUE(n.isApprox(Vec3(-2 * a * foot.x(), -2 * a * foot.y(), 1).normalized(), 1e-9)) << k;
@@ -278,9 +285,7 @@ TEST(Bowl, EditsKeepEachBallOnItsOwnFoot)
     for (std::size_t k = 0; k < world.balls().size(); ++k)
     {
       const Ball& ball = world.balls()[k];
-      const Vec3 w = world.angularVelocity(k);
-      const Vec3 n = ball.radius * ball.velocity.cross(w) / ball.velocity.squaredNorm();
-      const Vec3 foot = ball.position - ball.radius * n;
+      const Vec3 foot = ball.position - ball.radius * normalFromSpin(ball, world.angularVelocity(k));
       EXPECT_NEAR(foot.z(), a * (foot.x() * foot.x() + foot.y() * foot.y()), 1e-9) << when << ", ball " << ball.id;
     }
     EXPECT_EQ(world.lostBalls(), 0) << when;

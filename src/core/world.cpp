@@ -20,9 +20,9 @@ namespace
 /// A ball with more events than this in one step is stopped for the rest of the step
 /// and acts as immovable: a guard against endless chatter in jammed piles.
 constexpr std::uint32_t kMaxEventsPerBallStep = 256;
-/// Two balls all but still at a resting contact, one of which has had this many events in
-/// the step, are in a jam that answers pair by pair only pass around (each pushes one of
-/// them into a third ball, which pushes it back): they are held for the rest of the step.
+/// Two balls at a resting contact, one of which has had this many events in the step,
+/// still or not, are in a jam that answers pair by pair only pass around (each pushes one
+/// of them into a third ball, which pushes it back): they are held for the rest of the step.
 constexpr std::uint32_t kJamEventsPerBallStep = 16;
 /// A closing speed below what gravity along the floor adds in this many steps is a
 /// resting contact: the motion is stopped along the normal instead of bounced, so a
@@ -83,8 +83,9 @@ struct World::MotionState
   std::uint32_t epoch = 0;       ///< bumped at every event of this ball
   std::uint16_t events = 0;      ///< events of this ball in this step, until it is frozen
   bool frozen = false;
-  /// Jammed: all but still, pressed into another by what holds it; it stays where it is
-  /// through resting contacts for the rest of the step (an impact lets it go).
+  /// Held (see hold()): in a jam at a resting contact, or left no motion its energy allows;
+  /// it stays where it is through resting contacts for the rest of the step (an impact
+  /// lets it go).
   bool held = false;
   std::int32_t blocked = -1;     ///< its BlockedSet this step, if any
 };
@@ -214,7 +215,7 @@ void World::load()
   if (plane_)
     plane_resting_speed_ = restingSpeed(plane_normal_);
   const Vec3 along = plane_ ? tangentPart(gravity_, plane_normal_) : gravity_;
-  straight_ = (plane_ || !floor_) && along.norm() <= 1e-12 * g;
+  straight_ = !curved() && along.norm() <= 1e-12 * g;
   walls_.clear();
   next_wall_id_ = 0;
   for (const WallDef& def : scene_.walls)
@@ -224,13 +225,13 @@ void World::load()
   next_ball_id_ = 0;
   const std::vector<BallDef> defs = allBalls(scene_);
   balls_.reserve(defs.size());
-  if (floor_ && !plane_)
+  if (curved())
     feet_.reserve(defs.size());
   for (const BallDef& def : defs)
   {
     Vec2 foot;
     balls_.push_back(makeBall(next_ball_id_++, def, foot));
-    if (floor_ && !plane_)
+    if (curved())
       feet_.push_back(foot);
   }
   stats_ = WorldStats{};
@@ -324,7 +325,7 @@ void World::predictMotions()
     return;  // the last step's commit predicted them
   motions_.resize(balls_.size());
   states_.resize(balls_.size());
-  floor_uv_.resize(floor_ && !plane_ ? balls_.size() : 0);
+  floor_uv_.resize(curved() ? balls_.size() : 0);
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     prefetchBall(i + kPrefetchAhead, false);
@@ -344,7 +345,7 @@ void World::predictMotion(std::size_t i)
     floor_uv_[i] = feet_[order_[i]];
   const Vec3 end = predictedEnd(i, m.p0, ball.velocity, dt_);
   m.b = end - m.p0;
-  if (!plane_ && floor_)
+  if (curved())
     keepEnergy(i);  // on a plane the first chord ends where the exact path does
   const Vec3 reach = m.p0 + m.b;
   grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, reach, ball.radius));
@@ -354,7 +355,7 @@ Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double spa
 {
   // seed (1): ds = dt v + dt^2 g / 2, then back onto the floor, seed (2)-(4)
   const Vec3 q = p + span * v + (0.5 * span * span) * gravity_;
-  if (plane_ || !floor_)
+  if (!curved())
     return onFloor(i, q);
   const FloorFoot foot = floor_->project(q, floor_uv_[i]);
   floor_uv_[i] = foot.uv;
@@ -425,7 +426,7 @@ void World::commitToFloor(bool predict_next)
   // Without resting contacts every ball is finished in one pass; with them, velocities
   // are settled across the contacts first.
   const bool settle = !resting_.empty() || !blocked_sets_.empty();
-  if (floor_ && !plane_)
+  if (curved())
     floor_normals_.resize(balls_.size());
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
@@ -656,7 +657,7 @@ void World::endOnFloor(std::size_t i)
   // them again, in turn, until both hold.
   Motion& m = motions_[i];
   const double rest = 1 - m.x0;
-  if (plane_ || !floor_ || states_[i].frozen || !(rest > 0))
+  if (!curved() || states_[i].frozen || !(rest > 0))
     return;
   const double roundoff = roundoffAt(m.p0, m.radius);
   for (int pass = 0; pass < 32; ++pass)
@@ -701,7 +702,7 @@ void World::keepEnergy(std::size_t i)
   const auto chordSpeedSquared = [&](const Vec3& b) { return v0.squaredNorm() + 2 * rest * gravity_.dot(b); };
   // (on a curved floor endOnFloor has put the chord's end on it, or as near as its blocked
   // directions let it: the chord's own end is what counts)
-  const double full = plane_ || !floor_ ? speedSquared(1.0) : chordSpeedSquared(m.b);
+  const double full = curved() ? chordSpeedSquared(m.b) : speedSquared(1.0);
   if (full >= 0)
     return;
   // The chord ends higher than the ball's energy reaches (a turning point on a curved
@@ -711,7 +712,7 @@ void World::keepEnergy(std::size_t i)
   double lo = 0.0;
   if (start > 0)
   {
-    if (plane_ || !floor_)
+    if (!curved())
       lo = start / (start - full);  // linear in s
     else
     {
@@ -756,7 +757,7 @@ void World::keepEnergy(std::size_t i)
     // (round-off may leave the end a hair too high; the speed is clamped to zero then)
   }
   m.b *= lo;
-  if (plane_ || !floor_)
+  if (!curved())
     return;
   if (lo > 0)
   {
@@ -965,12 +966,11 @@ void World::resolveBallBall(const Event& event)
     // together again at once). On a curved floor, putting the ends back on the floor can
     // bring some back: in turn, a few times.
     // (until what approach is left is round-off of the positions)
-    const bool curved = floor_ && !plane_;
     const double rest = 1 - event.x;
-    const double roundoff = curved ? roundoffAt(pa, ma.radius) + roundoffAt(pb, mb.radius) : 0.0;
-    for (int pass = 0; pass < (curved ? 32 : 1); ++pass)
+    const double roundoff = curved() ? roundoffAt(pa, ma.radius) + roundoffAt(pb, mb.radius) : 0.0;
+    for (int pass = 0; pass < (curved() ? 32 : 1); ++pass)
     {
-      const Vec3 ua = curved ? n : ta, ub = curved ? n : tb;
+      const Vec3 ua = curved() ? n : ta, ub = curved() ? n : tb;
       const double into = ma.b.dot(ua) - mb.b.dot(ub);
       const double k = move_a * ta.dot(ua) + move_b * tb.dot(ub);
       if (!(into > 0 && k > 0 && rest * into > roundoff))
@@ -1121,7 +1121,7 @@ AddResult World::addBall(const BallDef& def)
   result.ok = true;
   Vec2 foot;
   const Ball ball = makeBall(next_ball_id_, def, foot);
-  if (floor_ && !plane_)
+  if (curved())
   {
     feet_.push_back(foot);
     try

@@ -137,6 +137,8 @@ private:
   Ball makeBall(int id, const BallDef& def, Vec2& foot) const;
   /// Unit vector against gravity (the floor's normal side).
   const Vec3& up() const { return up_; }
+  /// A floor other than a plane: balls' foot points are found by Newton's method.
+  bool curved() const { return floor_ && !plane_; }
 
   // The stages of a step, in order.
   void predictMotions();
