@@ -64,6 +64,7 @@ peers: build
 	cmake -S . -B $(BUILD) > /dev/null
 	cmake --build $(BUILD) -j$(JOBS) --target compare_peers
 	$(BUILD)/devel/lib/ball_collision_sim/compare_peers --out bench/results/$$(hostname -s)-peers.csv
+	/usr/bin/python3 bench/peers_table bench/results/$$(hostname -s)-peers.csv
 
 clean:
 	rm -rf $(BUILD)

@@ -12,16 +12,12 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <fcntl.h>
-#include <csignal>
-#include <map>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -560,5 +556,55 @@ TEST_F(SimulateCli, TwoRunsWriteTheSameBits)
   const std::string a = readFile(path("a.csv"));
   EXPECT_FALSE(a.empty());
   EXPECT_TRUE(a == readFile(path("b.csv")));
+}
+}  // namespace
+
+namespace
+{
+// peers_table reads compare_peers' CSV and checks this package's figures against the
+// targets: each verdict follows from the numbers of the same run, and a file that is not
+// that CSV stops it with exit 2 and names what is missing.
+TEST_F(SimulateCli, PeersTableChecksTheTargetsOfOneRun)
+{
+  {
+    std::ofstream out(path("peers.csv"));
+    out << "engine,scene,balls,steps,median_ns_per_ball_step,kinetic_end_over_start,max_overlap_m,escaped\n"
+           "ball_collision_sim,S1,1000,1000,100,1,0,0\n"
+           "ode,S1,1000,1000,1900,1.1,0.03,0\n"
+           "ball_collision_sim,S1,10000,1000,140,1.0000000001,0,0\n"
+           "ode,S1,10000,1000,3000,1.1,0.06,0\n"
+           "bullet,S1,10000,500,2800,1.01,0.05,1\n"
+           "ball_collision_sim,S1,100000,400,160,0.999,2e-9,0\n"
+           "ode,S1,100000,150,4000,1.01,0.05,0\n"
+           "ball_collision_sim,S2,100,100,9000,1,0,3\n";
+  }
+  const std::string table = "/usr/bin/python3 " + std::string(BCS_CONFIG_DIR) + "/../bench/peers_table ";
+  ASSERT_EQ(std::system((table + shellQuote(path("peers.csv")) + " > " + shellQuote(path("t.md")) + " 2>&1").c_str()),
+            0)
+      << readFile(path("t.md"));
+  const std::string md = readFile(path("t.md"));
+  for (const char* line : {
+           "| ode | S1 | 10000 | 1000 | 3,000 | 1.1 | 0.06 | 0 |",
+           "| S1 1000 balls: fastest peer (ode) / this | 19.0x | >= 20x | MISSED |",
+           "| S1 10000 balls: ns per ball-step | 140 | <= 150 | met |",
+           "| S1 10000 balls: fastest peer (bullet) / this | 20.0x | >= 20x | met |",
+           "| S1 100000 balls: ns per ball-step | 160 | <= 150 | MISSED |",
+           "| S1 100000 balls: fastest peer (ode) / this | 25.0x | >= 20x | met |",
+           "| S1 ns at 100000 over ns at 1000 balls | 1.60x | <= 1.5x | MISSED |",
+           "| S1 10000 balls: kinetic end / start - 1 | 1e-10 | <= 1e-09 | met |",
+           "| S1 100000 balls: kinetic end / start - 1 | 0.001 | <= 1e-09 | MISSED |",
+           "| S1 100000 balls: largest overlap [m] | 2e-09 | <= 1e-09 | MISSED |",
+           "| S2 100 balls: escaped | 3 | 0 | MISSED |",
+       })
+    EXPECT_TRUE(contains(md, line)) << line << "\n" << md;
+
+  {
+    std::ofstream out(path("not_peers.csv"));
+    out << "name,iterations,real_time\nBM_S1,5,0.17\n";
+  }
+  const int status = std::system((table + shellQuote(path("not_peers.csv")) + " > " + shellQuote(path("e.txt")) + " 2>&1").c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  EXPECT_TRUE(contains(readFile(path("e.txt")), "no column engine")) << readFile(path("e.txt"));
 }
 }  // namespace
