@@ -1086,7 +1086,7 @@ Vec3 World::angularVelocity(std::size_t k) const
 {
   const Ball& ball = balls_.at(k);
   const Vec3 normal = plane_ ? plane_normal_ : floor_ ? floor_->normal(feet_[k]) : up_;
-  return normal.cross(ball.velocity) * (2 * (0.5 / ball.radius));
+  return normal.cross(ball.velocity) / ball.radius;
 }
 
 // ---- editing -------------------------------------------------------------------------
