@@ -2,20 +2,64 @@
 
 #include "ball_collision_sim/core/format.hpp"
 
+#include <cmath>
 
 namespace ball_collision_sim::core
 {
-std::string placeOnFloor(BallDef& ball, const std::optional<Floor>& floor, Vec2* uv)
+namespace
+{
+/// Most Newton steps along gravity to find where a ball rests under a point. The distance
+/// to the surface has the normal as its gradient, so the steps converge quadratically:
+/// a handful suffice on any floor that is a graph over the plane across gravity.
+constexpr int kMaxLandingIterations = 32;
+/// Newton along gravity stops when the centre is this close to one radius above the
+/// surface, relative to the ball's size and distance from the origin: round-off.
+constexpr double kLandingTolerance = 1e-14;
+
+std::string offTheFloor(const FloorFoot& foot)
+{
+  return "off the floor (its foot point at u = " + formatNumber(foot.uv.x()) + ", v = " + formatNumber(foot.uv.y()) +
+         " is outside [0, 1]^2)";
+}
+
+/// The foot of the centre that rests on the floor under `p` along gravity: the point
+/// p + h up at height r above the surface, by Newton's method on h.
+FloorFoot footUnder(const Floor& floor, const Vec3& p, double radius)
+{
+  const Vec3& up = floor.up();
+  const double scale = kLandingTolerance * (radius + p.cwiseAbs().maxCoeff());
+  FloorFoot foot = floor.project(p, Vec2(0.5, 0.5));
+  double h = 0.0;
+  for (int it = 0; it < kMaxLandingIterations && std::abs(foot.height - radius) > scale; ++it)
+  {
+    // d(height)/dh = <normal, up>: the floor's slope; a floor at right angles to gravity
+    // has no point under p to rest on
+    const double rise = foot.normal.dot(up);
+    if (!(rise > 0))
+      break;
+    h -= (foot.height - radius) / rise;
+    foot = floor.project(p + h * up, foot.uv);
+  }
+  return foot;
+}
+}  // namespace
+
+std::string placeOnFloor(BallDef& ball, const std::optional<Floor>& floor, Vec2* uv, Landing landing)
 {
   if (!floor)
     return "";
-  const FloorFoot foot = floor->project(ball.position, Vec2(0.5, 0.5));
+  const FloorFoot foot = landing == Landing::kUnder ? footUnder(*floor, ball.position, ball.radius)
+                                                    : floor->project(ball.position, Vec2(0.5, 0.5));
   if (!foot.inside)
-    return "off the floor (its foot point at u = " + formatNumber(foot.uv.x()) + ", v = " + formatNumber(foot.uv.y()) +
-           " is outside [0, 1]^2)";
-  if (foot.height < -kContactTolerance)
+    return offTheFloor(foot);
+  if (landing == Landing::kUnder && std::abs(foot.height - ball.radius) > kContactTolerance)
+    return "off the floor (no point of it under the centre along gravity)";
+  if (landing == Landing::kExact && std::abs(foot.height - ball.radius) > kContactTolerance)
+    return "not resting on the floor (its centre is " + formatNumber(foot.height) +
+           " m from the surface, its radius " + formatNumber(ball.radius) + " m)";
+  if (landing == Landing::kNearest && foot.height < -kContactTolerance)
     return "off the floor (its centre is " + formatNumber(-foot.height) + " m below the surface)";
-  if (foot.height > 2 * ball.radius + kContactTolerance)
+  if (landing == Landing::kNearest && foot.height > 2 * ball.radius + kContactTolerance)
     return "off the floor (its centre is " + formatNumber(foot.height) +
            " m above the surface; balls roll on it, centre one radius above)";
   ball.position = floor->ballCentre(foot, ball.radius);

@@ -277,8 +277,8 @@ std::vector<SceneIssue> validate(const Scene& scene)
     check.fail("max_balls", "must be >= 1 (got " + std::to_string(node.max_balls) + ")");
   if (node.tf_max_balls < 0)
     check.fail("tf_max_balls", "must be >= 0 (got " + std::to_string(node.tf_max_balls) + ")");
-  if (check.finite("status_period", node.status_period) && node.status_period < 0)
-    check.fail("status_period", "must be >= 0 s (0 = no status line)");
+  if (check.finite("status_period", node.status_period) && !(node.status_period >= 0 && node.status_period <= 1e6))
+    check.fail("status_period", "must be in [0, 1e6] s (0 = no status line; got " + formatNumber(node.status_period) + ")");
   check.positive("click_radius", node.click_radius, kMinLength, kMaxLength, "m");
   check.positive("click_mass", node.click_mass, kMinMass, kMaxMass, "kg");
   const bool gravity_ok = check.bounded("gravity", scene.gravity, 1e6, "m/s^2");

@@ -217,20 +217,21 @@ void World::load()
   const Vec3 along = plane_ ? tangentPart(gravity_, plane_normal_) : gravity_;
   straight_ = !curved() && along.norm() <= 1e-12 * g;
   walls_.clear();
-  next_wall_id_ = 0;
+  next_wall_id_ = kFirstId;
   for (const WallDef& def : scene_.walls)
     walls_.emplace_back(next_wall_id_++, def, scene_.restitution);
   balls_.clear();
   feet_.clear();
-  next_ball_id_ = 0;
+  next_ball_id_ = kFirstId;
   const std::vector<BallDef> defs = allBalls(scene_);
   balls_.reserve(defs.size());
   if (curved())
     feet_.reserve(defs.size());
-  for (const BallDef& def : defs)
+  for (BallDef def : defs)
   {
-    Vec2 foot;
-    balls_.push_back(makeBall(next_ball_id_++, def, foot));
+    Vec2 foot(0.5, 0.5);
+    placeOnFloor(def, floor_, &foot);  // validate() has checked that it stands
+    balls_.push_back(makeBall(next_ball_id_++, def));
     if (curved())
       feet_.push_back(foot);
   }
@@ -251,15 +252,12 @@ void World::forgetOrder()
   motions_ready_ = false;
 }
 
-Ball World::makeBall(int id, const BallDef& def, Vec2& foot) const
+Ball World::makeBall(int id, const BallDef& placed)
 {
-  BallDef placed = def;
   Ball ball;
-  foot = Vec2(0.5, 0.5);
-  placeOnFloor(placed, floor_, &foot);
   ball.id = id;
-  ball.radius = def.radius;
-  ball.mass = def.mass;
+  ball.radius = placed.radius;
+  ball.mass = placed.mass;
   ball.position = placed.position;
   ball.velocity = placed.velocity;
   return ball;
@@ -1031,30 +1029,66 @@ Vec3 World::momentum() const
   return p;
 }
 
-int World::lostBalls() const
+std::string World::whyLost(std::size_t k) const
 {
-  int lost = 0;
+  const Ball& ball = balls_[k];
   if (floor_)
   {
-    for (std::size_t k = 0; k < balls_.size(); ++k)
-    {
-      const Vec2 uv = plane_ ? floor_->planeParameters(balls_[k].position) : feet_[k];
-      if (!((uv.array() >= -1e-9).all() && (uv.array() <= 1 + 1e-9).all()))
-        ++lost;
-    }
-    return lost;
+    const Vec2 uv = plane_ ? floor_->planeParameters(ball.position) : feet_[k];
+    if ((uv.array() >= -1e-9).all() && (uv.array() <= 1 + 1e-9).all())
+      return "";
+    return "left the floor (its foot point at u = " + formatNumber(uv.x()) + ", v = " + formatNumber(uv.y()) +
+           " is outside [0, 1]^2)";
   }
   if (walls_.empty())
-    return 0;
+    return "";
   Vec3 lo = walls_.front().box_min, hi = walls_.front().box_max;
   for (const Wall& wall : walls_)
   {
     lo = lo.cwiseMin(wall.box_min);
     hi = hi.cwiseMax(wall.box_max);
   }
-  for (const Ball& ball : balls_)
-    if ((ball.position.array() < lo.array() - ball.radius).any() || (ball.position.array() > hi.array() + ball.radius).any())
-      ++lost;
+  if ((ball.position.array() < lo.array() - ball.radius).any() || (ball.position.array() > hi.array() + ball.radius).any())
+    return "left the walls' bounds";
+  return "";
+}
+
+int World::lostBalls() const
+{
+  int lost = 0;
+  for (std::size_t k = 0; k < balls_.size(); ++k)
+    lost += whyLost(k).empty() ? 0 : 1;
+  return lost;
+}
+
+std::vector<LostBall> World::removeLostBalls()
+{
+  std::vector<LostBall> lost;
+  if (!floor_ && walls_.empty())
+    return lost;
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < balls_.size(); ++k)
+  {
+    std::string why = whyLost(k);
+    if (!why.empty())
+    {
+      lost.push_back({balls_[k], angularVelocity(k), std::move(why)});
+      continue;
+    }
+    if (kept != k)
+    {
+      balls_[kept] = balls_[k];
+      if (!feet_.empty())
+        feet_[kept] = feet_[k];
+    }
+    ++kept;
+  }
+  if (lost.empty())
+    return lost;
+  balls_.resize(kept);
+  if (!feet_.empty())
+    feet_.resize(kept);
+  forgetOrder();
   return lost;
 }
 
@@ -1075,11 +1109,17 @@ std::uint64_t World::stateHash() const
   return h.value();
 }
 
-const Ball* World::findBall(int id) const
+std::size_t World::indexOf(int id) const
 {
   // Ids only grow and removal keeps order, so the list is sorted by id.
   const auto it = std::lower_bound(balls_.begin(), balls_.end(), id, [](const Ball& b, int v) { return b.id < v; });
-  return it != balls_.end() && it->id == id ? &*it : nullptr;
+  return it != balls_.end() && it->id == id ? static_cast<std::size_t>(it - balls_.begin()) : balls_.size();
+}
+
+const Ball* World::findBall(int id) const
+{
+  const std::size_t k = indexOf(id);
+  return k < balls_.size() ? &balls_[k] : nullptr;
 }
 
 Vec3 World::angularVelocity(std::size_t k) const
@@ -1091,36 +1131,43 @@ Vec3 World::angularVelocity(std::size_t k) const
 
 // ---- editing -------------------------------------------------------------------------
 
-std::string World::checkBall(const BallDef& def) const
+std::string World::place(BallDef& def, Landing landing, int ignore_id, Vec2& foot) const
 {
   const std::vector<SceneIssue> issues = validateBall(def, "");
   if (!issues.empty())
     return joinIssues(issues);
-  BallDef placed = def;
-  const std::string why = placeOnFloor(placed, floor_);
+  const std::string why = placeOnFloor(def, floor_, &foot, landing);
   if (!why.empty())
     return "position: " + why;
-  if (const auto overlap = wallOverlap(placed, walls_))
+  if (const auto overlap = wallOverlap(def, walls_))
     return "position: overlaps wall " + std::to_string(walls_[overlap->index].id) + " by " +
            formatNumber(overlap->depth) + " m";
   for (const Ball& other : balls_)
   {
-    const double depth = placed.radius + other.radius - (placed.position - other.position).norm();
-    if (depth > kContactTolerance)
+    const double depth = def.radius + other.radius - (def.position - other.position).norm();
+    if (other.id != ignore_id && depth > kContactTolerance)
       return "position: overlaps ball " + std::to_string(other.id) + " by " + formatNumber(depth) + " m";
   }
   return "";
 }
 
-AddResult World::addBall(const BallDef& def)
+std::string World::checkBall(const BallDef& def, Landing landing) const
+{
+  BallDef placed = def;
+  Vec2 foot;
+  return place(placed, landing, -1, foot);
+}
+
+AddResult World::addBall(const BallDef& def, Landing landing)
 {
   AddResult result;
-  result.error = checkBall(def);
+  BallDef placed = def;
+  Vec2 foot(0.5, 0.5);
+  result.error = place(placed, landing, -1, foot);
   if (!result.error.empty())
     return result;
   result.ok = true;
-  Vec2 foot;
-  const Ball ball = makeBall(next_ball_id_, def, foot);
+  const Ball ball = makeBall(next_ball_id_, placed);
   if (curved())
   {
     feet_.push_back(foot);
@@ -1138,6 +1185,68 @@ AddResult World::addBall(const BallDef& def)
     balls_.push_back(ball);
   result.id = next_ball_id_++;
   forgetOrder();
+  return result;
+}
+
+AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing)
+{
+  AddResult result;
+  result.id = id;
+  const std::size_t k = indexOf(id);
+  if (k == balls_.size())
+  {
+    result.error = "id: no ball has id " + std::to_string(id);
+    return result;
+  }
+  BallDef def;
+  def.position = position;
+  def.velocity = velocity;
+  def.radius = balls_[k].radius;
+  def.mass = balls_[k].mass;
+  Vec2 foot(0.5, 0.5);
+  result.error = place(def, landing, id, foot);
+  if (!result.error.empty())
+    return result;
+  balls_[k].position = def.position;
+  balls_[k].velocity = def.velocity;
+  if (curved())
+    feet_[k] = foot;
+  forgetOrder();
+  result.ok = true;
+  return result;
+}
+
+AddResult World::applyImpulse(int id, const Vec3& impulse)
+{
+  AddResult result;
+  result.id = id;
+  const std::size_t k = indexOf(id);
+  if (k == balls_.size())
+  {
+    result.error = "id: no ball has id " + std::to_string(id);
+    return result;
+  }
+  if (!impulse.allFinite())
+  {
+    result.error = "impulse: must be finite";
+    return result;
+  }
+  Ball& ball = balls_[k];
+  Vec3 velocity = ball.velocity + impulse / ball.mass;
+  if (floor_)
+  {
+    const Vec3 normal = plane_ ? plane_normal_ : floor_->normal(feet_[k]);
+    velocity -= velocity.dot(normal) * normal;
+  }
+  if (!(velocity.stableNorm() <= kMaxSpeed))
+  {
+    result.error = "impulse: would give ball " + std::to_string(id) + " a speed of " +
+                   formatNumber(velocity.stableNorm()) + " m/s, past the limit of " + formatNumber(kMaxSpeed) + " m/s";
+    return result;
+  }
+  ball.velocity = velocity;
+  forgetOrder();
+  result.ok = true;
   return result;
 }
 
@@ -1166,12 +1275,12 @@ AddResult World::addWall(const WallDef& def)
 
 bool World::removeBall(int id)
 {
-  const auto it = std::find_if(balls_.begin(), balls_.end(), [&](const Ball& b) { return b.id == id; });
-  if (it == balls_.end())
+  const std::size_t k = indexOf(id);
+  if (k == balls_.size())
     return false;
   if (!feet_.empty())
-    feet_.erase(feet_.begin() + (it - balls_.begin()));
-  balls_.erase(it);
+    feet_.erase(feet_.begin() + static_cast<std::ptrdiff_t>(k));
+  balls_.erase(balls_.begin() + static_cast<std::ptrdiff_t>(k));
   forgetOrder();
   return true;
 }

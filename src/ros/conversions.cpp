@@ -30,9 +30,9 @@ core::Vec3 toVec3(const geometry_msgs::Vector3& v)
   return core::Vec3(v.x, v.y, v.z);
 }
 
-std::string ballFrame(int id)
+std::string ballFrame(int id, const std::string& prefix)
 {
-  return "ball_" + std::to_string(id);
+  return prefix + "ball_" + std::to_string(id);
 }
 
 namespace
@@ -89,13 +89,24 @@ ball_collision_sim::CollisionEvent toMsg(const core::CollisionEvent& event, cons
   return msg;
 }
 
+ball_collision_sim::Wall toMsg(const core::Wall& wall)
+{
+  ball_collision_sim::Wall msg;
+  msg.id = wall.id;
+  msg.point = toPoint(wall.def.point);
+  msg.u = toVector3(wall.def.u);
+  msg.v = toVector3(wall.def.v);
+  msg.restitution = wall.restitution;
+  return msg;
+}
+
 geometry_msgs::TransformStamped toTransform(const core::Ball& ball, const std::string& frame_id,
-                                           const ros::Time& stamp)
+                                           const ros::Time& stamp, const std::string& prefix)
 {
   geometry_msgs::TransformStamped t;
   t.header.stamp = stamp;
   t.header.frame_id = frame_id;
-  t.child_frame_id = ballFrame(ball.id);
+  t.child_frame_id = ballFrame(ball.id, prefix);
   t.transform.translation = toVector3(ball.position);
   t.transform.rotation = toQuaternion(ball.orientation);
   return t;

@@ -29,19 +29,23 @@ BallStateArray statesMessage(const core::World& world, const std::string& frame_
 }
 
 tf2_msgs::TFMessage transformsMessage(const core::World& world, const std::string& frame_id, const ros::Time& stamp,
-                                      std::size_t max_balls)
+                                      std::size_t max_balls, const std::string& prefix)
 {
   tf2_msgs::TFMessage msg;
   const std::size_t count = std::min(world.balls().size(), max_balls);
   msg.transforms.reserve(count);
   for (std::size_t i = 0; i < count; ++i)
-    msg.transforms.push_back(toTransform(world.balls()[i], frame_id, stamp));
+    msg.transforms.push_back(toTransform(world.balls()[i], frame_id, stamp, prefix));
   return msg;
 }
 
 BallColoring ballColoring(const core::World& world)
 {
-  const core::NodeSettings& node = world.scene().node;
+  return ballColoring(world, world.scene().node);
+}
+
+BallColoring ballColoring(const core::World& world, const core::NodeSettings& node)
+{
   BallColoring coloring;
   coloring.mode = node.ball_color;
   coloring.speed_max = node.speed_color_max;

@@ -1,9 +1,31 @@
 #include "ball_collision_sim/ros/requests.hpp"
 
 #include "ball_collision_sim/ros/conversions.hpp"
+#include "ball_collision_sim/yaml/scene_yaml.hpp"
+
+#include <ros/package.h>
 
 namespace ball_collision_sim::bridge
 {
+std::string checkId(int id)
+{
+  if (id >= core::kFirstId)
+    return "";
+  if (id == 0)
+    return "id: missing (0 names no object; ids start at " + std::to_string(core::kFirstId) + ")";
+  return "id: must be >= " + std::to_string(core::kFirstId) + " (got " + std::to_string(id) + ")";
+}
+
+std::optional<core::Landing> landingOf(std::uint8_t placement, std::string& error)
+{
+  if (placement == AddBall::Request::ON_FLOOR)
+    return core::Landing::kUnder;
+  if (placement == AddBall::Request::AS_GIVEN)
+    return core::Landing::kExact;
+  error = "placement: must be 0 (ON_FLOOR) or 1 (AS_GIVEN), got " + std::to_string(placement);
+  return std::nullopt;
+}
+
 std::string roomForABall(const core::World& world, int max_balls)
 {
   if (world.balls().size() < static_cast<std::size_t>(max_balls))
@@ -15,13 +37,16 @@ std::string roomForABall(const core::World& world, int max_balls)
 void answerAddBall(core::World& world, int max_balls, const AddBall::Request& req, AddBall::Response& res)
 {
   res.id = -1;
+  res.success = false;
+  const std::optional<core::Landing> landing = landingOf(req.placement, res.message);
+  if (!landing)
+    return;
   if (const std::string full = roomForABall(world, max_balls); !full.empty())
   {
-    res.success = false;
     res.message = full;
     return;
   }
-  const core::AddResult result = world.addBall(fromMsg(req));
+  const core::AddResult result = world.addBall(fromMsg(req), *landing);
   res.success = result.ok;
   res.id = result.id;
   res.message = result.ok ? "added ball " + std::to_string(result.id) : result.error;
@@ -37,30 +62,121 @@ void answerAddWall(core::World& world, const AddWall::Request& req, AddWall::Res
 
 void answerRemoveBall(core::World& world, const RemoveObject::Request& req, RemoveObject::Response& res)
 {
-  res.success = world.removeBall(req.id);
-  res.message = res.success ? "removed ball " + std::to_string(req.id) : "id: no ball has id " + std::to_string(req.id);
+  res.message = checkId(req.id);
+  res.success = res.message.empty() && world.removeBall(req.id);
+  if (res.message.empty())
+    res.message = res.success ? "removed ball " + std::to_string(req.id) : "id: no ball has id " + std::to_string(req.id);
 }
 
 void answerRemoveWall(core::World& world, const RemoveObject::Request& req, RemoveObject::Response& res)
 {
-  res.success = world.removeWall(req.id);
-  res.message = res.success ? "removed wall " + std::to_string(req.id) : "id: no wall has id " + std::to_string(req.id);
+  res.message = checkId(req.id);
+  res.success = res.message.empty() && world.removeWall(req.id);
+  if (res.message.empty())
+    res.message = res.success ? "removed wall " + std::to_string(req.id) : "id: no wall has id " + std::to_string(req.id);
+}
+
+void answerSetBallState(core::World& world, const SetBallState::Request& req, SetBallState::Response& res)
+{
+  res.success = false;
+  res.message = checkId(req.id);
+  if (!res.message.empty())
+    return;
+  const std::optional<core::Landing> landing = landingOf(req.placement, res.message);
+  if (!landing)
+    return;
+  const core::AddResult result = world.setBallState(req.id, toVec3(req.position), toVec3(req.velocity), *landing);
+  res.success = result.ok;
+  res.message = result.ok ? "ball " + std::to_string(req.id) + " set" : result.error;
+  if (result.ok)
+    res.state = ballState(world, req.id);
+}
+
+void answerApplyImpulse(core::World& world, const ApplyImpulse::Request& req, ApplyImpulse::Response& res)
+{
+  res.success = false;
+  res.message = checkId(req.id);
+  if (!res.message.empty())
+    return;
+  const core::AddResult result = world.applyImpulse(req.id, toVec3(req.impulse));
+  res.success = result.ok;
+  res.message = result.ok ? "pushed ball " + std::to_string(req.id) : result.error;
+  if (result.ok)
+    res.state = ballState(world, req.id);
+}
+
+std::string whyNoSteps(bool paused, std::uint32_t steps)
+{
+  if (!paused)
+    return "steps: stepping works only while paused (call pause with data: true first)";
+  if (steps < 1 || steps > kMaxStepsPerCall)
+    return "steps: must be in 1.." + std::to_string(kMaxStepsPerCall) + " (got " + std::to_string(steps) + ")";
+  return "";
 }
 
 bool acceptStep(const core::World& world, bool paused, const Step::Request& req, Step::Response& res)
 {
   res.time = world.time();
+  res.message = whyNoSteps(paused, req.steps);
   res.success = false;
-  if (!paused)
-  {
-    res.message = "steps: stepping works only while paused (call pause with data: true first)";
-    return false;
-  }
-  if (req.steps < 1 || req.steps > kMaxStepsPerCall)
-  {
-    res.message = "steps: must be in 1.." + std::to_string(kMaxStepsPerCall) + " (got " + std::to_string(req.steps) + ")";
-    return false;
-  }
-  return true;
+  return res.message.empty();
+}
+
+BallState ballState(const core::World& world, int id)
+{
+  const core::Ball* ball = world.findBall(id);
+  const auto k = static_cast<std::size_t>(ball - world.balls().data());
+  return toMsg(*ball, world.angularVelocity(k));
+}
+
+void answerGetState(const core::World& world, bool paused, const std::string& frame_prefix, GetState::Response& res)
+{
+  res.success = true;
+  res.time = world.time();
+  res.steps = world.stats().steps;
+  res.paused = paused;
+  res.frame_id = world.scene().frame_id;
+  res.frame_prefix = frame_prefix;
+  res.balls.clear();
+  res.balls.reserve(world.balls().size());
+  for (std::size_t k = 0; k < world.balls().size(); ++k)
+    res.balls.push_back(toMsg(world.balls()[k], world.angularVelocity(k)));
+  res.walls.clear();
+  for (const core::Wall& wall : world.walls())
+    res.walls.push_back(toMsg(wall));
+  res.message = "t = " + std::to_string(res.time) + " s, " + std::to_string(res.balls.size()) + " balls, " +
+                std::to_string(res.walls.size()) + " walls" + (paused ? ", paused" : "");
+}
+
+namespace
+{
+/// A path as given, or package://PACKAGE/REST resolved to that package's folder.
+std::string resolvePath(const std::string& path)
+{
+  const std::string scheme = "package://";
+  if (path.rfind(scheme, 0) != 0)
+    return path;
+  const std::string rest = path.substr(scheme.size());
+  const std::size_t slash = rest.find('/');
+  const std::string package = rest.substr(0, slash);
+  const std::string folder = ros::package::getPath(package);
+  if (folder.empty())
+    throw yaml::SceneError("path: no package named \"" + package + "\" (in " + path + ")");
+  return folder + (slash == std::string::npos ? "" : rest.substr(slash));
+}
+}  // namespace
+
+RequestedScene sceneOfRequest(const LoadScene::Request& req)
+{
+  if (req.path.empty() == req.yaml.empty())
+    throw yaml::SceneError(req.path.empty() ? "path: missing (give a scene file in path, or its text in yaml)"
+                                            : "yaml: give either path or yaml, not both");
+  const std::string source = req.path.empty() ? "yaml" : resolvePath(req.path);
+  const std::string text = req.path.empty() ? req.yaml : yaml::readSceneFile(source);
+  RequestedScene out{yaml::parseScene(text, source), yaml::nodeKeysIn(text)};
+  const std::vector<core::SceneIssue> issues = core::validate(out.scene);
+  if (!issues.empty())
+    throw yaml::SceneError(source + ": " + core::joinIssues(issues));
+  return out;
 }
 }  // namespace ball_collision_sim::bridge

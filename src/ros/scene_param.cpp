@@ -2,7 +2,12 @@
 
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
 
+#include <ros/param.h>
+#include <yaml-cpp/yaml.h>
+
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <regex>
 #include <string>
@@ -109,5 +114,56 @@ core::Scene loadSceneParams(const ros::NodeHandle& nh, std::string* yaml_text)
   if (yaml_text)
     *yaml_text = text;
   return scene;
+}
+namespace
+{
+XmlRpc::XmlRpcValue toXmlRpc(const YAML::Node& node)
+{
+  XmlRpc::XmlRpcValue out;
+  if (node.IsMap())
+  {
+    out.begin();  // an empty struct, not an invalid value
+    for (const auto& item : node)
+      out[item.first.as<std::string>()] = toXmlRpc(item.second);
+    return out;
+  }
+  if (node.IsSequence())
+  {
+    out.setSize(static_cast<int>(node.size()));
+    for (std::size_t i = 0; i < node.size(); ++i)
+      out[static_cast<int>(i)] = toXmlRpc(node[i]);
+    return out;
+  }
+  if (!node.IsScalar())
+    return out;
+  const std::string& text = node.Scalar();
+  if (node.Tag() == "!")
+    return XmlRpc::XmlRpcValue(text);  // quoted
+  if (text == "true" || text == "false")
+    return XmlRpc::XmlRpcValue(text == "true");
+  static const std::regex integer(R"([-+]?[0-9]+)");
+  if (std::regex_match(text, integer))
+  {
+    const long long value = std::stoll(text);
+    if (value >= INT32_MIN && value <= INT32_MAX)
+      return XmlRpc::XmlRpcValue(static_cast<int>(value));
+    return XmlRpc::XmlRpcValue(text);
+  }
+  if (text == ".nan" || text == ".inf" || text == "-.inf")
+    return XmlRpc::XmlRpcValue(text == ".nan" ? std::nan("") : text == ".inf" ? HUGE_VAL : -HUGE_VAL);
+  double value = 0.0;  // from_chars: the writer's digits, whatever the locale
+  std::from_chars(text.data(), text.data() + text.size(), value);
+  return XmlRpc::XmlRpcValue(value);
+}
+}  // namespace
+
+XmlRpc::XmlRpcValue toXmlRpc(const std::string& yaml_text)
+{
+  return toXmlRpc(YAML::Load(yaml_text));
+}
+
+void writeSceneParams(const ros::NodeHandle& nh, const core::Scene& scene)
+{
+  ros::param::set(nh.getNamespace(), toXmlRpc(yaml::writeScene(scene)));
 }
 }  // namespace ball_collision_sim::bridge

@@ -1,3 +1,5 @@
+// The node's wiring and what it publishes; its services are in node_services.cpp and
+// its long steps in step_runner.cpp.
 #include "ball_collision_sim/ros/simulator_node.hpp"
 
 #include "ball_collision_sim/ros/conversions.hpp"
@@ -5,10 +7,14 @@
 #include "ball_collision_sim/ros/outputs.hpp"
 #include "ball_collision_sim/ros/requests.hpp"
 #include "ball_collision_sim/ros/scene_param.hpp"
+#include "ball_collision_sim/yaml/scene_yaml.hpp"
 
 #include <ball_collision_sim/BallStateArray.h>
 #include <ball_collision_sim/CollisionEvent.h>
+#include <ball_collision_sim/LostBall.h>
+#include <rosgraph_msgs/Clock.h>
 #include <std_msgs/String.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,54 +25,117 @@ namespace
 {
 /// Wall time one timer callback may spend stepping before it lets services in [s].
 constexpr double kStepBudget = 0.05;
+
+/// The wake-up period of the stepping timer for a real-time factor [s]: a step's worth
+/// of wall time, between 1 ms and kStepBudget.
+double timerPeriod(double dt, double factor)
+{
+  return factor > 0 ? std::clamp(dt / factor, 1e-3, kStepBudget) : 1e-3;
+}
+
+/// The scene as the node runs it: its settings with frame_prefix and publish_clock made definite.
+core::Scene sceneInUse(const core::World& world, const ResolvedSettings& settings)
+{
+  core::Scene scene = world.scene();
+  scene.node = settings.node;
+  return scene;
+}
 }  // namespace
 
 SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-    : world_(loadSceneParams(pnh, &scene_yaml_))
-    , settings_(world_.scene().node)
+    : world_(loadSceneParams(pnh))
+    , settings_(resolve(world_.scene().node, nh.getNamespace()))
     , frame_id_(world_.scene().frame_id)
-    , coloring_(ballColoring(world_))
-    , paused_(settings_.start_paused)
+    , coloring_(ballColoring(world_, settings_.node))
+    , paused_(settings_.node.start_paused)
+    , scene_source_("the parameter server (" + pnh.getNamespace() + ")")
     , nh_(nh)
     , pnh_(pnh)
 {
-  const double dt = world_.dt();
-  state_every_ = stepsPer(settings_.state_rate, dt);
+  state_every_ = stepsPer(settings_.node.state_rate, world_.dt());
+  // What the node runs, every default spelled out, back where the scene came from.
+  writeSceneParams(pnh_, sceneInUse(world_, settings_));
+  advertise();
 
+  anchorClock();
+  // The timer only wakes the loop; how many steps are due comes from the wall clock,
+  // and each step is the scene's fixed dt whatever the timer's jitter.
+  timer_ = nh_.createWallTimer(ros::WallDuration(timerPeriod(world_.dt(), settings_.node.real_time_factor)),
+                               &SimulatorNode::onTimer, this);
+  startStatusTimer();
+  publishStatic();
+  publishPresent();
+
+  // The settings as written above come back as the first configuration.
+  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<SimulatorConfig>>(pnh_);
+  reconfigure_->setCallback([this](SimulatorConfig& config, std::uint32_t level) { onReconfigure(config, level); });
+
+  ros::NodeHandle step_nh(pnh_);
+  step_nh.setCallbackQueue(&step_queue_);
+  services_.push_back(step_nh.advertiseService("step", &SimulatorNode::onStep, this));
+  step_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &step_queue_);
+  step_spinner_->start();
+  step_action_ = std::make_unique<actionlib::SimpleActionServer<StepAction>>(
+      pnh_, "step", [this](const StepGoalConstPtr& goal) { onStepGoal(goal); }, false);
+  step_action_->start();
+
+  ROS_INFO("ball_sim: %zu balls, %zu walls, dt = %g s, real time factor %g%s; tf frames %sball_<id>%s",
+           world_.balls().size(), world_.walls().size(), world_.dt(), settings_.node.real_time_factor,
+           paused_ ? ", paused" : "", settings_.frame_prefix.c_str(),
+           settings_.publish_clock ? ", publishing /clock" : ", not publishing /clock (publish_clock is false)");
+}
+
+SimulatorNode::~SimulatorNode()
+{
+  {
+    const Lock guard(mutex_);
+    cancel_run_ = true;
+  }
+  if (step_action_)
+    step_action_->shutdown();
+  if (step_spinner_)
+    step_spinner_->stop();
+}
+
+SimulatorNode::Lock SimulatorNode::lock()
+{
+  ++waiting_;
+  Lock guard(mutex_);
+  --waiting_;
+  return guard;
+}
+
+void SimulatorNode::advertise()
+{
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>(
       "markers", 10, [this](const ros::SingleSubscriberPublisher& s) { onMarkerSubscriber(s); });
-  states_pub_ = pnh_.advertise<BallStateArray>("ball_states", 100);
+  states_pub_ = pnh_.advertise<BallStateArray>(
+      "ball_states", 100, [this](const ros::SingleSubscriberPublisher& s) { onStatesSubscriber(s); });
   collisions_pub_ = pnh_.advertise<ball_collision_sim::CollisionEvent>("collisions", 1000);
-  clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  lost_pub_ = pnh_.advertise<ball_collision_sim::LostBall>("lost_balls", 100);
+  tf_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf", 100,
+                                               [this](const ros::SingleSubscriberPublisher& s) { onTfSubscriber(s); });
+  if (settings_.publish_clock)
+    clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>(
+        "/clock", 10, [this](const ros::SingleSubscriberPublisher& s) { onClockSubscriber(s); });
   scene_pub_ = pnh_.advertise<std_msgs::String>("scene", 1, true);
   std_msgs::String scene;
-  scene.data = scene_yaml_;
+  scene.data = yaml::writeScene(sceneInUse(world_, settings_));
   scene_pub_.publish(scene);
 
+  services_.push_back(pnh_.advertiseService("get_state", &SimulatorNode::onGetState, this));
   services_.push_back(pnh_.advertiseService("add_ball", &SimulatorNode::onAddBall, this));
   services_.push_back(pnh_.advertiseService("add_wall", &SimulatorNode::onAddWall, this));
   services_.push_back(pnh_.advertiseService("remove_ball", &SimulatorNode::onRemoveBall, this));
   services_.push_back(pnh_.advertiseService("remove_wall", &SimulatorNode::onRemoveWall, this));
+  services_.push_back(pnh_.advertiseService("set_ball_state", &SimulatorNode::onSetBallState, this));
+  services_.push_back(pnh_.advertiseService("apply_impulse", &SimulatorNode::onApplyImpulse, this));
   services_.push_back(pnh_.advertiseService("reset", &SimulatorNode::onReset, this));
+  services_.push_back(pnh_.advertiseService("load_scene", &SimulatorNode::onLoadScene, this));
   services_.push_back(pnh_.advertiseService("pause", &SimulatorNode::onPause, this));
-  services_.push_back(pnh_.advertiseService("step", &SimulatorNode::onStep, this));
-  clicked_sub_ = nh_.subscribe("/clicked_point", 10, &SimulatorNode::onClickedPoint, this);
-
-  clock_pub_.publish(clockMessage(ros::Time(world_.time())));
-  anchorClock();
-  // The timer only wakes the loop; how many steps are due comes from the wall clock,
-  // and each step is the scene's fixed dt whatever the timer's jitter.
-  const double factor = settings_.real_time_factor;
-  const double period = factor > 0 ? std::clamp(dt / factor, 1e-3, 0.05) : 1e-3;
-  timer_ = nh_.createWallTimer(ros::WallDuration(period), &SimulatorNode::onTimer, this);
-  if (settings_.status_period > 0)
-  {
-    status_wall_ = ros::WallTime::now();
-    status_timer_ =
-        nh_.createWallTimer(ros::WallDuration(settings_.status_period), &SimulatorNode::onStatus, this);
-  }
-  ROS_INFO("ball_sim: %zu balls, %zu walls, dt = %g s, real time factor %g%s", world_.balls().size(),
-           world_.walls().size(), dt, factor, paused_ ? ", paused" : "");
+  services_.push_back(pnh_.advertiseService("cancel_step", &SimulatorNode::onCancelStep, this));
+  // relative: in a namespace, rviz's clicks reach the simulator of that namespace only
+  clicked_sub_ = nh_.subscribe("clicked_point", 10, &SimulatorNode::onClickedPoint, this);
 }
 
 void SimulatorNode::anchorClock()
@@ -77,10 +146,11 @@ void SimulatorNode::anchorClock()
 
 void SimulatorNode::onTimer(const ros::WallTimerEvent&)
 {
-  if (paused_)
+  const Lock guard = lock();
+  if (paused_ || running_)
     return;
   const ros::WallTime start = ros::WallTime::now();
-  const double factor = settings_.real_time_factor;
+  const double factor = settings_.node.real_time_factor;
   if (factor > 0)
   {
     const double due_time = (start - anchor_wall_).toSec() * factor;
@@ -109,31 +179,68 @@ void SimulatorNode::onTimer(const ros::WallTimerEvent&)
 
 void SimulatorNode::onStatus(const ros::WallTimerEvent&)
 {
+  const Lock guard = lock();
   const ros::WallTime now = ros::WallTime::now();
   const double wall = (now - status_wall_).toSec();
   const double simulated = world_.time() - status_time_;
   // events count since the last reset; after one, start over
   const std::uint64_t events = world_.stats().events >= status_events_ ? world_.stats().events - status_events_ : 0;
-  ROS_INFO("t = %.2f s | real-time factor %.2f | %zu balls | %.1f collisions/s%s", world_.time(),
+  const std::string lost = lost_total_ > 0 ? " | " + std::to_string(lost_total_) + " lost" : "";
+  const std::string stepping = running_ ? " | stepping " + std::to_string(run_done_) + " of " + std::to_string(run_total_) : "";
+  ROS_INFO("t = %.2f s | real-time factor %.2f | %zu balls | %.1f collisions/s%s%s%s", world_.time(),
            wall > 0 ? std::max(0.0, simulated) / wall : 0.0, world_.balls().size(),
-           simulated > 0 ? static_cast<double>(events) / simulated : 0.0, paused_ ? " | paused" : "");
+           simulated > 0 ? static_cast<double>(events) / simulated : 0.0, lost.c_str(), stepping.c_str(),
+           paused_ && !running_ ? " | paused" : "");
   status_wall_ = now;
   status_time_ = world_.time();
   status_events_ = world_.stats().events;
+}
+
+void SimulatorNode::startStatusTimer()
+{
+  status_timer_.stop();
+  if (settings_.node.status_period > 0)
+  {
+    status_wall_ = ros::WallTime::now();
+    status_time_ = world_.time();
+    status_events_ = world_.stats().events;
+    status_timer_ =
+        nh_.createWallTimer(ros::WallDuration(settings_.node.status_period), &SimulatorNode::onStatus, this);
+  }
 }
 
 void SimulatorNode::stepOnce()
 {
   world_.step();
   const ros::Time stamp(world_.time());
-  clock_pub_.publish(clockMessage(stamp));
-  if (settings_.publish_collisions && collisions_pub_.getNumSubscribers() > 0)
+  if (settings_.publish_clock)
+    clock_pub_.publish(clockMessage(stamp));
+  if (settings_.node.publish_collisions && collisions_pub_.getNumSubscribers() > 0)
     for (const core::CollisionEvent& event : world_.lastEvents())
       collisions_pub_.publish(toMsg(event, frame_id_));
+  removeLostBalls();
   if (world_.stats().steps % state_every_ == 0 && states_pub_.getNumSubscribers() > 0)
     publishStates(stamp);
-  if (settings_.collision_flashes && settings_.marker_rate > 0)
+  if (settings_.node.collision_flashes && settings_.node.marker_rate > 0)
     flashes_.add(world_.lastEvents());
+}
+
+void SimulatorNode::removeLostBalls()
+{
+  const std::vector<core::LostBall> lost = world_.removeLostBalls();
+  for (const core::LostBall& gone : lost)
+  {
+    const core::Vec3& p = gone.ball.position;
+    ROS_WARN("ball_sim: ball %d %s at (%g, %g, %g) m, t = %.6g s; removed from the world", gone.ball.id,
+             gone.reason.c_str(), p.x(), p.y(), p.z(), world_.time());
+    ball_collision_sim::LostBall msg;
+    msg.header.stamp = ros::Time(world_.time());
+    msg.header.frame_id = frame_id_;
+    msg.ball = toMsg(gone.ball, gone.angular_velocity);
+    msg.reason = gone.reason;
+    lost_pub_.publish(msg);
+  }
+  lost_total_ += lost.size();
 }
 
 void SimulatorNode::publishStates(const ros::Time& stamp)
@@ -145,10 +252,17 @@ void SimulatorNode::publishView(bool force)
 {
   const double now = ros::WallTime::now().toSec();
   const ros::Time stamp(world_.time());
-  if (markers_due_.due(settings_.marker_rate, now, force))
+  if (markers_due_.due(settings_.node.marker_rate, now, force))
     publishBalls(stamp);
-  if (tf_due_.due(settings_.tf_rate, now, force))
+  if (tf_due_.due(settings_.node.tf_rate, now, force))
     publishTransforms(stamp);
+}
+
+void SimulatorNode::publishPresent()
+{
+  const ros::Time stamp(world_.time());
+  publishStates(stamp);
+  publishView(true);
 }
 
 void SimulatorNode::publishBalls(const ros::Time& stamp)
@@ -159,7 +273,7 @@ void SimulatorNode::publishBalls(const ros::Time& stamp)
     return;
   }
   visualization_msgs::MarkerArray msg;
-  const auto threshold = static_cast<std::size_t>(settings_.marker_list_threshold);
+  const auto threshold = static_cast<std::size_t>(settings_.node.marker_list_threshold);
   const bool lists = world_.balls().size() > threshold;
   std::vector<int> ids;
   if (!lists)
@@ -186,10 +300,32 @@ void SimulatorNode::publishBalls(const ros::Time& stamp)
 
 void SimulatorNode::publishTransforms(const ros::Time& stamp)
 {
-  const tf2_msgs::TFMessage msg =
-      transformsMessage(world_, frame_id_, stamp, static_cast<std::size_t>(settings_.tf_max_balls));
+  tf2_msgs::TFMessage msg = transformsMessage(world_, frame_id_, stamp,
+                                              static_cast<std::size_t>(settings_.node.tf_max_balls),
+                                              settings_.frame_prefix);
+  const bool again = stamp.toSec() == tf_stamp_;
+  std::vector<int> sent;
+  sent.reserve(msg.transforms.size());
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < msg.transforms.size(); ++k)
+  {
+    const int id = world_.balls()[k].id;
+    sent.push_back(id);
+    if (again && std::binary_search(tf_sent_.begin(), tf_sent_.end(), id))
+      continue;
+    msg.transforms[kept++] = msg.transforms[k];
+  }
+  msg.transforms.resize(kept);
+  if (again)
+  {
+    sent.insert(sent.end(), tf_sent_.begin(), tf_sent_.end());
+    std::sort(sent.begin(), sent.end());
+    sent.erase(std::unique(sent.begin(), sent.end()), sent.end());
+  }
+  tf_sent_ = std::move(sent);
+  tf_stamp_ = stamp.toSec();
   if (!msg.transforms.empty())
-    tf_broadcaster_.sendTransform(msg.transforms);
+    tf_pub_.publish(msg);
 }
 
 void SimulatorNode::publishStatic()
@@ -199,129 +335,79 @@ void SimulatorNode::publishStatic()
     markers_pub_.publish(msg);
 }
 
-void SimulatorNode::onMarkerSubscriber(const ros::SingleSubscriberPublisher& subscriber)
+void SimulatorNode::redraw()
 {
-  // A newcomer gets the floor and walls, which are otherwise sent only when they change.
-  visualization_msgs::MarkerArray msg = staticMarkers(world_, frame_id_);
-  const visualization_msgs::MarkerArray balls =
-      ballMarkers(world_, frame_id_, ros::Time(world_.time()),
-                  static_cast<std::size_t>(settings_.marker_list_threshold), coloring_);
-  msg.markers.insert(msg.markers.end(), balls.markers.begin(), balls.markers.end());
-  subscriber.publish(msg);
-}
-
-// ---- services ------------------------------------------------------------------------
-
-std::string SimulatorNode::roomForABall() const
-{
-  return bridge::roomForABall(world_, settings_.max_balls);
-}
-
-bool SimulatorNode::onAddBall(AddBall::Request& req, AddBall::Response& res)
-{
-  answerAddBall(world_, settings_.max_balls, req, res);
-  if (res.success)
-    publishView(true);
-  return true;
-}
-
-bool SimulatorNode::onAddWall(AddWall::Request& req, AddWall::Response& res)
-{
-  answerAddWall(world_, req, res);
-  if (res.success)
-    publishStatic();
-  return true;
-}
-
-bool SimulatorNode::onRemoveBall(RemoveObject::Request& req, RemoveObject::Response& res)
-{
-  answerRemoveBall(world_, req, res);
-  if (res.success)
-    publishView(true);
-  return true;
-}
-
-bool SimulatorNode::onRemoveWall(RemoveObject::Request& req, RemoveObject::Response& res)
-{
-  answerRemoveWall(world_, req, res);
-  if (res.success)
-  {
-    visualization_msgs::MarkerArray msg;
-    msg.markers.push_back(deleteMarker(kWallsNs, req.id, frame_id_));
-    markers_pub_.publish(msg);
-  }
-  return true;
-}
-
-bool SimulatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
-{
-  world_.reset();
-  anchorClock();
   visualization_msgs::MarkerArray clear;
   clear.markers.push_back(deleteAllMarker(frame_id_));
   markers_pub_.publish(clear);
   shown_balls_.clear();
   shown_lists_ = 0;
   flashes_.clear();
+  tf_stamp_ = -1.0;  // a new world: every frame again, whatever the time
+  tf_sent_.clear();
   publishStatic();
-  const ros::Time start(world_.time());
-  clock_pub_.publish(clockMessage(start));
-  publishView(true);
-  if (states_pub_.getNumSubscribers() > 0)
-    publishStates(start);
-  res.success = true;
-  res.message = "back to the scene as loaded: " + std::to_string(world_.balls().size()) + " balls, " +
-                std::to_string(world_.walls().size()) + " walls";
-  return true;
+  if (settings_.publish_clock)
+    clock_pub_.publish(clockMessage(ros::Time(world_.time())));
+  publishPresent();
 }
 
-bool SimulatorNode::onPause(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res)
+void SimulatorNode::onMarkerSubscriber(const ros::SingleSubscriberPublisher& subscriber)
 {
-  if (paused_ && !req.data)
-    anchorClock();  // resume from now, without catching up the paused time
-  paused_ = req.data;
-  res.success = true;
-  res.message = (paused_ ? "paused at t = " : "running from t = ") + std::to_string(world_.time()) + " s";
-  return true;
+  const Lock guard = lock();
+  // A newcomer gets the floor and walls, which are otherwise sent only when they change.
+  visualization_msgs::MarkerArray msg = staticMarkers(world_, frame_id_);
+  const visualization_msgs::MarkerArray balls =
+      ballMarkers(world_, frame_id_, ros::Time(world_.time()),
+                  static_cast<std::size_t>(settings_.node.marker_list_threshold), coloring_);
+  msg.markers.insert(msg.markers.end(), balls.markers.begin(), balls.markers.end());
+  subscriber.publish(msg);
 }
 
-bool SimulatorNode::onStep(Step::Request& req, Step::Response& res)
+// A late subscriber sees the present at once, paused or not.
+void SimulatorNode::onStatesSubscriber(const ros::SingleSubscriberPublisher& subscriber)
 {
-  if (!acceptStep(world_, paused_, req, res))
-    return true;
-  for (std::uint32_t k = 0; k < req.steps; ++k)
-    stepOnce();
-  publishView(true);
-  res.success = true;
-  res.time = world_.time();
-  res.message = "at t = " + std::to_string(res.time) + " s";
-  return true;
+  const Lock guard = lock();
+  subscriber.publish(statesMessage(world_, frame_id_, ros::Time(world_.time())));
 }
 
-void SimulatorNode::onClickedPoint(const geometry_msgs::PointStamped& msg)
+void SimulatorNode::onTfSubscriber(const ros::SingleSubscriberPublisher& subscriber)
 {
-  if (!msg.header.frame_id.empty() && msg.header.frame_id != frame_id_)
+  const Lock guard = lock();
+  const tf2_msgs::TFMessage msg =
+      transformsMessage(world_, frame_id_, ros::Time(world_.time()),
+                        static_cast<std::size_t>(settings_.node.tf_max_balls), settings_.frame_prefix);
+  if (!msg.transforms.empty())
+    subscriber.publish(msg);
+}
+
+void SimulatorNode::onClockSubscriber(const ros::SingleSubscriberPublisher& subscriber)
+{
+  const Lock guard = lock();
+  subscriber.publish(clockMessage(ros::Time(world_.time())));
+}
+
+void SimulatorNode::applySettings(const core::NodeSettings& node)
+{
+  const core::NodeSettings old = settings_.node;
+  settings_.node = node;
+  settings_.node.frame_prefix = settings_.frame_prefix;
+  settings_.node.publish_clock = settings_.publish_clock;
+  if (node.real_time_factor != old.real_time_factor)
   {
-    ROS_WARN("ball_sim: clicked point in frame '%s' ignored: set rviz's fixed frame to '%s'",
-             msg.header.frame_id.c_str(), frame_id_.c_str());
-    return;
+    timer_.setPeriod(ros::WallDuration(timerPeriod(world_.dt(), node.real_time_factor)));
+    anchorClock();
   }
-  core::BallDef def;
-  def.position = toVec3(msg.point);
-  def.radius = settings_.click_radius;
-  def.mass = settings_.click_mass;
-  // The click lands on the drawn floor (or, without one, on the grid): lift the centre
-  // by a radius; with a floor the core then puts it exactly on the surface.
-  const double g = world_.gravity().norm();
-  def.position += def.radius * (g > 0 ? core::Vec3(-world_.gravity() / g) : core::Vec3::UnitZ());
-  const std::string full = roomForABall();
-  const core::AddResult result = full.empty() ? world_.addBall(def) : core::AddResult{false, -1, full};
-  if (!result.ok)
-  {
-    ROS_WARN("ball_sim: no ball added at the clicked point: %s", result.error.c_str());
-    return;
-  }
-  ROS_INFO("ball_sim: added ball %d at the clicked point", result.id);
-  publishView(true);
+  if (node.status_period != old.status_period)
+    startStatusTimer();
+  state_every_ = stepsPer(node.state_rate, world_.dt());
+  if (node.ball_color != old.ball_color || node.speed_color_max != old.speed_color_max)
+    coloring_ = ballColoring(world_, node);
+  if (!node.collision_flashes)
+    flashes_.clear();
+}
+
+std::string SimulatorNode::roomForABall() const
+{
+  return bridge::roomForABall(world_, settings_.node.max_balls);
 }
 }  // namespace ball_collision_sim::bridge

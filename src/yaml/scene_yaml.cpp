@@ -3,6 +3,7 @@
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cstdint>
@@ -591,6 +592,17 @@ void readNodeSettings(const MapFields& fields, core::NodeSettings& node)
   flag("publish_collisions", node.publish_collisions);
   flag("start_paused", node.start_paused);
   flag("collision_flashes", node.collision_flashes);
+  if (const YAML::Node* value = fields.find("publish_clock"))
+    node.publish_clock = readBool(*value, "publish_clock");
+  if (const YAML::Node* value = fields.find("frame_prefix"))
+  {
+    node.frame_prefix = readString(*value, "frame_prefix");
+    const std::string& prefix = *node.frame_prefix;
+    if (!prefix.empty() && prefix.front() == '/')
+      fail("frame_prefix", "must not start with '/' (tf2 frame names do not), got \"" + printable(prefix) + "\"");
+    if (prefix.find_first_of(" \t\n\r") != std::string::npos)
+      fail("frame_prefix", "must not contain blanks, got \"" + printable(prefix) + "\"");
+  }
   // How balls are drawn is not physics, so core::validate() does not look at it: the
   // reader checks these two itself, for the node and the offline tool alike.
   if (const YAML::Node* value = fields.find("ball_color"))
@@ -741,7 +753,7 @@ core::Scene parseScene(const std::string& yaml_text, const std::string& source_n
   }
 }
 
-core::Scene loadSceneFile(const std::string& path)
+std::string readSceneFile(const std::string& path)
 {
   errno = 0;
   const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
@@ -768,7 +780,34 @@ core::Scene loadSceneFile(const std::string& path)
     }
     break;
   }
-  return parseScene(text, path);
+  return text;
+}
+
+core::Scene loadSceneFile(const std::string& path)
+{
+  return parseScene(readSceneFile(path), path);
+}
+
+std::vector<std::string> nodeKeysIn(const std::string& yaml_text)
+{
+  std::vector<std::string> keys;
+  try
+  {
+    const YAML::Node root = YAML::Load(yaml_text);
+    if (!root.IsMap())
+      return keys;
+    for (const auto& item : root)
+    {
+      const std::string key = item.first.Scalar();
+      if (std::find(kNodeOnlyKeys.begin(), kNodeOnlyKeys.end(), key) != kNodeOnlyKeys.end())
+        keys.push_back(key);
+    }
+  }
+  catch (const YAML::Exception&)
+  {
+    // parseScene() reports malformed text
+  }
+  return keys;
 }
 
 core::Scene loadValidScene(const std::string& path)

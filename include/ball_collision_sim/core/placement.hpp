@@ -10,10 +10,25 @@
 
 namespace ball_collision_sim::core
 {
-/// Puts a ball on the floor: its centre goes to foot + r n and its velocity loses its
-/// part normal to the floor. Returns why it cannot stand there (its foot is outside the
-/// floor, or its centre is below the surface or more than 2 r above it), or "".
-std::string placeOnFloor(BallDef& ball, const std::optional<Floor>& floor, Vec2* uv = nullptr);
+/// How a new or moved ball meets the floor.
+enum class Landing
+{
+  /// onto the surface point nearest its centre, which must lie between the surface and
+  /// 2 r above it (scene files: a misplaced ball is an error there, not a guess)
+  kNearest,
+  /// onto the floor under its centre along gravity, whatever its height (services and
+  /// clicks: the centre keeps its place across gravity)
+  kUnder,
+  /// where it is: its centre must already rest on the floor, one radius above it
+  /// (within kContactTolerance)
+  kExact,
+};
+
+/// Puts a ball on the floor as `landing` says: its centre goes to foot + r n and its
+/// velocity loses its part normal to the floor. Returns why it cannot stand there (its
+/// foot is outside the floor, or its centre is not where `landing` allows), or "".
+std::string placeOnFloor(BallDef& ball, const std::optional<Floor>& floor, Vec2* uv = nullptr,
+                         Landing landing = Landing::kNearest);
 
 /// The first wall a ball overlaps by more than kContactTolerance.
 struct Overlap

@@ -96,6 +96,12 @@ struct NodeSettings
   BallColor ball_color = BallColor::kSpeed;  ///< how balls are coloured
   double speed_color_max = 0.0;  ///< speed at the top of the colour scale [m/s]; 0 = the fastest ball at the start
   bool collision_flashes = true;  ///< a short-lived marker at each collision's contact point
+  /// whether this node publishes /clock; unset: only a node in the root namespace does,
+  /// so that of several simulators in namespaces none does unless asked
+  std::optional<bool> publish_clock;
+  /// put before each ball's tf frame name (ball_<id>); unset: the node's namespace
+  /// ("a/" in /a, "" in the root namespace), so that simulators side by side share no frame
+  std::optional<std::string> frame_prefix;
 };
 
 /// Everything a simulation starts from. Defaults are the documented YAML defaults.

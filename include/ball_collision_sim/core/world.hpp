@@ -4,6 +4,7 @@
 #include "ball_collision_sim/core/broad_phase.hpp"
 #include "ball_collision_sim/core/collision_event.hpp"
 #include "ball_collision_sim/core/floor.hpp"
+#include "ball_collision_sim/core/placement.hpp"
 #include "ball_collision_sim/core/scene.hpp"
 #include "ball_collision_sim/core/types.hpp"
 #include "ball_collision_sim/core/wall.hpp"
@@ -37,13 +38,26 @@ struct WorldStats
   std::uint64_t held_balls = 0;
 };
 
-/// Result of adding an object: ok, or the reason it was refused (the world unchanged).
+/// Result of adding or editing an object: ok, or the reason it was refused (the world
+/// unchanged).
 struct AddResult
 {
   bool ok = false;
   int id = -1;
   std::string error;  ///< "radius: must be > 0"
 };
+
+/// A ball that left the world: off the floor, or outside the walls' bounds.
+struct LostBall
+{
+  Ball ball;               ///< its state when it was found gone
+  Vec3 angular_velocity;   ///< [rad/s], as World::angularVelocity() gave it then
+  std::string reason;  ///< "left the floor (foot point at u = 1.02, v = 0.5)"
+};
+
+/// Ids of balls and walls start here and only grow: 0, the value of a field left empty,
+/// names no object.
+constexpr int kFirstId = 1;
 
 /// The balls, walls and floor, advanced in fixed steps with exact continuous collision
 /// detection: every impact inside a step is found at its exact time and handled in
@@ -85,6 +99,10 @@ public:
   Vec3 momentum() const;
   /// Balls off the floor or outside the walls' bounds: 0 in a closed scene.
   int lostBalls() const;
+  /// Takes the balls off the floor or outside the walls' bounds out of the world, and
+  /// returns them in id order (a ball that left flies on for ever and stretches the
+  /// broad phase's grid without end).
+  std::vector<LostBall> removeLostBalls();
   /// FNV-1a of the exact bits of time and every ball's state.
   std::uint64_t stateHash() const;
   /// The ball with this id, or nullptr.
@@ -93,16 +111,25 @@ public:
   /// normal under it (up without a floor) [rad/s].
   Vec3 angularVelocity(std::size_t k) const;
 
-  /// Adds a ball (put on the floor) unless it is invalid, overlaps something or is off
-  /// the floor; then nothing changes.
-  AddResult addBall(const BallDef& def);
+  /// Adds a ball (put on the floor as `landing` says) unless it is invalid, overlaps
+  /// something or is off the floor; then nothing changes. Ids start at kFirstId.
+  AddResult addBall(const BallDef& def, Landing landing = Landing::kNearest);
+  /// Moves ball `id` to `position` (put on the floor as `landing` says) with `velocity`
+  /// (less its part normal to the floor), keeping its id, radius, mass and orientation.
+  /// Refused, nothing changed, when no ball has the id, a value is bad, or the ball would
+  /// be off the floor or overlap a wall or another ball.
+  AddResult setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing = Landing::kUnder);
+  /// Adds impulse / mass to ball `id`'s velocity [impulse: N s]; on a floor, the part of
+  /// the change along the floor's normal goes into the floor. Refused, nothing changed,
+  /// when no ball has the id or the impulse is not finite or gives a speed past kMaxSpeed.
+  AddResult applyImpulse(int id, const Vec3& impulse);
   /// Adds a wall unless it is degenerate or cuts through a ball.
   AddResult addWall(const WallDef& def);
   /// False when no ball has this id.
   bool removeBall(int id);
   bool removeWall(int id);
   /// Why a ball could not be added here, or empty. Keys are relative ("radius").
-  std::string checkBall(const BallDef& def) const;
+  std::string checkBall(const BallDef& def, Landing landing = Landing::kNearest) const;
 
 private:
   struct Motion;
@@ -133,8 +160,15 @@ private:
   void load();
   /// After an edit: the next step visits the balls in id order and predicts afresh.
   void forgetOrder();
-  /// The ball of `def` put on the floor; `foot` gets its foot point (u, v).
-  Ball makeBall(int id, const BallDef& def, Vec2& foot) const;
+  /// The ball of `placed`, a definition already put on the floor.
+  static Ball makeBall(int id, const BallDef& placed);
+  /// Why `def` cannot stand in the world (ignoring ball `ignore_id`), or ""; else `def`
+  /// is put on the floor as `landing` says and `foot` gets its foot point (u, v).
+  std::string place(BallDef& def, Landing landing, int ignore_id, Vec2& foot) const;
+  /// Why ball k is out of the world, or "".
+  std::string whyLost(std::size_t k) const;
+  /// The index of the ball with this id in balls_, or balls_.size().
+  std::size_t indexOf(int id) const;
   /// Unit vector against gravity (the floor's normal side).
   const Vec3& up() const { return up_; }
   /// A floor other than a plane: balls' foot points are found by Newton's method.

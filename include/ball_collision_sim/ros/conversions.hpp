@@ -3,11 +3,13 @@
 #include "ball_collision_sim/core/ball.hpp"
 #include "ball_collision_sim/core/collision_event.hpp"
 #include "ball_collision_sim/core/scene.hpp"
+#include "ball_collision_sim/core/wall.hpp"
 
 #include <ball_collision_sim/AddBall.h>
 #include <ball_collision_sim/AddWall.h>
 #include <ball_collision_sim/BallState.h>
 #include <ball_collision_sim/CollisionEvent.h>
+#include <ball_collision_sim/Wall.h>
 #include <geometry_msgs/Point.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/Vector3.h>
@@ -22,16 +24,17 @@ geometry_msgs::Vector3 toVector3(const core::Vec3& v);
 core::Vec3 toVec3(const geometry_msgs::Point& p);
 core::Vec3 toVec3(const geometry_msgs::Vector3& v);
 
-/// The tf frame of a ball: "ball_<id>".
-std::string ballFrame(int id);
+/// The tf frame of a ball: prefix + "ball_<id>".
+std::string ballFrame(int id, const std::string& prefix = "");
 
 /// With the ball's angular velocity (core::World::angularVelocity()).
 ball_collision_sim::BallState toMsg(const core::Ball& ball, const core::Vec3& angular_velocity);
 /// Stamped with the exact time of impact.
 ball_collision_sim::CollisionEvent toMsg(const core::CollisionEvent& event, const std::string& frame_id);
-/// frame_id -> ball_<id>, with the ball's rolling orientation.
+/// frame_id -> prefix + ball_<id>, with the ball's rolling orientation.
 geometry_msgs::TransformStamped toTransform(const core::Ball& ball, const std::string& frame_id,
-                                           const ros::Time& stamp);
+                                           const ros::Time& stamp, const std::string& prefix = "");
+ball_collision_sim::Wall toMsg(const core::Wall& wall);
 
 core::BallDef fromMsg(const ball_collision_sim::AddBall::Request& request);
 core::WallDef fromMsg(const ball_collision_sim::AddWall::Request& request);

@@ -23,13 +23,15 @@ rosgraph_msgs::Clock clockMessage(const ros::Time& stamp);
 
 /// Every ball's state, stamped `stamp` in `frame_id`.
 BallStateArray statesMessage(const core::World& world, const std::string& frame_id, const ros::Time& stamp);
-/// frame_id -> ball_<id> for the first `max_balls` balls.
+/// frame_id -> prefix + ball_<id> for the first `max_balls` balls.
 tf2_msgs::TFMessage transformsMessage(const core::World& world, const std::string& frame_id, const ros::Time& stamp,
-                                      std::size_t max_balls);
+                                      std::size_t max_balls, const std::string& prefix = "");
 /// The colouring the scene's node settings ask for: ball_color, and as the top of the speed
 /// scale speed_color_max, or when that is 0 the fastest ball of `world` now (1 m/s when
 /// every ball is still).
 BallColoring ballColoring(const core::World& world);
+/// The same with `node`'s ball_color and speed_color_max in place of the scene's.
+BallColoring ballColoring(const core::World& world, const core::NodeSettings& node);
 /// A sphere marker per ball, or, past `list_threshold` balls, one sphere list per radius
 /// (rviz draws a few lists far faster than thousands of markers).
 visualization_msgs::MarkerArray ballMarkers(const core::World& world, const std::string& frame_id,

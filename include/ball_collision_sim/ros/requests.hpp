@@ -1,14 +1,21 @@
 #pragma once
 
+#include "ball_collision_sim/core/placement.hpp"
 #include "ball_collision_sim/core/world.hpp"
 
 #include <ball_collision_sim/AddBall.h>
 #include <ball_collision_sim/AddWall.h>
+#include <ball_collision_sim/ApplyImpulse.h>
+#include <ball_collision_sim/GetState.h>
+#include <ball_collision_sim/LoadScene.h>
 #include <ball_collision_sim/RemoveObject.h>
+#include <ball_collision_sim/SetBallState.h>
 #include <ball_collision_sim/Step.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace ball_collision_sim::bridge
 {
@@ -16,8 +23,16 @@ namespace ball_collision_sim::bridge
 /// that they can be tested without a master. A bad request answers `success: false` with a
 /// message that starts with the field's name and says why, and changes nothing.
 
-/// Most steps one step call may ask for: a bound on how long the node stays busy.
+/// Most steps one step call may ask for: a bound on how long one call runs.
 constexpr std::uint32_t kMaxStepsPerCall = 1000000;
+
+/// Why `id` names no object, or "": ids start at core::kFirstId, so 0, the value of a
+/// field a request leaves out, names nothing.
+std::string checkId(int id);
+
+/// The core's landing for a request's `placement` field (ON_FLOOR or AS_GIVEN); nullopt,
+/// with `error` set, for any other value.
+std::optional<core::Landing> landingOf(std::uint8_t placement, std::string& error);
 
 /// Why no ball may be added now (the world holds max_balls), or "".
 std::string roomForABall(const core::World& world, int max_balls);
@@ -26,6 +41,27 @@ void answerAddBall(core::World& world, int max_balls, const AddBall::Request& re
 void answerAddWall(core::World& world, const AddWall::Request& req, AddWall::Response& res);
 void answerRemoveBall(core::World& world, const RemoveObject::Request& req, RemoveObject::Response& res);
 void answerRemoveWall(core::World& world, const RemoveObject::Request& req, RemoveObject::Response& res);
+void answerSetBallState(core::World& world, const SetBallState::Request& req, SetBallState::Response& res);
+void answerApplyImpulse(core::World& world, const ApplyImpulse::Request& req, ApplyImpulse::Response& res);
 /// Whether `req.steps` steps may run now; when not, `res` says why (and has the time).
 bool acceptStep(const core::World& world, bool paused, const Step::Request& req, Step::Response& res);
+/// Why `steps` steps may not run now, or "" (the checks of acceptStep).
+std::string whyNoSteps(bool paused, std::uint32_t steps);
+
+/// The world now, for get_state.
+void answerGetState(const core::World& world, bool paused, const std::string& frame_prefix, GetState::Response& res);
+/// BallState of ball `id` (which must exist).
+BallState ballState(const core::World& world, int id);
+
+/// A scene from a load_scene request, and the node keys its text sets.
+struct RequestedScene
+{
+  core::Scene scene;
+  std::vector<std::string> node_keys;
+};
+
+/// The scene a load_scene request names, read and validated: from `path` (absolute,
+/// relative to the node's working directory, or package://PACKAGE/PATH) or from `yaml`,
+/// exactly one of them. Throws yaml::SceneError with the field or key and the reason.
+RequestedScene sceneOfRequest(const LoadScene::Request& req);
 }  // namespace ball_collision_sim::bridge

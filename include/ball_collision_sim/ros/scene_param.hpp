@@ -20,4 +20,12 @@ std::string toYaml(XmlRpc::XmlRpcValue& value);
 /// one line naming the parameter and the reason.
 /// @param yaml_text if given, receives the scene as the YAML text that was read
 core::Scene loadSceneParams(const ros::NodeHandle& nh, std::string* yaml_text = nullptr);
+
+/// YAML text (block or flow) as a parameter tree: quoted scalars are strings, true and
+/// false booleans, integers that fit ints, other numbers doubles.
+XmlRpc::XmlRpcValue toXmlRpc(const std::string& yaml_text);
+
+/// Replaces everything under the namespace of `nh` with `scene`, every key with the
+/// value in use (defaults included), so that `rosparam get` shows what the node runs.
+void writeSceneParams(const ros::NodeHandle& nh, const core::Scene& scene);
 }  // namespace ball_collision_sim::bridge

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace ball_collision_sim::yaml
 {
@@ -19,10 +20,10 @@ struct SceneError : std::runtime_error
 
 /// Top-level keys that only the ROS node uses (core::NodeSettings); the offline tool
 /// reads and checks them like every other key, and ignores them.
-inline constexpr std::array<std::string_view, 15> kNodeOnlyKeys{
+inline constexpr std::array<std::string_view, 17> kNodeOnlyKeys{
   "real_time_factor", "marker_rate", "tf_rate", "tf_max_balls", "state_rate", "publish_collisions",
   "start_paused", "click_radius", "click_mass", "status_period", "max_balls", "marker_list_threshold",
-  "ball_color", "speed_color_max", "collision_flashes",
+  "ball_color", "speed_color_max", "collision_flashes", "publish_clock", "frame_prefix",
 };
 
 /// Reads a scene from YAML text (design.md section 5). Every key is checked: an unknown
@@ -35,9 +36,22 @@ inline constexpr std::array<std::string_view, 15> kNodeOnlyKeys{
 /// @param source_name prefixes every error message (a file path, or "<string>")
 core::Scene parseScene(const std::string& yaml_text, const std::string& source_name = "<string>");
 
+/// A file's text; throws SceneError "path: cannot open file (...)" or "cannot read file".
+std::string readSceneFile(const std::string& path);
+
+/// The node-only keys (kNodeOnlyKeys) that the top level of a scene's text sets, in the
+/// order written; none when the text is not a YAML map.
+std::vector<std::string> nodeKeysIn(const std::string& yaml_text);
+
 /// parseScene() of a file's contents; errors are prefixed by `path`. An unreadable file
 /// throws SceneError "path: cannot open file (No such file or directory)".
 core::Scene loadSceneFile(const std::string& path);
+
+/// The scene as YAML text that parseScene() reads back to the same scene: block style,
+/// every key with its value (defaults included; random_balls as given, not expanded),
+/// each real in the fewest digits that read back to the same double, written so that
+/// YAML 1.1 readers (rosparam) take them as reals too.
+std::string writeScene(const core::Scene& scene);
 
 /// loadSceneFile(), then core::validate(): when it finds issues, throws SceneError
 /// "path: " + core::joinIssues(issues). The scene returned can build a core::World.

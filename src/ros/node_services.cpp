@@ -1,0 +1,194 @@
+// The node's services and subscriptions: each takes the lock, answers through
+// requests.hpp (which does the checking), and publishes what changed.
+#include "ball_collision_sim/ros/simulator_node.hpp"
+
+#include "ball_collision_sim/ros/conversions.hpp"
+#include "ball_collision_sim/ros/requests.hpp"
+#include "ball_collision_sim/ros/scene_param.hpp"
+#include "ball_collision_sim/yaml/scene_yaml.hpp"
+
+#include <std_msgs/String.h>
+
+#include <algorithm>
+
+namespace ball_collision_sim::bridge
+{
+bool SimulatorNode::onGetState(GetState::Request&, GetState::Response& res)
+{
+  const Lock guard = lock();
+  answerGetState(world_, paused_, settings_.frame_prefix, res);
+  return true;
+}
+
+bool SimulatorNode::onAddBall(AddBall::Request& req, AddBall::Response& res)
+{
+  const Lock guard = lock();
+  answerAddBall(world_, settings_.node.max_balls, req, res);
+  if (res.success)
+    publishPresent();
+  return true;
+}
+
+bool SimulatorNode::onAddWall(AddWall::Request& req, AddWall::Response& res)
+{
+  const Lock guard = lock();
+  answerAddWall(world_, req, res);
+  if (res.success)
+    publishStatic();
+  return true;
+}
+
+bool SimulatorNode::onRemoveBall(RemoveObject::Request& req, RemoveObject::Response& res)
+{
+  const Lock guard = lock();
+  answerRemoveBall(world_, req, res);
+  if (res.success)
+    publishPresent();
+  return true;
+}
+
+bool SimulatorNode::onRemoveWall(RemoveObject::Request& req, RemoveObject::Response& res)
+{
+  const Lock guard = lock();
+  answerRemoveWall(world_, req, res);
+  if (res.success)
+  {
+    visualization_msgs::MarkerArray msg;
+    msg.markers.push_back(deleteMarker(kWallsNs, req.id, frame_id_));
+    markers_pub_.publish(msg);
+  }
+  return true;
+}
+
+bool SimulatorNode::onSetBallState(SetBallState::Request& req, SetBallState::Response& res)
+{
+  const Lock guard = lock();
+  answerSetBallState(world_, req, res);
+  if (res.success)
+    publishPresent();
+  return true;
+}
+
+bool SimulatorNode::onApplyImpulse(ApplyImpulse::Request& req, ApplyImpulse::Response& res)
+{
+  const Lock guard = lock();
+  answerApplyImpulse(world_, req, res);
+  if (res.success)
+    publishPresent();
+  return true;
+}
+
+bool SimulatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
+{
+  const Lock guard = lock();
+  cancel_run_ = running_;
+  world_.reset();
+  anchorClock();
+  redraw();
+  res.success = true;
+  res.message = "back to the scene as last loaded (from " + scene_source_ + "): " +
+                std::to_string(world_.balls().size()) + " balls, " + std::to_string(world_.walls().size()) +
+                " walls, t = 0; run-time settings and pause kept";
+  return true;
+}
+
+bool SimulatorNode::onLoadScene(LoadScene::Request& req, LoadScene::Response& res)
+{
+  RequestedScene requested;
+  try
+  {
+    requested = sceneOfRequest(req);  // the reading and checking needs no lock
+  }
+  catch (const yaml::SceneError& e)
+  {
+    res.success = false;
+    res.message = e.what();
+    return true;
+  }
+  const Lock guard = lock();
+  cancel_run_ = running_;
+  core::NodeSettings node = settings_.node;
+  copyKeys(requested.node_keys, requested.scene.node, node);
+  if (std::find(requested.node_keys.begin(), requested.node_keys.end(), "start_paused") != requested.node_keys.end())
+    paused_ = node.start_paused;
+  world_ = core::World(requested.scene);
+  frame_id_ = world_.scene().frame_id;
+  scene_source_ = req.path.empty() ? "load_scene's yaml" : req.path;
+  applySettings(node);
+  coloring_ = ballColoring(world_, settings_.node);
+  lost_total_ = 0;
+  anchorClock();
+  startStatusTimer();
+  core::Scene in_use = world_.scene();
+  in_use.node = settings_.node;
+  writeSceneParams(pnh_, in_use);
+  std_msgs::String text;
+  text.data = yaml::writeScene(in_use);
+  scene_pub_.publish(text);
+  if (reconfigure_)
+    reconfigure_->updateConfig(toConfig(settings_.node));
+  redraw();
+  res.success = true;
+  res.message = "loaded " + scene_source_ + ": " + std::to_string(world_.balls().size()) + " balls, " +
+                std::to_string(world_.walls().size()) + " walls" + (paused_ ? ", paused" : "");
+  ROS_INFO("ball_sim: %s", res.message.c_str());
+  return true;
+}
+
+bool SimulatorNode::onPause(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res)
+{
+  const Lock guard = lock();
+  if (paused_ && !req.data)
+  {
+    cancel_run_ = running_;  // running again ends a run of steps
+    anchorClock();           // resume from now, without catching up the paused time
+  }
+  paused_ = req.data;
+  res.success = true;
+  res.message = (paused_ ? "paused at t = " : "running from t = ") + std::to_string(world_.time()) + " s";
+  if (paused_)
+    publishPresent();
+  return true;
+}
+
+void SimulatorNode::onClickedPoint(const geometry_msgs::PointStamped& msg)
+{
+  const Lock guard = lock();
+  if (!msg.header.frame_id.empty() && msg.header.frame_id != frame_id_)
+  {
+    ROS_WARN("ball_sim: clicked point in frame '%s' ignored: set rviz's fixed frame to '%s'",
+             msg.header.frame_id.c_str(), frame_id_.c_str());
+    return;
+  }
+  core::BallDef def;
+  def.position = toVec3(msg.point);
+  def.radius = settings_.node.click_radius;
+  def.mass = settings_.node.click_mass;
+  // The click lands on the drawn floor: the ball goes onto the floor under it. Without a
+  // floor, the centre is lifted by a radius off the clicked plane.
+  if (!world_.floor())
+  {
+    const double g = world_.gravity().norm();
+    def.position += def.radius * (g > 0 ? core::Vec3(-world_.gravity() / g) : core::Vec3::UnitZ());
+  }
+  const std::string full = roomForABall();
+  const core::AddResult result =
+      full.empty() ? world_.addBall(def, core::Landing::kUnder) : core::AddResult{false, -1, full};
+  if (!result.ok)
+  {
+    ROS_WARN("ball_sim: no ball added at the clicked point: %s", result.error.c_str());
+    return;
+  }
+  ROS_INFO("ball_sim: added ball %d at the clicked point", result.id);
+  publishPresent();
+}
+
+void SimulatorNode::onReconfigure(SimulatorConfig& config, std::uint32_t)
+{
+  const Lock guard = lock();
+  core::NodeSettings node = settings_.node;
+  for (const std::string& refused : applyConfig(config, node))
+    ROS_WARN("ball_sim: dynamic_reconfigure: %s; kept the value in use", refused.c_str());
+  applySettings(node);  // dynamic_reconfigure writes the values back to the parameters
+}
+}  // namespace ball_collision_sim::bridge

@@ -1,0 +1,125 @@
+#include "ball_collision_sim/ros/node_settings.hpp"
+
+#include <cmath>
+
+namespace ball_collision_sim::bridge
+{
+std::string defaultFramePrefix(const std::string& ns)
+{
+  std::string prefix = ns;
+  while (!prefix.empty() && prefix.front() == '/')
+    prefix.erase(prefix.begin());
+  while (!prefix.empty() && prefix.back() == '/')
+    prefix.pop_back();
+  return prefix.empty() ? prefix : prefix + "/";
+}
+
+ResolvedSettings resolve(const core::NodeSettings& node, const std::string& ns)
+{
+  ResolvedSettings out;
+  out.node = node;
+  out.frame_prefix = node.frame_prefix ? *node.frame_prefix : defaultFramePrefix(ns);
+  out.publish_clock = node.publish_clock ? *node.publish_clock : defaultFramePrefix(ns).empty();
+  out.node.frame_prefix = out.frame_prefix;
+  out.node.publish_clock = out.publish_clock;
+  return out;
+}
+
+void copyKeys(const std::vector<std::string>& keys, const core::NodeSettings& from, core::NodeSettings& to)
+{
+  for (const std::string& key : keys)
+  {
+    if (key == "real_time_factor")
+      to.real_time_factor = from.real_time_factor;
+    else if (key == "marker_rate")
+      to.marker_rate = from.marker_rate;
+    else if (key == "tf_rate")
+      to.tf_rate = from.tf_rate;
+    else if (key == "tf_max_balls")
+      to.tf_max_balls = from.tf_max_balls;
+    else if (key == "state_rate")
+      to.state_rate = from.state_rate;
+    else if (key == "publish_collisions")
+      to.publish_collisions = from.publish_collisions;
+    else if (key == "start_paused")
+      to.start_paused = from.start_paused;
+    else if (key == "click_radius")
+      to.click_radius = from.click_radius;
+    else if (key == "click_mass")
+      to.click_mass = from.click_mass;
+    else if (key == "status_period")
+      to.status_period = from.status_period;
+    else if (key == "max_balls")
+      to.max_balls = from.max_balls;
+    else if (key == "marker_list_threshold")
+      to.marker_list_threshold = from.marker_list_threshold;
+    else if (key == "ball_color")
+      to.ball_color = from.ball_color;
+    else if (key == "speed_color_max")
+      to.speed_color_max = from.speed_color_max;
+    else if (key == "collision_flashes")
+      to.collision_flashes = from.collision_flashes;
+    else if (key == "publish_clock")
+      to.publish_clock = from.publish_clock;
+    else if (key == "frame_prefix")
+      to.frame_prefix = from.frame_prefix;
+  }
+}
+
+SimulatorConfig toConfig(const core::NodeSettings& node)
+{
+  SimulatorConfig config = SimulatorConfig::__getDefault__();
+  config.real_time_factor = node.real_time_factor;
+  config.marker_rate = node.marker_rate;
+  config.tf_rate = node.tf_rate;
+  config.tf_max_balls = node.tf_max_balls;
+  config.state_rate = node.state_rate;
+  config.publish_collisions = node.publish_collisions;
+  config.click_radius = node.click_radius;
+  config.click_mass = node.click_mass;
+  config.status_period = node.status_period;
+  config.max_balls = node.max_balls;
+  config.marker_list_threshold = node.marker_list_threshold;
+  config.ball_color = node.ball_color == core::BallColor::kSpeed ? "speed" : "id";
+  config.speed_color_max = node.speed_color_max;
+  config.collision_flashes = node.collision_flashes;
+  return config;
+}
+
+std::vector<std::string> applyConfig(SimulatorConfig& config, core::NodeSettings& node)
+{
+  std::vector<std::string> kept;
+  // dynamic_reconfigure has clamped every number to its bounds, which are the scene's;
+  // a NaN passes its clamp, and is refused here
+  auto number = [&kept](const char* key, double& asked, double& value) {
+    if (std::isfinite(asked))
+      value = asked;
+    else
+    {
+      kept.push_back(std::string(key) + ": must be finite");
+      asked = value;
+    }
+  };
+  number("real_time_factor", config.real_time_factor, node.real_time_factor);
+  number("marker_rate", config.marker_rate, node.marker_rate);
+  number("tf_rate", config.tf_rate, node.tf_rate);
+  number("state_rate", config.state_rate, node.state_rate);
+  number("click_radius", config.click_radius, node.click_radius);
+  number("click_mass", config.click_mass, node.click_mass);
+  number("status_period", config.status_period, node.status_period);
+  number("speed_color_max", config.speed_color_max, node.speed_color_max);
+  node.tf_max_balls = config.tf_max_balls;
+  node.max_balls = config.max_balls;
+  node.marker_list_threshold = config.marker_list_threshold;
+  node.publish_collisions = config.publish_collisions;
+  node.collision_flashes = config.collision_flashes;
+  if (config.ball_color == "speed" || config.ball_color == "id")
+    node.ball_color = config.ball_color == "speed" ? core::BallColor::kSpeed : core::BallColor::kId;
+  else
+  {
+    kept.push_back("ball_color: expected speed or id, got \"" + config.ball_color + "\"");
+    config.ball_color = node.ball_color == core::BallColor::kSpeed ? "speed" : "id";
+  }
+  return kept;
+}
+}  // namespace ball_collision_sim::bridge
