@@ -85,14 +85,6 @@ private:
   bool shown_ = false;
 };
 
-std::string readText(const std::string& path)
-{
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // Steps are counted in floating point first; beyond this a run could never finish and the
 // count would lose integer precision.
 constexpr double kMaxSteps = 1e15;
@@ -218,8 +210,8 @@ int run(const SimulateOptions& options)
   {
     try
     {
-      bag = std::make_unique<ball_collision_sim::bridge::RunBag>(options.bag_path, *world,
-                                                                 readText(options.scene_path), options.marker_rate);
+      bag = std::make_unique<ball_collision_sim::bridge::RunBag>(
+          options.bag_path, *world, ball_collision_sim::yaml::writeScene(scene), options.marker_rate);
     }
     catch (const rosbag::BagException& e)
     {
@@ -242,9 +234,24 @@ int run(const SimulateOptions& options)
   const auto wallSeconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   };
+  std::uint64_t lost = 0;
   for (std::uint64_t step = 1; step <= steps && !g_interrupted; ++step)
   {
     world->step();
+    // A ball that left the world is reported once and taken out, as the node does.
+    const std::vector<ball_collision_sim::core::LostBall> gone = world->removeLostBalls();
+    for (const ball_collision_sim::core::LostBall& ball : gone)
+    {
+      progress.finish();
+      std::fprintf(stderr, "simulate: t = %.17g s: ball %d %s at (%g, %g, %g) m; removed from the world\n",
+                   world->time(), ball.ball.id, ball.reason.c_str(), ball.ball.position.x(), ball.ball.position.y(),
+                   ball.ball.position.z());
+    }
+    lost += gone.size();
+    if (bag && !gone.empty())
+    {
+      bag->lost(*world, gone);
+    }
     if (csv.isOpen() && step % options.sample_every == 0)
     {
       csv.writeSample(*world);
@@ -271,7 +278,7 @@ int run(const SimulateOptions& options)
   std::printf("summary: steps=%llu events=%llu wall_s=%.6f energy_start=%.17g energy_end=%.17g balls_lost=%d\n",
               static_cast<unsigned long long>(world->stats().steps),
               static_cast<unsigned long long>(world->stats().events), wall_seconds, energy_start,
-              world->energy().total(), world->lostBalls());
+              world->energy().total(), static_cast<int>(lost) + world->lostBalls());
   if (std::fflush(stdout) != 0)
   {
     return kExitInternalError;

@@ -25,7 +25,7 @@ constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// test/data/node_scene.yaml: a flat floor [-2, 2] x [-1, 1] inside four walls 0.3 m
-/// high (ids 0..3), ball 0 (r 0.125) at (-0.763, 0), ball 1 (r 0.125) at (0.5, 0).
+/// high (ids 1..4), ball 1 (r 0.125) at (-0.763, 0), ball 2 (r 0.125) at (0.5, 0).
 World nodeWorld()
 {
   return World(bcs::yaml::loadValidScene(std::string(BCS_TEST_DATA_DIR) + "/node_scene.yaml"));
@@ -68,6 +68,17 @@ bcs::AddBall::Request ballRequest(double x, double y, double z, double vx, doubl
   req.radius = radius;
   req.mass = mass;
   return req;
+}
+
+bcs::AddBall::Request placement(bcs::AddBall::Request req, std::uint8_t value)
+{
+  req.placement = value;
+  return req;
+}
+
+bcs::AddBall::Request asGiven(const bcs::AddBall::Request& req)
+{
+  return placement(req, bcs::AddBall::Request::AS_GIVEN);
 }
 
 /// A good ball: at (1.2, 0.5) on the floor, clear of everything.
@@ -130,6 +141,33 @@ Answer removeWall(World& world, int id)
   return {res.success != 0, res.message};
 }
 
+Answer setBallState(World& world, int id, double x, double y, double z, double vx, double vy, std::uint8_t place = 0)
+{
+  bcs::SetBallState::Request req;
+  req.id = id;
+  req.position.x = x;
+  req.position.y = y;
+  req.position.z = z;
+  req.velocity.x = vx;
+  req.velocity.y = vy;
+  req.placement = place;
+  bcs::SetBallState::Response res;
+  bcs::bridge::answerSetBallState(world, req, res);
+  return {res.success != 0, res.message};
+}
+
+Answer applyImpulse(World& world, int id, double jx, double jy, double jz)
+{
+  bcs::ApplyImpulse::Request req;
+  req.id = id;
+  req.impulse.x = jx;
+  req.impulse.y = jy;
+  req.impulse.z = jz;
+  bcs::ApplyImpulse::Response res;
+  bcs::bridge::answerApplyImpulse(world, req, res);
+  return {res.success != 0, res.message};
+}
+
 Answer step(World& world, bool paused, std::uint32_t steps)
 {
   bcs::Step::Request req;
@@ -172,8 +210,8 @@ void runTable(const std::vector<Row>& rows)
     }
     EXPECT_EQ(fingerprint(world), before) << "the world changed";
     // no id was used up: the next good ball and wall get the ids they would have had
-    EXPECT_EQ(addBall(world, goodBall()).id, 2);
-    EXPECT_EQ(addWall(world, goodWall()).id, 4);
+    EXPECT_EQ(addBall(world, goodBall()).id, 3);
+    EXPECT_EQ(addWall(world, goodWall()).id, 5);
   }
 }
 
@@ -224,13 +262,17 @@ TEST(BadRequests, AddBall)
       ball("mass inf", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, 0.1, kInf), "mass", "must be finite"),
       ball("mass 1e300", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, 0.1, 1e300), "mass", "must be <= 1e+12 kg"),
       ball("mass 1e-320 (denormal)", ballRequest(1.2, 0.5, 0.1, 0, 0, 0, 0.1, 1e-320), "mass", "must be >= 1e-12 kg"),
-      ball("overlaps ball 1", ballRequest(0.6, 0.1, 0.1, 0, 0, 0, 0.1, 1), "position", "overlaps ball 1 by"),
-      ball("on top of ball 0", ballRequest(-0.763, 0, 0.125, 0, 0, 0, 0.125, 1), "position", "overlaps ball 0 by"),
-      ball("overlaps wall 3", ballRequest(1.95, 0.5, 0.1, 0, 0, 0, 0.1, 1), "position", "overlaps wall 3 by"),
+      ball("overlaps ball 2", ballRequest(0.6, 0.1, 0.1, 0, 0, 0, 0.1, 1), "position", "overlaps ball 2 by"),
+      ball("on top of ball 1", ballRequest(-0.763, 0, 0.125, 0, 0, 0, 0.125, 1), "position", "overlaps ball 1 by"),
+      ball("overlaps wall 4", ballRequest(1.95, 0.5, 0.1, 0, 0, 0, 0.1, 1), "position", "overlaps wall 4 by"),
       ball("off the floor in x", ballRequest(5, 0.5, 0.1, 0, 0, 0, 0.1, 1), "position", "off the floor"),
       ball("off the floor in y", ballRequest(1.2, -3, 0.1, 0, 0, 0, 0.1, 1), "position", "off the floor"),
-      ball("below the floor", ballRequest(1.2, 0.5, -1, 0, 0, 0, 0.1, 1), "position", "below the surface"),
-      ball("far above the floor", ballRequest(1.2, 0.5, 3, 0, 0, 0, 0.1, 1), "position", "above the surface"),
+      ball("AS_GIVEN below the floor", asGiven(ballRequest(1.2, 0.5, -1, 0, 0, 0, 0.1, 1)), "position",
+           "not resting on the floor"),
+      ball("AS_GIVEN above the floor", asGiven(ballRequest(1.2, 0.5, 3, 0, 0, 0, 0.1, 1)), "position",
+           "not resting on the floor"),
+      ball("placement 2", placement(ballRequest(1.2, 0.5, 0.1, 0, 0, 0, 0.1, 1), 2), "placement",
+           "must be 0 (ON_FLOOR) or 1 (AS_GIVEN), got 2"),
       ball("max_balls reached", goodBall(), "max_balls", "already holds 2 balls", 2),
   });
 }
@@ -251,34 +293,36 @@ TEST(BadRequests, AddWall)
       wall("v parallel to u", wallRequest(1.5, -0.9, 0, 0, 0.8, 0, 0, 1.6, 0), "v", "parallel to u"),
       wall("v against u", wallRequest(1.5, -0.9, 0, 0, 0.8, 0, 0, -0.2, 0), "v", "parallel to u"),
       wall("v all but parallel", wallRequest(1.5, -0.9, 0, 0, 0.8, 0, 0, 0.8, 1e-12), "v", "parallel to u"),
-      wall("through ball 0", wallRequest(-0.763, -0.9, 0, 0, 1.8, 0, 0, 0, 0.3), "point", "cuts through ball 0"),
-      wall("through ball 1 edgewise", wallRequest(0.5, 0, 0, 0.5, 0, 0, 0, 0, 0.3), "point", "cuts through ball 1"),
+      wall("through ball 1", wallRequest(-0.763, -0.9, 0, 0, 1.8, 0, 0, 0, 0.3), "point", "cuts through ball 1"),
+      wall("through ball 2 edgewise", wallRequest(0.5, 0, 0, 0.5, 0, 0, 0, 0, 0.3), "point", "cuts through ball 2"),
   });
 }
 
 TEST(BadRequests, RemoveBall)
 {
   runTable({
+      {"empty request (id 0)", [](World& w) { return removeBall(w, 0); }, "id", "missing (0 names no object"},
       {"unknown id 42", [](World& w) { return removeBall(w, 42); }, "id", "no ball has id 42"},
-      {"negative id", [](World& w) { return removeBall(w, -1); }, "id", "no ball has id -1"},
+      {"negative id", [](World& w) { return removeBall(w, -1); }, "id", "must be >= 1 (got -1)"},
       {"largest id", [](World& w) { return removeBall(w, std::numeric_limits<std::int32_t>::max()); }, "id",
        "no ball has id 2147483647"},
       {"smallest id", [](World& w) { return removeBall(w, std::numeric_limits<std::int32_t>::min()); }, "id",
-       "no ball has id -2147483648"},
-      {"the next id, not given yet", [](World& w) { return removeBall(w, 2); }, "id", "no ball has id 2"},
-      {"a wall's id", [](World& w) { return removeBall(w, 3); }, "id", "no ball has id 3"},
+       "must be >= 1 (got -2147483648)"},
+      {"the next id, not given yet", [](World& w) { return removeBall(w, 3); }, "id", "no ball has id 3"},
+      {"a wall's id", [](World& w) { return removeBall(w, 4); }, "id", "no ball has id 4"},
   });
 }
 
 TEST(BadRequests, RemoveWall)
 {
   runTable({
-      {"unknown id 4", [](World& w) { return removeWall(w, 4); }, "id", "no wall has id 4"},
-      {"negative id", [](World& w) { return removeWall(w, -1); }, "id", "no wall has id -1"},
+      {"empty request (id 0)", [](World& w) { return removeWall(w, 0); }, "id", "missing (0 names no object"},
+      {"unknown id 5", [](World& w) { return removeWall(w, 5); }, "id", "no wall has id 5"},
+      {"negative id", [](World& w) { return removeWall(w, -1); }, "id", "must be >= 1 (got -1)"},
       {"largest id", [](World& w) { return removeWall(w, std::numeric_limits<std::int32_t>::max()); }, "id",
        "no wall has id 2147483647"},
       {"smallest id", [](World& w) { return removeWall(w, std::numeric_limits<std::int32_t>::min()); }, "id",
-       "no wall has id -2147483648"},
+       "must be >= 1 (got -2147483648)"},
   });
 }
 
@@ -295,6 +339,50 @@ TEST(BadRequests, RemovedOnceIsGone)
   EXPECT_FALSE(wall.success);
   EXPECT_EQ(wall.message, "id: no wall has id 2");
   EXPECT_EQ(fingerprint(world), before);
+}
+
+TEST(BadRequests, SetBallState)
+{
+  runTable({
+      {"empty request (id 0)", [](World& w) { return setBallState(w, 0, 1.2, 0.5, 0.1, 0, 0); }, "id",
+       "missing (0 names no object"},
+      {"unknown id", [](World& w) { return setBallState(w, 3, 1.2, 0.5, 0.1, 0, 0); }, "id", "no ball has id 3"},
+      {"negative id", [](World& w) { return setBallState(w, -2, 1.2, 0.5, 0.1, 0, 0); }, "id", "must be >= 1"},
+      {"position NaN", [](World& w) { return setBallState(w, 1, kNan, 0.5, 0.1, 0, 0); }, "position", "must be finite"},
+      {"velocity inf", [](World& w) { return setBallState(w, 1, 1.2, 0.5, 0.1, kInf, 0); }, "velocity", "must be finite"},
+      {"onto ball 2", [](World& w) { return setBallState(w, 1, 0.55, 0.05, 0.1, 0, 0); }, "position", "overlaps ball 2"},
+      {"into wall 4", [](World& w) { return setBallState(w, 1, 1.95, 0.5, 0.1, 0, 0); }, "position", "overlaps wall 4"},
+      {"off the floor", [](World& w) { return setBallState(w, 2, 2.5, 0.5, 0.1, 0, 0); }, "position", "off the floor"},
+      {"AS_GIVEN above", [](World& w) { return setBallState(w, 1, 1.2, 0.5, 0.5, 0, 0, 1); }, "position",
+       "not resting on the floor"},
+      {"placement 9", [](World& w) { return setBallState(w, 1, 1.2, 0.5, 0.1, 0, 0, 9); }, "placement",
+       "must be 0 (ON_FLOOR) or 1 (AS_GIVEN), got 9"},
+  });
+}
+
+TEST(BadRequests, ApplyImpulse)
+{
+  runTable({
+      {"empty request (id 0)", [](World& w) { return applyImpulse(w, 0, 1, 0, 0); }, "id", "missing (0 names no object"},
+      {"unknown id", [](World& w) { return applyImpulse(w, 5, 1, 0, 0); }, "id", "no ball has id 5"},
+      {"impulse NaN", [](World& w) { return applyImpulse(w, 1, kNan, 0, 0); }, "impulse", "must be finite"},
+      {"impulse past the speed limit", [](World& w) { return applyImpulse(w, 2, 1e300, 0, 0); }, "impulse",
+       "a speed of"},
+  });
+}
+
+// The same requests done right change the world as asked, and keep the ball's id.
+TEST(BadRequests, GoodSetAndPushAreAccepted)
+{
+  World world = nodeWorld();
+  const Answer set = setBallState(world, 2, 1.2, 0.5, 7.0, -0.4, 0.2);  // any height: it lands
+  ASSERT_TRUE(set.success) << set.message;
+  EXPECT_EQ(world.findBall(2)->position, bcs::core::Vec3(1.2, 0.5, 0.125));
+  EXPECT_EQ(world.findBall(2)->velocity, bcs::core::Vec3(-0.4, 0.2, 0));
+  const Answer pushed = applyImpulse(world, 2, 3.0, 0, 0);  // ball 2 has 3 kg
+  ASSERT_TRUE(pushed.success) << pushed.message;
+  EXPECT_EQ(world.findBall(2)->velocity, bcs::core::Vec3(0.6, 0.2, 0));
+  EXPECT_EQ(world.balls().size(), 2u);
 }
 
 TEST(BadRequests, Step)

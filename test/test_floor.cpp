@@ -293,8 +293,8 @@ TEST(Bowl, EditsKeepEachBallOnItsOwnFoot)
   for (int k = 0; k < 20; ++k)
     world.step();
   check("after 20 steps");
-  ASSERT_TRUE(world.removeBall(1));
-  check("after removing ball 1");
+  ASSERT_TRUE(world.removeBall(2));  // the second ball: ids start at 1
+  check("after removing ball 2");
   BallDef added;
   added.radius = 0.1;
   added.position = Vec3(0.9, 0.9, 0.3);

@@ -48,8 +48,8 @@ TEST_P(HeadOnCollision, MatchesClosedForm)
   }
   ASSERT_EQ(events.size(), 1u);
   EXPECT_NEAR(events[0].time, t_hit, 1e-12);
-  EXPECT_EQ(events[0].ball, 0);
-  EXPECT_EQ(events[0].other, 1);
+  EXPECT_EQ(events[0].ball, 1);  // ids start at 1
+  EXPECT_EQ(events[0].other, 2);
   const auto& b = world.balls();
   EXPECT_NEAR(b[0].velocity.x(), v1, 1e-12);
   EXPECT_NEAR(b[1].velocity.x(), v2, 1e-12);

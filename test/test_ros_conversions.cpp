@@ -165,7 +165,7 @@ TEST(Markers, ManyBallsAreDrawnAsOneSphereListPerRadius)
   const auto single = bridge::ballMarkers(world, "world", ros::Time(1.0), 5, bridge::BallColoring());
   ASSERT_EQ(single.markers.size(), 5u);
   EXPECT_EQ(single.markers[3].type, visualization_msgs::Marker::SPHERE);
-  EXPECT_EQ(single.markers[3].id, 3);
+  EXPECT_EQ(single.markers[3].id, 4);  // the fourth ball: ids start at 1
 
   const auto lists = bridge::ballMarkers(world, "world", ros::Time(1.0), 4, bridge::BallColoring());
   ASSERT_EQ(lists.markers.size(), 2u);  // radii 0.1 and 0.2

@@ -265,10 +265,12 @@ TEST(SceneYaml, AcceptsAndIgnoresNodeOnlyKeys)
   std::string text;
   for (const auto key : ball_collision_sim::yaml::kNodeOnlyKeys)
   {
-    if (key == "publish_collisions" || key == "start_paused" || key == "collision_flashes")
+    if (key == "publish_collisions" || key == "start_paused" || key == "collision_flashes" || key == "publish_clock")
       text += std::string(key) + ": false\n";
     else if (key == "ball_color")
       text += std::string(key) + ": id\n";
+    else if (key == "frame_prefix")
+      text += std::string(key) + ": sim_a/\n";
     else
       text += std::string(key) + ": 10\n";
   }
@@ -279,7 +281,11 @@ TEST(SceneYaml, AcceptsAndIgnoresNodeOnlyKeys)
   EXPECT_FALSE(scene.node.collision_flashes);
   EXPECT_EQ(scene.node.ball_color, ball_collision_sim::core::BallColor::kId);
   EXPECT_EQ(scene.node.speed_color_max, 10);
+  EXPECT_EQ(scene.node.publish_clock, false);
+  EXPECT_EQ(scene.node.frame_prefix, "sim_a/");
   EXPECT_EQ(errorOf("tf_rate: fast"), "t.yaml: tf_rate: expected a number, got fast");
+  EXPECT_EQ(errorOf("frame_prefix: /a/"), "t.yaml: frame_prefix: must not start with '/' (tf2 frame names do not), got \"/a/\"");
+  EXPECT_EQ(errorOf("publish_clock: yes"), "t.yaml: publish_clock: expected true or false, got yes");
   EXPECT_EQ(errorOf("start_paused: 1"), "t.yaml: start_paused: expected true or false, got 1");
   EXPECT_EQ(errorOf("tf_max_balls: 2.5"), "t.yaml: tf_max_balls: expected an integer, got 2.5");
 }
@@ -300,7 +306,7 @@ TEST(SceneYaml, EachMistakeGivesOneLineNamingTheKeyAndTheReason)
     {"dtt: 0.1", "t.yaml: dtt: unknown key (expected one of: frame_id, dt, gravity, restitution, floor, walls, "
                  "balls, random_balls, real_time_factor, marker_rate, tf_rate, tf_max_balls, state_rate, "
                  "publish_collisions, start_paused, click_radius, click_mass, status_period, max_balls, "
-                 "marker_list_threshold, ball_color, speed_color_max, collision_flashes)"},
+                 "marker_list_threshold, ball_color, speed_color_max, collision_flashes, publish_clock, frame_prefix)"},
     {"floor: {type: plane, control_points: []}",
      "t.yaml: floor.control_points: unknown key (expected one of: type, point, u, v)"},
     {"random_balls: {count: 1, region: {min: [0, 0], max: [1, 1], mid: [0, 0]}}",
@@ -575,3 +581,45 @@ TEST(ConfigScenes, RandomGasPlacesAllItsBalls)
   EXPECT_EQ(ball_collision_sim::core::placeRandomBalls(scene).size(), 200u);
 }
 }  // namespace
+
+// The scene written out reads back to the same scene (the same world, to the bit), with
+// every default spelled out and each real in its shortest exact form.
+TEST(SceneWriter, WritesWhatReadsBackToTheSameBits)
+{
+  using ball_collision_sim::core::World;
+  using ball_collision_sim::yaml::writeScene;
+  std::vector<std::string> paths;
+  for (const auto& entry : std::filesystem::directory_iterator(kConfigDir))
+    paths.push_back(entry.path().string());
+  paths.push_back(kDataDir + "/node_scene.yaml");
+  paths.push_back(kDataDir + "/good_small.yaml");
+  for (const std::string& path : paths)
+  {
+    const Scene scene = loadValidScene(path);
+    const std::string text = writeScene(scene);
+    const Scene again = parseScene(text, path + " (written)");
+    EXPECT_EQ(writeScene(again), text) << path;
+    EXPECT_EQ(World(again).stateHash(), World(scene).stateHash()) << path;
+    EXPECT_EQ(again.restitution, scene.restitution) << path;
+    EXPECT_EQ(again.node.real_time_factor, scene.node.real_time_factor) << path;
+    EXPECT_EQ(again.walls.size(), scene.walls.size()) << path;
+  }
+  Scene odd;
+  odd.dt = 0.1 + 0.2;  // 0.30000000000000004: 17 digits are the shortest here
+  odd.restitution = 0.15;
+  odd.gravity = Vec3(1e-7, -3, 2.5e20);
+  odd.frame_id = "map \"x\"";
+  odd.node.frame_prefix = "";
+  const std::string text = writeScene(odd);
+  EXPECT_NE(text.find("dt: 0.30000000000000004\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("restitution: 0.15\n"), std::string::npos) << text;
+  // reals stay reals for YAML 1.1 readers (rosparam): a point, and a signed exponent
+  EXPECT_NE(text.find("gravity: [1.0e-07, -3.0, 2.5e+20]\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("frame_prefix: \"\"\n"), std::string::npos) << text;
+  const Scene back = parseScene(text);
+  EXPECT_EQ(back.dt, odd.dt);
+  EXPECT_EQ(back.gravity, odd.gravity);
+  EXPECT_EQ(back.frame_id, odd.frame_id);
+  EXPECT_EQ(back.node.frame_prefix, "");
+  EXPECT_FALSE(back.node.publish_clock.has_value());
+}

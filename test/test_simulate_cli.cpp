@@ -465,9 +465,10 @@ double energyOf(const std::vector<CsvRow>& rows, std::size_t first, std::size_t 
   for (std::size_t i = first; i < first + count; ++i)
   {
     const CsvRow& row = rows[i];
-    EXPECT_GE(row.id, 0);
-    EXPECT_LT(static_cast<std::size_t>(row.id), balls.size());
-    const double m = balls.at(static_cast<std::size_t>(row.id)).mass;
+    // ball k of the scene's list has id k + 1
+    EXPECT_GE(row.id, 1);
+    EXPECT_LE(static_cast<std::size_t>(row.id), balls.size());
+    const double m = balls.at(static_cast<std::size_t>(row.id) - 1).mass;
     const ball_collision_sim::core::Vec3 p(row.x, row.y, row.z);
     const ball_collision_sim::core::Vec3 v(row.vx, row.vy, row.vz);
     energy += 0.5 * m * v.squaredNorm() - m * scene.gravity.dot(p);

@@ -31,8 +31,8 @@ TEST(NewtonsCradle, OneInOneOut)
   for (std::size_t k = 0; k < events.size(); ++k)
   {
     EXPECT_NEAR(events[k].time, 0.1, 1e-12);
-    EXPECT_EQ(events[k].ball, static_cast<int>(k));
-    EXPECT_EQ(events[k].other, static_cast<int>(k + 1));
+    EXPECT_EQ(events[k].ball, static_cast<int>(k) + 1);  // ids start at 1
+    EXPECT_EQ(events[k].other, static_cast<int>(k) + 2);
   }
   for (int i = 0; i < 4; ++i)
     EXPECT_LT(world.balls()[i].velocity.norm(), 1e-12) << i;
@@ -376,7 +376,7 @@ TEST(Editing, RefusedAddChangesNothing)
   huge.radius = 1e300;
   const Case cases[] = {
       {nan_ball, "velocity"},         {zero_radius, "radius"},          {neg_mass, "mass"},
-      {huge, "radius"},               {ball(0.15, 0, 0, 0), "position"},  // overlaps ball 0
+      {huge, "radius"},               {ball(0.15, 0, 0, 0), "position"},  // overlaps ball 1
       {ball(1.95, 0, 0, 0), "position"},                                  // overlaps a wall
       {ball(5, 0, 0, 0), "position"},                                     // off the floor
   };
@@ -407,23 +407,23 @@ TEST(Editing, EditsBetweenStepsTakeEffectAtOnce)
   const double dt = world.dt();
   for (int k = 0; k < 20; ++k)
     world.step();
-  // ball 1 was in ball 0's way (they would meet at 2.8 s); without it ball 0 runs on
-  ASSERT_TRUE(world.removeBall(1));
+  // ball 2 was in ball 1's way (they would meet at 2.8 s); without it ball 1 runs on
+  ASSERT_TRUE(world.removeBall(2));
   for (int k = 0; k < 300; ++k)
     world.step();
-  EXPECT_NEAR(world.findBall(0)->position.x(), -3 + 320 * dt, 1e-9);
-  EXPECT_NEAR(world.findBall(0)->velocity.x(), 1, 1e-12);
-  EXPECT_NEAR(world.findBall(2)->position.y(), 2 + 320 * dt * 0.5, 1e-9);
-  EXPECT_NEAR(world.findBall(3)->position.x(), -2 + 320 * dt * 0.5, 1e-9);
+  EXPECT_NEAR(world.findBall(1)->position.x(), -3 + 320 * dt, 1e-9);
+  EXPECT_NEAR(world.findBall(1)->velocity.x(), 1, 1e-12);
+  EXPECT_NEAR(world.findBall(3)->position.y(), 2 + 320 * dt * 0.5, 1e-9);
+  EXPECT_NEAR(world.findBall(4)->position.x(), -2 + 320 * dt * 0.5, 1e-9);
   // a ball put in its way 0.6 s ahead takes all of its speed when they meet
   const AddResult added = world.addBall(ball(1.0, 0, 0, 0));
   ASSERT_TRUE(added.ok) << added.error;
   for (int k = 0; k < 100; ++k)
     world.step();
-  EXPECT_NEAR(world.findBall(0)->velocity.norm(), 0, 1e-12);
+  EXPECT_NEAR(world.findBall(1)->velocity.norm(), 0, 1e-12);
   EXPECT_NEAR(world.findBall(added.id)->velocity.x(), 1, 1e-12);
   EXPECT_NEAR(world.findBall(added.id)->position.x(), 1.0 + 0.4, 1e-9);
-  EXPECT_NEAR(world.findBall(0)->position.x(), 1.0 - 0.2, 1e-9);
+  EXPECT_NEAR(world.findBall(1)->position.x(), 1.0 - 0.2, 1e-9);
   EXPECT_NEAR(world.energy().kinetic, 0.5 * (1 + 0.25 + 0.25), 1e-12);
 }
 

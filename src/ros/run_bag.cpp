@@ -3,6 +3,7 @@
 #include "ball_collision_sim/ros/conversions.hpp"
 #include "ball_collision_sim/ros/outputs.hpp"
 
+#include <ball_collision_sim/LostBall.h>
 #include <std_msgs/String.h>
 
 #include <algorithm>
@@ -32,6 +33,20 @@ RunBag::RunBag(const std::string& path, const core::World& world, const std::str
   write("/ball_sim/markers", stamp, staticMarkers(world, frame_id_));
   write("/ball_sim/ball_states", stamp, statesMessage(world, frame_id_, stamp));
   writeView(world, stamp);
+}
+
+void RunBag::lost(const core::World& world, const std::vector<core::LostBall>& balls)
+{
+  const ros::Time stamp(world.time());
+  for (const core::LostBall& gone : balls)
+  {
+    ball_collision_sim::LostBall msg;
+    msg.header.stamp = stamp;
+    msg.header.frame_id = frame_id_;
+    msg.ball = toMsg(gone.ball, gone.angular_velocity);
+    msg.reason = gone.reason;
+    write("/ball_sim/lost_balls", stamp, msg);
+  }
 }
 
 RunBag::~RunBag()

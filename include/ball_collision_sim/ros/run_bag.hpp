@@ -15,7 +15,8 @@ namespace ball_collision_sim::bridge
 /// /clock every step, /ball_sim/collisions per collision, /ball_sim/ball_states at the
 /// scene's state_rate, /tf at its tf_rate (first tf_max_balls balls), /ball_sim/markers
 /// at `marker_rate` (with the flashes of the collisions since the last set when the
-/// scene's collision_flashes is on), and the scene's YAML once on /ball_sim/scene. The
+/// scene's collision_flashes is on), each ball that left the world on
+/// /ball_sim/lost_balls, and the scene's YAML once on /ball_sim/scene. The
 /// bag is written under PATH.active and renamed to PATH by close(): no run leaves a
 /// truncated bag under the final name.
 class RunBag
@@ -31,6 +32,8 @@ public:
 
   /// Writes what the node publishes after a step of `world`.
   void afterStep(const core::World& world);
+  /// Writes the balls that left `world` in its last step on /ball_sim/lost_balls.
+  void lost(const core::World& world, const std::vector<core::LostBall>& balls);
   /// Closes the bag and moves it to PATH; throws std::runtime_error when the rename fails.
   void close();
 
