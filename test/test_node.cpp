@@ -220,8 +220,8 @@ TEST(Node, HeadOnCollisionAtTheAnalyticTime)
   const auto events = collisions.take();
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].kind, bcs::CollisionEvent::BALL_BALL);
-  EXPECT_EQ(events[0].ball, 0);
-  EXPECT_EQ(events[0].other, 1);
+  EXPECT_EQ(events[0].ball, 1);  // ids start at 1
+  EXPECT_EQ(events[0].other, 2);
   EXPECT_NEAR(events[0].header.stamp.toSec(), kImpactTime, 1e-9);
   EXPECT_EQ(events[0].header.frame_id, "world");
   // 1 kg at 1.5 m/s meets 3 kg at -0.5 m/s: the impulse is 2 m1 m2 / (m1 + m2) * 2 m/s
@@ -236,15 +236,15 @@ TEST(Node, AddedBallHasATfFrameWhereThePhysicsPutsIt)
   ros::WallDuration(0.5).sleep();
   const auto added = addBall(-1, 0.6, 0.8, -0.3, 0.1, 1);
   ASSERT_TRUE(added.success) << added.message;
-  EXPECT_EQ(added.id, 2);
+  EXPECT_EQ(added.id, 3);
   step(25);
   const ros::Time t(25 * kDt);
   std::string error;
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(5.0);
-  while (!buffer.canTransform("world", "ball_2", t, &error) && ros::WallTime::now() < end)
+  while (!buffer.canTransform("world", "ball_3", t, &error) && ros::WallTime::now() < end)
     ros::WallDuration(0.02).sleep();
-  ASSERT_TRUE(buffer.canTransform("world", "ball_2", t, &error)) << error;
-  const auto tf = buffer.lookupTransform("world", "ball_2", t);
+  ASSERT_TRUE(buffer.canTransform("world", "ball_3", t, &error)) << error;
+  const auto tf = buffer.lookupTransform("world", "ball_3", t);
   EXPECT_NEAR(tf.transform.translation.x, -1 + 0.8 * 0.25, 1e-9);
   EXPECT_NEAR(tf.transform.translation.y, 0.6 - 0.3 * 0.25, 1e-9);
   EXPECT_NEAR(tf.transform.translation.z, 0.1, 1e-12);
@@ -260,7 +260,7 @@ TEST(Node, GoodRequestsChangeTheWorld)
   ASSERT_TRUE(ball.success) << ball.message;
   const auto wall = addWall(0.5, -1, 0, 0.8, 0, 0, 0.3);
   ASSERT_TRUE(wall.success) << wall.message;
-  EXPECT_EQ(wall.id, 4);
+  EXPECT_EQ(wall.id, 5);
   EXPECT_EQ(statesAfter(1).balls.size(), 3u);
   // a third ball is the most this node takes (max_balls: 3 in its scene)
   const auto over = addBall(-1.2, 0.5, 0, 0, 0.1, 1);
@@ -290,7 +290,7 @@ TEST(Node, BadRequestsNameTheFieldAndChangeNothing)
       {addBall(nan, 0.5, 0, 0, 0.1, 1), "position"}, {addBall(1, 0.5, inf, 0, 0.1, 1), "velocity"},
       {addBall(1, 0.5, 0, 0, 0, 1), "radius"},       {addBall(1, 0.5, 0, 0, -0.1, 1), "radius"},
       {addBall(1, 0.5, 0, 0, 0.1, 0), "mass"},       {addBall(1, 0.5, 0, 0, 1e300, 1), "radius"},
-      {addBall(0.5, 0, 0, 0, 0.1, 1), "position"},   // overlaps ball 1
+      {addBall(0.5, 0, 0, 0, 0.1, 1), "position"},   // overlaps ball 2
       {addBall(1.95, 0.5, 0, 0, 0.1, 1), "position"},  // overlaps a wall
       {addBall(5, 0.5, 0, 0, 0.1, 1), "position"},     // off the floor
   };
@@ -305,7 +305,7 @@ TEST(Node, BadRequestsNameTheFieldAndChangeNothing)
   const auto zero = addWall(0, 0, 0, 0, 0, 0, 1);
   EXPECT_FALSE(zero.success);
   EXPECT_EQ(zero.message.rfind("u", 0), 0u) << zero.message;
-  const auto through = addWall(-0.763, -1, 0, 2, 0, 0, 0.3);  // across ball 0
+  const auto through = addWall(-0.763, -1, 0, 2, 0, 0, 0.3);  // across ball 1
   EXPECT_FALSE(through.success);
   EXPECT_EQ(through.message.rfind("point", 0), 0u) << through.message;
   EXPECT_FALSE(remove("ball", 42).success);
@@ -372,18 +372,18 @@ TEST(Node, MarkersShowFloorWallsAndOneStableIdPerBall)
     }
   EXPECT_EQ(floors, 1);
   EXPECT_EQ(walls, 4);
-  EXPECT_EQ(ball_ids, (std::vector<int>{0, 1}));
-  // coloured by speed on a scale up to the fastest ball at the start (ball 0, 1.5 m/s):
-  // ball 0 at the top (yellow), ball 1 (0.5 m/s) a third of the way, blue toward magenta
+  EXPECT_EQ(ball_ids, (std::vector<int>{1, 2}));
+  // coloured by speed on a scale up to the fastest ball at the start (ball 1, 1.5 m/s):
+  // ball 1 at the top (yellow), ball 2 (0.5 m/s) a third of the way, blue toward magenta
   for (const auto& m : arrays.back().markers)
   {
-    if (m.ns == "balls" && m.id == 0)
+    if (m.ns == "balls" && m.id == 1)
     {
       EXPECT_FLOAT_EQ(m.color.r, 1.0f);
       EXPECT_FLOAT_EQ(m.color.g, 0.85f);
       EXPECT_FLOAT_EQ(m.color.b, 0.1f);
     }
-    if (m.ns == "balls" && m.id == 1)
+    if (m.ns == "balls" && m.id == 2)
     {
       EXPECT_NEAR(m.color.r, 0.2 + 0.7 * 2 / 3.0, 1e-6);
       EXPECT_NEAR(m.color.g, 0.35 - 0.2 * 2 / 3.0, 1e-6);
@@ -397,7 +397,7 @@ TEST(Node, MarkersShowFloorWallsAndOneStableIdPerBall)
   for (const auto& m : arrays.back().markers)
   {
     EXPECT_EQ(m.ns, "balls");
-    if (m.id == 0)
+    if (m.id == 1)
     {
       EXPECT_NEAR(m.pose.position.x, -0.763 + 1.5 * 0.1, 1e-9);
     }
@@ -497,6 +497,9 @@ TEST(Node, StatesMatchTheOfflineToolsBagBitForBit)
   fresh();
   Inbox<bcs::BallStateArray> states("/ball_sim/ball_states");
   waitConnected(states);
+  // a new subscriber is sent the present at once; the run starts after it
+  ASSERT_TRUE(states.waitFor([](const auto& all) { return !all.empty(); }));
+  states.take();
   reset();  // publishes the states at t = 0
   step(80);
   ASSERT_TRUE(states.waitFor([](const auto& all) { return all.size() >= 81; }));
@@ -552,7 +555,7 @@ TEST(Node, ClickedPointAddsABallOnTheFloor)
     states = statesAfter(1);
   while (states.balls.size() < 3 && ros::WallTime::now() < until);
   ASSERT_EQ(states.balls.size(), 3u);
-  EXPECT_EQ(states.balls[2].id, 2);
+  EXPECT_EQ(states.balls[2].id, 3);
   EXPECT_NEAR(states.balls[2].pose.position.x, 1.3, 1e-12);
   EXPECT_NEAR(states.balls[2].pose.position.y, -0.4, 1e-12);
   EXPECT_NEAR(states.balls[2].pose.position.z, 0.1, 1e-12);  // click_radius above the floor

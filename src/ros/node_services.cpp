@@ -25,7 +25,10 @@ bool SimulatorNode::onAddBall(AddBall::Request& req, AddBall::Response& res)
   const Lock guard = lock();
   answerAddBall(world_, settings_.node.max_balls, req, res);
   if (res.success)
+  {
+    states_sent_ = false;
     publishPresent();
+  }
   return true;
 }
 
@@ -43,7 +46,10 @@ bool SimulatorNode::onRemoveBall(RemoveObject::Request& req, RemoveObject::Respo
   const Lock guard = lock();
   answerRemoveBall(world_, req, res);
   if (res.success)
+  {
+    states_sent_ = false;
     publishPresent();
+  }
   return true;
 }
 
@@ -65,7 +71,10 @@ bool SimulatorNode::onSetBallState(SetBallState::Request& req, SetBallState::Res
   const Lock guard = lock();
   answerSetBallState(world_, req, res);
   if (res.success)
+  {
+    states_sent_ = false;
     publishPresent();
+  }
   return true;
 }
 
@@ -74,7 +83,10 @@ bool SimulatorNode::onApplyImpulse(ApplyImpulse::Request& req, ApplyImpulse::Res
   const Lock guard = lock();
   answerApplyImpulse(world_, req, res);
   if (res.success)
+  {
+    states_sent_ = false;
     publishPresent();
+  }
   return true;
 }
 
@@ -180,6 +192,7 @@ void SimulatorNode::onClickedPoint(const geometry_msgs::PointStamped& msg)
     return;
   }
   ROS_INFO("ball_sim: added ball %d at the clicked point", result.id);
+  states_sent_ = false;
   publishPresent();
 }
 

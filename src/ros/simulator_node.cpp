@@ -212,6 +212,7 @@ void SimulatorNode::startStatusTimer()
 void SimulatorNode::stepOnce()
 {
   world_.step();
+  states_sent_ = false;
   const ros::Time stamp(world_.time());
   if (settings_.publish_clock)
     clock_pub_.publish(clockMessage(stamp));
@@ -246,6 +247,7 @@ void SimulatorNode::removeLostBalls()
 void SimulatorNode::publishStates(const ros::Time& stamp)
 {
   states_pub_.publish(statesMessage(world_, frame_id_, stamp));
+  states_sent_ = true;
 }
 
 void SimulatorNode::publishView(bool force)
@@ -260,8 +262,8 @@ void SimulatorNode::publishView(bool force)
 
 void SimulatorNode::publishPresent()
 {
-  const ros::Time stamp(world_.time());
-  publishStates(stamp);
+  if (!states_sent_)
+    publishStates(ros::Time(world_.time()));
   publishView(true);
 }
 
@@ -337,6 +339,7 @@ void SimulatorNode::publishStatic()
 
 void SimulatorNode::redraw()
 {
+  states_sent_ = false;
   visualization_msgs::MarkerArray clear;
   clear.markers.push_back(deleteAllMarker(frame_id_));
   markers_pub_.publish(clear);

@@ -67,7 +67,8 @@ private:
   void removeLostBalls();
   /// Markers and tf when their wall-clock rates allow, or (force) now.
   void publishView(bool force);
-  /// After a change the clients must see: ball states, tf and markers now.
+  /// After a change the clients must see: ball states (unless those of the world as it
+  /// is were sent already), tf and markers now.
   void publishPresent();
   void publishStatic();
   void publishBalls(const ros::Time& stamp);
@@ -160,6 +161,7 @@ private:
   std::uint64_t anchor_steps_ = 0;
   RateLimit markers_due_;
   RateLimit tf_due_;
+  bool states_sent_ = false;      ///< ball_states of the world as it is now went out
   double tf_stamp_ = -1.0;        ///< simulated time of the last tf sent [s]
   std::vector<int> tf_sent_;      ///< ids whose frames were sent at tf_stamp_ (sorted)
   std::vector<int> shown_balls_;  ///< ball ids drawn last time, to delete the removed
