@@ -152,8 +152,11 @@ XmlRpc::XmlRpcValue toXmlRpc(const YAML::Node& node)
   if (text == ".nan" || text == ".inf" || text == "-.inf")
     return XmlRpc::XmlRpcValue(text == ".nan" ? std::nan("") : text == ".inf" ? HUGE_VAL : -HUGE_VAL);
   double value = 0.0;  // from_chars: the writer's digits, whatever the locale
-  std::from_chars(text.data(), text.data() + text.size(), value);
-  return XmlRpc::XmlRpcValue(value);
+  const char* end = text.data() + text.size();
+  const std::from_chars_result read = std::from_chars(text.data(), end, value);
+  if (read.ec == std::errc() && read.ptr == end)
+    return XmlRpc::XmlRpcValue(value);
+  return XmlRpc::XmlRpcValue(text);  // a plain word: plane, speed
 }
 }  // namespace
 

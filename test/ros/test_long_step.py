@@ -1,0 +1,92 @@
+#!/usr/bin/python3
+"""Item: a long step does not freeze the node. On config/random_gas.yaml (200 balls),
+`step 100000` runs while get_state answers within 0.2 s and shows the time moving; it
+is cancelled with ~cancel_step. The same through the step action: feedback as it goes,
+cancel, and a short goal that ends at the exact time."""
+import sys
+import threading
+import time
+import unittest
+
+import actionlib
+import rospy
+import rostest
+from actionlib_msgs.msg import GoalStatus
+from std_srvs.srv import SetBool, Trigger
+
+sys.path.insert(0, __file__.rsplit("/", 1)[0])
+import node_helpers as nh  # noqa: E402
+from ball_collision_sim.msg import StepAction, StepGoal  # noqa: E402
+from ball_collision_sim.srv import GetState, Step  # noqa: E402
+
+PKG = "ball_collision_sim"
+NS = "/ball_sim/"
+DT = 0.005  # random_gas.yaml
+LIMIT = 0.2  # [s] the longest another service may take to answer during a run
+
+
+def watch(seconds):
+    """get_state as often as it answers for `seconds`: (latencies, times)."""
+    get = rospy.ServiceProxy(NS + "get_state", GetState, persistent=False)
+    latencies, times = [], []
+    end = time.time() + seconds
+    while time.time() < end:
+        start = time.time()
+        times.append(get().time)
+        latencies.append(time.time() - start)
+    return latencies, times
+
+
+class LongStep(unittest.TestCase):
+    def setUp(self):
+        self.assertTrue(nh.call(NS + "pause", SetBool, data=True, timeout=60).success)
+        self.assertTrue(nh.call(NS + "reset", Trigger).success)
+
+    def test_service_step_leaves_the_node_answering_and_can_be_cancelled(self):
+        result = {}
+        runner = threading.Thread(target=lambda: result.update(r=nh.call(NS + "step", Step, steps=100000)))
+        runner.start()
+        latencies, times = watch(2.0)
+        cancel = nh.call(NS + "cancel_step", Trigger)
+        runner.join(20)
+        self.assertFalse(runner.is_alive())
+        self.assertTrue(cancel.success, cancel.message)
+        self.assertGreater(len(latencies), 20)
+        self.assertLess(max(latencies), LIMIT, sorted(latencies)[-5:])
+        self.assertGreater(times[-1], times[0])  # progress shows
+        r = result["r"]
+        self.assertFalse(r.success)
+        self.assertIn("cancelled after", r.message)
+        done = round(r.time / DT)
+        self.assertLess(done, 100000)
+        self.assertAlmostEqual(nh.call(NS + "get_state", GetState).time, r.time, places=12)
+        self.assertFalse(nh.call(NS + "cancel_step", Trigger).success)  # nothing left to cancel
+
+    def test_action_gives_feedback_and_is_cancelled(self):
+        client = actionlib.SimpleActionClient(NS + "step", StepAction)
+        self.assertTrue(client.wait_for_server(rospy.Duration(20)))
+        feedback = []
+        client.send_goal(StepGoal(steps=100000), feedback_cb=lambda f: feedback.append(f.steps_done))
+        latencies, _ = watch(1.5)
+        client.cancel_goal()
+        self.assertTrue(client.wait_for_result(rospy.Duration(20)))
+        self.assertEqual(client.get_state(), GoalStatus.PREEMPTED)
+        result = client.get_result()
+        self.assertFalse(result.success)
+        self.assertLess(result.steps_done, 100000)
+        self.assertGreater(len(feedback), 3)
+        self.assertEqual(feedback, sorted(feedback))
+        self.assertLess(max(latencies), LIMIT, sorted(latencies)[-5:])
+        self.assertAlmostEqual(result.time, nh.call(NS + "get_state", GetState).time, places=12)
+        # a short goal runs to its end: exactly 500 steps later
+        t0 = result.time
+        client.send_goal(StepGoal(steps=500))
+        self.assertTrue(client.wait_for_result(rospy.Duration(60)))
+        self.assertEqual(client.get_state(), GoalStatus.SUCCEEDED)
+        self.assertEqual(client.get_result().steps_done, 500)
+        self.assertAlmostEqual(client.get_result().time, t0 + 500 * DT, places=9)
+
+
+if __name__ == "__main__":
+    rospy.init_node("long_step_test")
+    rostest.rosrun(PKG, "long_step", LongStep)

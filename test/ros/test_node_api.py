@@ -1,0 +1,254 @@
+#!/usr/bin/python3
+"""The node's state in and out, live settings and safe requests, through its real
+interfaces (test/data/node_scene.yaml, paused): get_state, set_ball_state,
+apply_impulse, load_scene, dynamic_reconfigure, empty requests, lost balls, the scene
+as YAML, and what a late or paused client sees."""
+import math
+import re
+import sys
+import time
+import unittest
+
+import rospy
+import rostest
+import tf2_ros
+import yaml
+from dynamic_reconfigure.client import Client
+from rosgraph_msgs.msg import Log
+from std_msgs.msg import String
+from std_srvs.srv import SetBool, Trigger
+
+sys.path.insert(0, __file__.rsplit("/", 1)[0])
+import node_helpers as nh  # noqa: E402
+from ball_collision_sim.msg import BallStateArray, LostBall  # noqa: E402
+from ball_collision_sim.srv import (AddBall, ApplyImpulse, GetState, LoadScene, RemoveObject,  # noqa: E402
+                                    SetBallState, Step)
+
+PKG = "ball_collision_sim"
+NS = "/ball_sim/"
+DT = 0.01
+# node_scene.yaml: a flat floor [-2, 2] x [-1, 1], four walls 0.3 m high; ball 1 (r 0.125,
+# 1 kg) at (-0.763, 0) at 1.5 m/s, ball 2 (r 0.125, 3 kg) at (0.5, 0) at -0.5 m/s.
+
+
+def get():
+    return nh.call(NS + "get_state", GetState)
+
+
+def step(n):
+    return nh.call(NS + "step", Step, steps=n)
+
+
+def fresh():
+    assert nh.call(NS + "pause", SetBool, data=True).success
+    assert nh.call(NS + "reset", Trigger).success
+
+
+def vec(x=0.0, y=0.0, z=0.0):
+    return {"x": x, "y": y, "z": z}
+
+
+class NodeApi(unittest.TestCase):
+    def assertUnchanged(self, before):
+        after = get()
+        self.assertEqual(after.balls, before.balls)
+        self.assertEqual(after.walls, before.walls)
+        self.assertEqual(after.time, before.time)
+
+    def test_get_state_paused_and_running(self):
+        fresh()
+        s = get()
+        self.assertTrue(s.success)
+        self.assertTrue(s.paused)
+        self.assertEqual(s.time, 0.0)
+        self.assertEqual(s.frame_id, "world")
+        self.assertEqual([b.id for b in s.balls], [1, 2])
+        self.assertEqual([w.id for w in s.walls], [1, 2, 3, 4])
+        self.assertEqual((s.balls[0].radius, s.balls[0].mass, s.balls[1].mass), (0.125, 1.0, 3.0))
+        self.assertEqual(s.balls[0].pose.position.x, -0.763)
+        self.assertEqual(s.balls[0].twist.linear.x, 1.5)
+        # rolling: w = n x v / r = (0, 0, 1) x (1.5, 0, 0) / 0.125 = (0, 12, 0)
+        self.assertAlmostEqual(s.balls[0].twist.angular.y, 12.0, places=12)
+        self.assertEqual(s.walls[3].point.x, 2.0)
+        self.assertEqual(s.walls[0].restitution, 1.0)
+        self.assertAlmostEqual(step(7).time, 0.07, places=12)
+        self.assertAlmostEqual(get().time, 0.07, places=12)
+        self.assertTrue(nh.call(NS + "pause", SetBool, data=False).success)
+        time.sleep(0.3)
+        running = get()
+        self.assertFalse(running.paused)
+        self.assertGreater(running.time, 0.2)
+        fresh()
+
+    def test_a_late_client_sees_the_present_while_paused(self):
+        fresh()
+        step(13)
+        states = nh.Inbox(NS + "ball_states", BallStateArray)
+        self.assertTrue(states.wait_for(lambda all: len(all) >= 1))
+        msg = states.take()[0]
+        self.assertAlmostEqual(msg.header.stamp.to_sec(), 0.13, places=9)
+        self.assertEqual(msg.balls, get().balls)
+        states.close()
+        buffer = tf2_ros.Buffer()
+        listener = tf2_ros.TransformListener(buffer)  # noqa: F841
+        tf = buffer.lookup_transform("world", "ball_2", rospy.Time(0), rospy.Duration(10))
+        self.assertAlmostEqual(tf.header.stamp.to_sec(), 0.13, places=9)
+        self.assertEqual(tf.transform.translation.x, get().balls[1].pose.position.x)
+
+    def test_set_ball_state_keeps_the_id_and_publishes_once(self):
+        fresh()
+        states = nh.Inbox(NS + "ball_states", BallStateArray)
+        states.wait_connected()
+        states.wait_for(lambda all: len(all) >= 1)
+        states.take()
+        # any height: the centre lands on the floor under (x, y)
+        r = nh.call(NS + "set_ball_state", SetBallState, id=2, position=vec(1.2, 0.5, 3.0), velocity=vec(-0.4, 0.2, 1.0))
+        self.assertTrue(r.success, r.message)
+        self.assertEqual(r.state.id, 2)
+        s = get()
+        ball = s.balls[1]
+        self.assertEqual((ball.id, ball.radius, ball.mass), (2, 0.125, 3.0))
+        self.assertEqual((ball.pose.position.x, ball.pose.position.y, ball.pose.position.z), (1.2, 0.5, 0.125))
+        self.assertEqual((ball.twist.linear.x, ball.twist.linear.y, ball.twist.linear.z), (-0.4, 0.2, 0.0))
+        self.assertTrue(states.wait_for(lambda all: len(all) >= 1))
+        time.sleep(0.3)
+        sent = states.take()
+        self.assertEqual(len(sent), 1)  # once per edit
+        self.assertEqual(sent[0].balls, s.balls)
+        # it runs on from there: 10 steps later
+        step(10)
+        moved = get().balls[1].pose.position
+        self.assertAlmostEqual(moved.x, 1.2 - 0.4 * 0.1, places=12)
+        self.assertAlmostEqual(moved.y, 0.5 + 0.2 * 0.1, places=12)
+        states.close()
+
+    def test_bad_set_and_push_change_nothing(self):
+        fresh()
+        before = get()
+        cases = [
+            ("set_ball_state", SetBallState, {}, "id"),  # empty
+            ("set_ball_state", SetBallState, {"id": 9, "position": vec(1.2, 0.5)}, "id"),
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(0.55, 0.05)}, "position"),  # onto ball 2
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(1.95, 0.0)}, "position"),  # into wall 4
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(2.6, 0.0)}, "position"),  # off the floor
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(float("nan"), 0.0)}, "position"),
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(1.2, 0.5), "velocity": vec(1e9)}, "velocity"),
+            ("apply_impulse", ApplyImpulse, {}, "id"),
+            ("apply_impulse", ApplyImpulse, {"id": 3, "impulse": vec(1.0)}, "id"),
+            ("apply_impulse", ApplyImpulse, {"id": 1, "impulse": vec(float("inf"))}, "impulse"),
+            ("remove_ball", RemoveObject, {}, "id"),
+            ("remove_wall", RemoveObject, {}, "id"),
+            ("load_scene", LoadScene, {}, "path"),
+        ]
+        for service, srv_type, fields, field in cases:
+            r = nh.call(NS + service, srv_type, **fields)
+            self.assertFalse(r.success, (service, fields))
+            self.assertTrue(r.message.startswith(field + ": "), (service, fields, r.message))
+            self.assertUnchanged(before)
+
+    def test_apply_impulse_adds_impulse_over_mass(self):
+        fresh()
+        # ball 2 has 3 kg: J = (0.9, 0.6, -5) N s gives dv = (0.3, 0.2, 0) (the floor takes z)
+        r = nh.call(NS + "apply_impulse", ApplyImpulse, id=2, impulse=vec(0.9, 0.6, -5.0))
+        self.assertTrue(r.success, r.message)
+        v = get().balls[1].twist.linear
+        self.assertAlmostEqual(v.x, -0.5 + 0.3, places=15)
+        self.assertAlmostEqual(v.y, 0.2, places=15)
+        self.assertEqual(v.z, 0.0)
+        self.assertEqual(r.state.twist.linear, v)
+
+    def test_settings_change_live_and_are_written_back(self):
+        fresh()
+        # written back at start: every setting the node uses, defaults included
+        self.assertEqual(rospy.get_param(NS + "tf_max_balls"), 500)
+        self.assertEqual(rospy.get_param(NS + "restitution"), 1.0)
+        self.assertEqual(rospy.get_param(NS + "frame_prefix"), "")
+        self.assertTrue(rospy.get_param(NS + "publish_clock"))
+        client = Client("/ball_sim", timeout=20)
+        client.update_configuration({"marker_rate": 5.0})
+        self.assertEqual(rospy.get_param(NS + "marker_rate"), 5.0)
+        # a ball colour that is not speed or id is refused and the old one kept
+        config = client.update_configuration({"ball_color": "red"})
+        self.assertEqual(config["ball_color"], "speed")
+        # real_time_factor: simulated time runs 4 times as fast as wall time, at once
+        for factor in (4.0, 1.0):
+            client.update_configuration({"real_time_factor": factor})
+            self.assertTrue(nh.call(NS + "pause", SetBool, data=False).success)
+            time.sleep(0.3)
+            t0, w0 = get().time, time.time()
+            time.sleep(1.5)
+            t1, w1 = get().time, time.time()
+            self.assertTrue(nh.call(NS + "pause", SetBool, data=True).success)
+            self.assertAlmostEqual((t1 - t0) / (w1 - w0), factor, delta=0.25 * factor)
+        client.update_configuration({"marker_rate": 30.0})
+        fresh()
+
+    def test_scene_is_yaml_with_the_shortest_numbers(self):
+        text = rospy.wait_for_message(NS + "scene", String, timeout=10).data
+        scene = yaml.safe_load(text)
+        self.assertEqual(scene["balls"][0]["position"], [-0.763, 0.0, 0.125])
+        self.assertEqual(scene["dt"], 0.01)
+        self.assertEqual(scene["max_balls"], 3)
+        self.assertIsNone(re.search(r"\d{15}", text), text)  # no 0.14999999999999999
+
+    def test_load_scene_replaces_the_world_or_refuses_and_keeps_it(self):
+        fresh()
+        before = get()
+        bad = [({"path": "/nonexistent/scene.yaml"}, "/nonexistent/scene.yaml: cannot open file"),
+               ({"yaml": "balls:\n  - {position: [0, 0, 0.1], radius: -1}\n"}, "balls[0].radius: must be > 0"),
+               ({"yaml": "dtt: 0.1\n"}, "dtt: unknown key"),
+               ({"path": "package://no_such_package/x.yaml"}, "path: no package named"),
+               ({"path": "a.yaml", "yaml": "dt: 0.1"}, "yaml: give either path or yaml")]
+        for fields, message in bad:
+            r = nh.call(NS + "load_scene", LoadScene, **fields)
+            self.assertFalse(r.success, fields)
+            self.assertIn(message, r.message)
+            self.assertUnchanged(before)
+        text = ("floor: {type: plane, point: [-1, -1, 0], u: [2, 0, 0], v: [0, 2, 0]}\n"
+                "balls:\n  - {position: [0, 0, 0.2], velocity: [0.5, 0, 0], radius: 0.2, mass: 2}\n"
+                "marker_rate: 10\n")
+        r = nh.call(NS + "load_scene", LoadScene, yaml=text)
+        self.assertTrue(r.success, r.message)
+        s = get()
+        self.assertEqual([(b.id, b.radius, b.mass) for b in s.balls], [(1, 0.2, 2.0)])
+        self.assertEqual(s.walls, [])
+        self.assertEqual(s.time, 0.0)
+        self.assertTrue(s.paused)  # the scene does not say start_paused: the pause is kept
+        self.assertEqual(rospy.get_param(NS + "marker_rate"), 10.0)  # a key it sets
+        self.assertEqual(rospy.get_param(NS + "max_balls"), 3)  # a key it leaves out
+        self.assertEqual(rospy.get_param(NS + "floor/u"), [2.0, 0.0, 0.0])
+        step(20)
+        self.assertTrue(nh.call(NS + "reset", Trigger).success)  # back to the loaded scene
+        self.assertEqual(get().balls, s.balls)
+        r = nh.call(NS + "load_scene", LoadScene, path="package://ball_collision_sim/test/data/node_scene.yaml")
+        self.assertTrue(r.success, r.message)
+        self.assertEqual(get().balls, before.balls)
+        self.assertEqual(rospy.get_param(NS + "marker_rate"), 30.0)
+
+    def test_a_ball_that_leaves_is_reported_once_and_removed(self):
+        fresh()
+        lost = nh.Inbox(NS + "lost_balls", LostBall)
+        log = nh.Inbox("/rosout", Log)
+        lost.wait_connected()
+        log.wait_connected()
+        self.assertTrue(nh.call(NS + "remove_wall", RemoveObject, id=4).success)  # the east wall
+        r = nh.call(NS + "set_ball_state", SetBallState, id=2, position=vec(1.5, 0.5), velocity=vec(2.0))
+        self.assertTrue(r.success, r.message)
+        step(60)  # its centre passes x = 2 at t = 0.25 s
+        self.assertTrue(lost.wait_for(lambda all: len(all) >= 1))
+        time.sleep(0.3)
+        gone = lost.take()
+        self.assertEqual(len(gone), 1)
+        self.assertEqual(gone[0].ball.id, 2)
+        self.assertIn("left the floor", gone[0].reason)
+        self.assertAlmostEqual(gone[0].header.stamp.to_sec(), 0.26, places=9)
+        self.assertEqual([b.id for b in get().balls], [1])
+        self.assertTrue(log.wait_for(lambda all: any(m.level == Log.WARN and "ball 2 left the floor" in m.msg
+                                                     for m in all)))
+        fresh()
+        self.assertEqual([b.id for b in get().balls], [1, 2])
+
+
+if __name__ == "__main__":
+    rospy.init_node("node_api_test")
+    rostest.rosrun(PKG, "node_api", NodeApi)
