@@ -1029,7 +1029,19 @@ Vec3 World::momentum() const
   return p;
 }
 
-std::string World::whyLost(std::size_t k) const
+World::Bounds World::wallBounds() const
+{
+  Bounds bounds;
+  for (const Wall& wall : walls_)
+  {
+    bounds.lo = bounds.any ? bounds.lo.cwiseMin(wall.box_min) : wall.box_min;
+    bounds.hi = bounds.any ? bounds.hi.cwiseMax(wall.box_max) : wall.box_max;
+    bounds.any = true;
+  }
+  return bounds;
+}
+
+std::string World::whyLost(std::size_t k, const Bounds& bounds) const
 {
   const Ball& ball = balls_[k];
   if (floor_)
@@ -1040,24 +1052,18 @@ std::string World::whyLost(std::size_t k) const
     return "left the floor (its foot point at u = " + formatNumber(uv.x()) + ", v = " + formatNumber(uv.y()) +
            " is outside [0, 1]^2)";
   }
-  if (walls_.empty())
-    return "";
-  Vec3 lo = walls_.front().box_min, hi = walls_.front().box_max;
-  for (const Wall& wall : walls_)
-  {
-    lo = lo.cwiseMin(wall.box_min);
-    hi = hi.cwiseMax(wall.box_max);
-  }
-  if ((ball.position.array() < lo.array() - ball.radius).any() || (ball.position.array() > hi.array() + ball.radius).any())
+  if (bounds.any && ((ball.position.array() < bounds.lo.array() - ball.radius).any() ||
+                     (ball.position.array() > bounds.hi.array() + ball.radius).any()))
     return "left the walls' bounds";
   return "";
 }
 
 int World::lostBalls() const
 {
+  const Bounds bounds = wallBounds();
   int lost = 0;
   for (std::size_t k = 0; k < balls_.size(); ++k)
-    lost += whyLost(k).empty() ? 0 : 1;
+    lost += whyLost(k, bounds).empty() ? 0 : 1;
   return lost;
 }
 
@@ -1066,10 +1072,11 @@ std::vector<LostBall> World::removeLostBalls()
   std::vector<LostBall> lost;
   if (!floor_ && walls_.empty())
     return lost;
+  const Bounds bounds = wallBounds();
   std::size_t kept = 0;
   for (std::size_t k = 0; k < balls_.size(); ++k)
   {
-    std::string why = whyLost(k);
+    std::string why = whyLost(k, bounds);
     if (!why.empty())
     {
       lost.push_back({balls_[k], angularVelocity(k), std::move(why)});

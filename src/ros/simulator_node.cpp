@@ -346,8 +346,6 @@ void SimulatorNode::redraw()
   shown_balls_.clear();
   shown_lists_ = 0;
   flashes_.clear();
-  tf_stamp_ = -1.0;  // a new world: every frame again, whatever the time
-  tf_sent_.clear();
   publishStatic();
   if (settings_.publish_clock)
     clock_pub_.publish(clockMessage(ros::Time(world_.time())));

@@ -165,8 +165,15 @@ private:
   /// Why `def` cannot stand in the world (ignoring ball `ignore_id`), or ""; else `def`
   /// is put on the floor as `landing` says and `foot` gets its foot point (u, v).
   std::string place(BallDef& def, Landing landing, int ignore_id, Vec2& foot) const;
-  /// Why ball k is out of the world, or "".
-  std::string whyLost(std::size_t k) const;
+  /// The box the walls span, which a ball without a floor must not leave; empty without walls.
+  struct Bounds
+  {
+    bool any = false;
+    Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  ///< [m]
+  };
+  Bounds wallBounds() const;
+  /// Why ball k is out of the world (off the floor, or outside `bounds`), or "".
+  std::string whyLost(std::size_t k, const Bounds& bounds) const;
   /// The index of the ball with this id in balls_, or balls_.size().
   std::size_t indexOf(int id) const;
   /// Unit vector against gravity (the floor's normal side).
