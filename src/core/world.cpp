@@ -1195,16 +1195,24 @@ AddResult World::addBall(const BallDef& def, Landing landing)
   return result;
 }
 
-AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing)
+namespace
+{
+AddResult refused(int id, std::string error)
 {
   AddResult result;
   result.id = id;
+  result.error = std::move(error);
+  return result;
+}
+}  // namespace
+
+AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing)
+{
   const std::size_t k = indexOf(id);
   if (k == balls_.size())
-  {
-    result.error = "id: no ball has id " + std::to_string(id);
-    return result;
-  }
+    return refused(id, "id: no ball has id " + std::to_string(id));
+  AddResult result;
+  result.id = id;
   BallDef def;
   def.position = position;
   def.velocity = velocity;
@@ -1225,19 +1233,13 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
 
 AddResult World::applyImpulse(int id, const Vec3& impulse)
 {
-  AddResult result;
-  result.id = id;
   const std::size_t k = indexOf(id);
   if (k == balls_.size())
-  {
-    result.error = "id: no ball has id " + std::to_string(id);
-    return result;
-  }
+    return refused(id, "id: no ball has id " + std::to_string(id));
   if (!impulse.allFinite())
-  {
-    result.error = "impulse: must be finite";
-    return result;
-  }
+    return refused(id, "impulse: must be finite");
+  AddResult result;
+  result.id = id;
   Ball& ball = balls_[k];
   Vec3 velocity = ball.velocity + impulse / ball.mass;
   if (floor_)
