@@ -1158,13 +1158,6 @@ std::string World::place(BallDef& def, Landing landing, int ignore_id, Vec2& foo
   return "";
 }
 
-std::string World::checkBall(const BallDef& def, Landing landing) const
-{
-  BallDef placed = def;
-  Vec2 foot;
-  return place(placed, landing, -1, foot);
-}
-
 AddResult World::addBall(const BallDef& def, Landing landing)
 {
   AddResult result;

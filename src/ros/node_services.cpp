@@ -25,10 +25,7 @@ bool SimulatorNode::onAddBall(AddBall::Request& req, AddBall::Response& res)
   const Lock guard = lock();
   answerAddBall(world_, settings_.node.max_balls, req, res);
   if (res.success)
-  {
-    states_sent_ = false;
-    publishPresent();
-  }
+    publishEdit();
   return true;
 }
 
@@ -46,10 +43,7 @@ bool SimulatorNode::onRemoveBall(RemoveObject::Request& req, RemoveObject::Respo
   const Lock guard = lock();
   answerRemoveBall(world_, req, res);
   if (res.success)
-  {
-    states_sent_ = false;
-    publishPresent();
-  }
+    publishEdit();
   return true;
 }
 
@@ -71,10 +65,7 @@ bool SimulatorNode::onSetBallState(SetBallState::Request& req, SetBallState::Res
   const Lock guard = lock();
   answerSetBallState(world_, req, res);
   if (res.success)
-  {
-    states_sent_ = false;
-    publishPresent();
-  }
+    publishEdit();
   return true;
 }
 
@@ -83,10 +74,7 @@ bool SimulatorNode::onApplyImpulse(ApplyImpulse::Request& req, ApplyImpulse::Res
   const Lock guard = lock();
   answerApplyImpulse(world_, req, res);
   if (res.success)
-  {
-    states_sent_ = false;
-    publishPresent();
-  }
+    publishEdit();
   return true;
 }
 
@@ -95,6 +83,7 @@ bool SimulatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
   const Lock guard = lock();
   cancel_run_ = running_;
   world_.reset();
+  lost_total_ = 0;
   anchorClock();
   redraw();
   res.success = true;
@@ -117,32 +106,37 @@ bool SimulatorNode::onLoadScene(LoadScene::Request& req, LoadScene::Response& re
     res.message = e.what();
     return true;
   }
-  const Lock guard = lock();
-  cancel_run_ = running_;
-  core::NodeSettings node = settings_.node;
-  copyKeys(requested.node_keys, requested.scene.node, node);
-  if (std::find(requested.node_keys.begin(), requested.node_keys.end(), "start_paused") != requested.node_keys.end())
-    paused_ = node.start_paused;
-  world_ = core::World(requested.scene);
-  frame_id_ = world_.scene().frame_id;
-  scene_source_ = req.path.empty() ? "load_scene's yaml" : req.path;
-  applySettings(node);
-  coloring_ = ballColoring(world_, settings_.node);
-  lost_total_ = 0;
-  anchorClock();
-  startStatusTimer();
-  core::Scene in_use = world_.scene();
-  in_use.node = settings_.node;
+  core::Scene in_use;
+  {
+    const Lock guard = lock();
+    cancel_run_ = running_;
+    core::NodeSettings node = settings_.node;
+    copyKeys(requested.node_keys, requested.scene.node, node);
+    const auto& keys = requested.node_keys;
+    if (std::find(keys.begin(), keys.end(), "start_paused") != keys.end())
+      paused_ = node.start_paused;
+    world_ = core::World(requested.scene);
+    frame_id_ = world_.scene().frame_id;
+    scene_source_ = req.path.empty() ? "load_scene's yaml" : req.path;
+    applyWiring(resolve(node, nh_.getNamespace()));
+    applySettings(node);
+    coloring_ = ballColoring(world_, settings_.node);  // the speed scale of the new world
+    restartTimer();  // the new scene's dt
+    lost_total_ = 0;
+    in_use = world_.scene();
+    in_use.node = settings_.node;
+    std_msgs::String text;
+    text.data = yaml::writeScene(in_use);
+    scene_pub_.publish(text);
+    redraw();
+    res.message = "loaded " + scene_source_ + ": " + std::to_string(world_.balls().size()) + " balls, " +
+                  std::to_string(world_.walls().size()) + " walls" + (paused_ ? ", paused" : "");
+  }
+  // the master and dynamic_reconfigure's clients learn of it after the lock is let go
   writeSceneParams(pnh_, in_use);
-  std_msgs::String text;
-  text.data = yaml::writeScene(in_use);
-  scene_pub_.publish(text);
   if (reconfigure_)
-    reconfigure_->updateConfig(toConfig(settings_.node));
-  redraw();
+    reconfigure_->updateConfig(toConfig(in_use.node));
   res.success = true;
-  res.message = "loaded " + scene_source_ + ": " + std::to_string(world_.balls().size()) + " balls, " +
-                std::to_string(world_.walls().size()) + " walls" + (paused_ ? ", paused" : "");
   ROS_INFO("ball_sim: %s", res.message.c_str());
   return true;
 }
@@ -192,8 +186,7 @@ void SimulatorNode::onClickedPoint(const geometry_msgs::PointStamped& msg)
     return;
   }
   ROS_INFO("ball_sim: added ball %d at the clicked point", result.id);
-  states_sent_ = false;
-  publishPresent();
+  publishEdit();
 }
 
 void SimulatorNode::onReconfigure(SimulatorConfig& config, std::uint32_t)

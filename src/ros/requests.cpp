@@ -114,12 +114,14 @@ std::string whyNoSteps(bool paused, std::uint32_t steps)
   return "";
 }
 
-bool acceptStep(const core::World& world, bool paused, const Step::Request& req, Step::Response& res)
+LostBall lostBallMessage(const core::LostBall& gone, const std::string& frame_id, double time)
 {
-  res.time = world.time();
-  res.message = whyNoSteps(paused, req.steps);
-  res.success = false;
-  return res.message.empty();
+  LostBall msg;
+  msg.header.stamp = ros::Time(time);
+  msg.header.frame_id = frame_id;
+  msg.ball = toMsg(gone.ball, gone.angular_velocity);
+  msg.reason = gone.reason;
+  return msg;
 }
 
 BallState ballState(const core::World& world, int id)

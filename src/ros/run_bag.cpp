@@ -2,6 +2,7 @@
 
 #include "ball_collision_sim/ros/conversions.hpp"
 #include "ball_collision_sim/ros/outputs.hpp"
+#include "ball_collision_sim/ros/requests.hpp"
 
 #include <ball_collision_sim/LostBall.h>
 #include <std_msgs/String.h>
@@ -39,14 +40,7 @@ void RunBag::lost(const core::World& world, const std::vector<core::LostBall>& b
 {
   const ros::Time stamp(world.time());
   for (const core::LostBall& gone : balls)
-  {
-    ball_collision_sim::LostBall msg;
-    msg.header.stamp = stamp;
-    msg.header.frame_id = frame_id_;
-    msg.ball = toMsg(gone.ball, gone.angular_velocity);
-    msg.reason = gone.reason;
-    write("/ball_sim/lost_balls", stamp, msg);
-  }
+    write("/ball_sim/lost_balls", stamp, lostBallMessage(gone, frame_id_, world.time()));
 }
 
 RunBag::~RunBag()

@@ -70,19 +70,20 @@ SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   reconfigure_ = std::make_unique<dynamic_reconfigure::Server<SimulatorConfig>>(pnh_);
   reconfigure_->setCallback([this](SimulatorConfig& config, std::uint32_t level) { onReconfigure(config, level); });
 
-  ros::NodeHandle step_nh(pnh_);
-  step_nh.setCallbackQueue(&step_queue_);
-  services_.push_back(step_nh.advertiseService("step", &SimulatorNode::onStep, this));
-  step_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &step_queue_);
-  step_spinner_->start();
-  step_action_ = std::make_unique<actionlib::SimpleActionServer<StepAction>>(
-      pnh_, "step", [this](const StepGoalConstPtr& goal) { onStepGoal(goal); }, false);
-  step_action_->start();
-
   ROS_INFO("ball_sim: %zu balls, %zu walls, dt = %g s, real time factor %g%s; tf frames %sball_<id>%s",
            world_.balls().size(), world_.walls().size(), world_.dt(), settings_.node.real_time_factor,
            paused_ ? ", paused" : "", settings_.frame_prefix.c_str(),
            settings_.publish_clock ? ", publishing /clock" : ", not publishing /clock (publish_clock is false)");
+
+  // Two threads: a second step call is answered (refused) while the first runs.
+  ros::NodeHandle step_nh(pnh_);
+  step_nh.setCallbackQueue(&step_queue_);
+  services_.push_back(step_nh.advertiseService("step", &SimulatorNode::onStep, this));
+  step_spinner_ = std::make_unique<ros::AsyncSpinner>(2, &step_queue_);
+  step_spinner_->start();
+  step_action_ = std::make_unique<actionlib::SimpleActionServer<StepAction>>(
+      pnh_, "step", [this](const StepGoalConstPtr& goal) { onStepGoal(goal); }, false);
+  step_action_->start();
 }
 
 SimulatorNode::~SimulatorNode()
@@ -115,9 +116,7 @@ void SimulatorNode::advertise()
   lost_pub_ = pnh_.advertise<ball_collision_sim::LostBall>("lost_balls", 100);
   tf_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf", 100,
                                                [this](const ros::SingleSubscriberPublisher& s) { onTfSubscriber(s); });
-  if (settings_.publish_clock)
-    clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>(
-        "/clock", 10, [this](const ros::SingleSubscriberPublisher& s) { onClockSubscriber(s); });
+  applyWiring(settings_);
   scene_pub_ = pnh_.advertise<std_msgs::String>("scene", 1, true);
   std_msgs::String scene;
   scene.data = yaml::writeScene(sceneInUse(world_, settings_));
@@ -142,6 +141,12 @@ void SimulatorNode::anchorClock()
 {
   anchor_wall_ = ros::WallTime::now();
   anchor_steps_ = world_.stats().steps;
+}
+
+void SimulatorNode::restartTimer()
+{
+  timer_.setPeriod(ros::WallDuration(timerPeriod(world_.dt(), settings_.node.real_time_factor)));
+  anchorClock();
 }
 
 void SimulatorNode::onTimer(const ros::WallTimerEvent&)
@@ -234,12 +239,7 @@ void SimulatorNode::removeLostBalls()
     const core::Vec3& p = gone.ball.position;
     ROS_WARN("ball_sim: ball %d %s at (%g, %g, %g) m, t = %.6g s; removed from the world", gone.ball.id,
              gone.reason.c_str(), p.x(), p.y(), p.z(), world_.time());
-    ball_collision_sim::LostBall msg;
-    msg.header.stamp = ros::Time(world_.time());
-    msg.header.frame_id = frame_id_;
-    msg.ball = toMsg(gone.ball, gone.angular_velocity);
-    msg.reason = gone.reason;
-    lost_pub_.publish(msg);
+    lost_pub_.publish(lostBallMessage(gone, frame_id_, world_.time()));
   }
   lost_total_ += lost.size();
 }
@@ -265,6 +265,12 @@ void SimulatorNode::publishPresent()
   if (!states_sent_)
     publishStates(ros::Time(world_.time()));
   publishView(true);
+}
+
+void SimulatorNode::publishEdit()
+{
+  states_sent_ = false;
+  publishPresent();
 }
 
 void SimulatorNode::publishBalls(const ros::Time& stamp)
@@ -374,6 +380,10 @@ void SimulatorNode::onStatesSubscriber(const ros::SingleSubscriberPublisher& sub
 void SimulatorNode::onTfSubscriber(const ros::SingleSubscriberPublisher& subscriber)
 {
   const Lock guard = lock();
+  // Only while nothing moves: a running world sends tf within 1 / tf_rate anyway, and the
+  // newcomer may already have had this stamp from it (tf2 warns of a repeated stamp).
+  if (!paused_ || running_)
+    return;
   const tf2_msgs::TFMessage msg =
       transformsMessage(world_, frame_id_, ros::Time(world_.time()),
                         static_cast<std::size_t>(settings_.node.tf_max_balls), settings_.frame_prefix);
@@ -387,6 +397,21 @@ void SimulatorNode::onClockSubscriber(const ros::SingleSubscriberPublisher& subs
   subscriber.publish(clockMessage(ros::Time(world_.time())));
 }
 
+void SimulatorNode::applyWiring(const ResolvedSettings& settings)
+{
+  if (settings.frame_prefix != settings_.frame_prefix)
+    tf_sent_.clear();  // frames of other names: none of them sent yet
+  settings_.frame_prefix = settings.frame_prefix;
+  settings_.node.frame_prefix = settings.frame_prefix;
+  if (settings.publish_clock && !clock_pub_)
+    clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>(
+        "/clock", 10, [this](const ros::SingleSubscriberPublisher& s) { onClockSubscriber(s); });
+  if (!settings.publish_clock)
+    clock_pub_.shutdown();
+  settings_.publish_clock = settings.publish_clock;
+  settings_.node.publish_clock = settings.publish_clock;
+}
+
 void SimulatorNode::applySettings(const core::NodeSettings& node)
 {
   const core::NodeSettings old = settings_.node;
@@ -394,10 +419,7 @@ void SimulatorNode::applySettings(const core::NodeSettings& node)
   settings_.node.frame_prefix = settings_.frame_prefix;
   settings_.node.publish_clock = settings_.publish_clock;
   if (node.real_time_factor != old.real_time_factor)
-  {
-    timer_.setPeriod(ros::WallDuration(timerPeriod(world_.dt(), node.real_time_factor)));
-    anchorClock();
-  }
+    restartTimer();
   if (node.status_period != old.status_period)
     startStatusTimer();
   state_every_ = stepsPer(node.state_rate, world_.dt());

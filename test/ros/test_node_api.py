@@ -9,6 +9,7 @@ import sys
 import time
 import unittest
 
+import rospkg
 import rospy
 import rostest
 import tf2_ros
@@ -194,6 +195,8 @@ class NodeApi(unittest.TestCase):
     def test_load_scene_replaces_the_world_or_refuses_and_keeps_it(self):
         fresh()
         before = get()
+        buffer = tf2_ros.Buffer()  # listening before the load: it sends the new frames once
+        listener = tf2_ros.TransformListener(buffer)  # noqa: F841
         bad = [({"path": "/nonexistent/scene.yaml"}, "/nonexistent/scene.yaml: cannot open file"),
                ({"yaml": "balls:\n  - {position: [0, 0, 0.1], radius: -1}\n"}, "balls[0].radius: must be > 0"),
                ({"yaml": "dtt: 0.1\n"}, "dtt: unknown key"),
@@ -206,7 +209,7 @@ class NodeApi(unittest.TestCase):
             self.assertUnchanged(before)
         text = ("floor: {type: plane, point: [-1, -1, 0], u: [2, 0, 0], v: [0, 2, 0]}\n"
                 "balls:\n  - {position: [0, 0, 0.2], velocity: [0.5, 0, 0], radius: 0.2, mass: 2}\n"
-                "marker_rate: 10\n")
+                "marker_rate: 10\nframe_prefix: sim/\n")
         r = nh.call(NS + "load_scene", LoadScene, yaml=text)
         self.assertTrue(r.success, r.message)
         s = get()
@@ -217,12 +220,19 @@ class NodeApi(unittest.TestCase):
         self.assertEqual(rospy.get_param(NS + "marker_rate"), 10.0)  # a key it sets
         self.assertEqual(rospy.get_param(NS + "max_balls"), 3)  # a key it leaves out
         self.assertEqual(rospy.get_param(NS + "floor/u"), [2.0, 0.0, 0.0])
+        self.assertEqual(s.frame_prefix, "sim/")
+        buffer.lookup_transform("world", "sim/ball_1", rospy.Time(0), rospy.Duration(10))
         step(20)
         self.assertTrue(nh.call(NS + "reset", Trigger).success)  # back to the loaded scene
         self.assertEqual(get().balls, s.balls)
         r = nh.call(NS + "load_scene", LoadScene, path="package://ball_collision_sim/test/data/node_scene.yaml")
         self.assertTrue(r.success, r.message)
         self.assertEqual(get().balls, before.balls)
+        self.assertEqual(get().frame_prefix, "sim/")  # a key the file leaves out keeps its value
+        with open(rospkg.RosPack().get_path(PKG) + "/test/data/node_scene.yaml") as f:
+            r = nh.call(NS + "load_scene", LoadScene, yaml=f.read() + "frame_prefix: ''\n")
+        self.assertTrue(r.success, r.message)
+        self.assertEqual(get().frame_prefix, "")
         self.assertEqual(rospy.get_param(NS + "marker_rate"), 30.0)
 
     def test_a_ball_that_leaves_is_reported_once_and_removed(self):

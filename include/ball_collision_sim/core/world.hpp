@@ -128,8 +128,6 @@ public:
   /// False when no ball has this id.
   bool removeBall(int id);
   bool removeWall(int id);
-  /// Why a ball could not be added here, or empty. Keys are relative ("radius").
-  std::string checkBall(const BallDef& def, Landing landing = Landing::kNearest) const;
 
 private:
   struct Motion;

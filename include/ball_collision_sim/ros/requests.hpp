@@ -8,6 +8,7 @@
 #include <ball_collision_sim/ApplyImpulse.h>
 #include <ball_collision_sim/GetState.h>
 #include <ball_collision_sim/LoadScene.h>
+#include <ball_collision_sim/LostBall.h>
 #include <ball_collision_sim/RemoveObject.h>
 #include <ball_collision_sim/SetBallState.h>
 #include <ball_collision_sim/Step.h>
@@ -43,10 +44,11 @@ void answerRemoveBall(core::World& world, const RemoveObject::Request& req, Remo
 void answerRemoveWall(core::World& world, const RemoveObject::Request& req, RemoveObject::Response& res);
 void answerSetBallState(core::World& world, const SetBallState::Request& req, SetBallState::Response& res);
 void answerApplyImpulse(core::World& world, const ApplyImpulse::Request& req, ApplyImpulse::Response& res);
-/// Whether `req.steps` steps may run now; when not, `res` says why (and has the time).
-bool acceptStep(const core::World& world, bool paused, const Step::Request& req, Step::Response& res);
-/// Why `steps` steps may not run now, or "" (the checks of acceptStep).
+/// Why `steps` steps may not run now (not paused, or out of range), or "".
 std::string whyNoSteps(bool paused, std::uint32_t steps);
+
+/// A ball that left the world, for ~lost_balls, stamped with the world's time.
+LostBall lostBallMessage(const core::LostBall& gone, const std::string& frame_id, double time);
 
 /// The world now, for get_state.
 void answerGetState(const core::World& world, bool paused, const std::string& frame_prefix, GetState::Response& res);

@@ -70,17 +70,24 @@ private:
   /// After a change the clients must see: ball states (unless those of the world as it
   /// is were sent already), tf and markers now.
   void publishPresent();
+  /// After an edit of the balls: their states, tf and markers now.
+  void publishEdit();
   void publishStatic();
   void publishBalls(const ros::Time& stamp);
   /// tf of every ball, but none twice at one stamp (tf2 drops a repeated stamp with a
   /// warning): a second call at the same time sends only frames not yet sent at it.
   void publishTransforms(const ros::Time& stamp);
   void publishStates(const ros::Time& stamp);
-  /// Takes run-time settings in: timer periods, rates, colours.
+  /// Takes run-time settings in: timer periods, rates, colours (frame_prefix and
+  /// publish_clock stay as they are).
   void applySettings(const core::NodeSettings& settings);
+  /// Takes frame_prefix and publish_clock in: the /clock publisher is made or dropped.
+  void applyWiring(const ResolvedSettings& settings);
   void startStatusTimer();
   /// Restarts the wall-clock anchor that real time is kept against.
   void anchorClock();
+  /// The stepping timer's period for the world's dt and the real-time factor, from now.
+  void restartTimer();
   /// After the world was rebuilt (reset, load_scene): markers cleared and sent anew.
   void redraw();
   std::string roomForABall() const;
@@ -131,7 +138,7 @@ private:
   BallColoring coloring_;
   bool paused_ = false;
   std::uint64_t state_every_ = 1;  ///< publish ball_states every this many steps
-  std::uint64_t lost_total_ = 0;   ///< balls removed for leaving the world, since the start
+  std::uint64_t lost_total_ = 0;   ///< balls removed for leaving the world since it was last built
   std::string scene_source_;       ///< where the world's scene came from, for messages
 
   // a run of steps
@@ -142,6 +149,8 @@ private:
 
   ros::NodeHandle nh_;
   ros::NodeHandle pnh_;
+  /// the step service's queue: before the services, so that it outlives them
+  ros::CallbackQueue step_queue_;
   ros::Publisher markers_pub_;
   ros::Publisher states_pub_;
   ros::Publisher collisions_pub_;
@@ -169,7 +178,6 @@ private:
   CollisionFlashes flashes_;      ///< collisions since the last ball markers
 
   // threads other than the global queue's, started last and stopped first
-  ros::CallbackQueue step_queue_;
   std::unique_ptr<ros::AsyncSpinner> step_spinner_;
   std::unique_ptr<actionlib::SimpleActionServer<StepAction>> step_action_;
   std::unique_ptr<dynamic_reconfigure::Server<SimulatorConfig>> reconfigure_;
