@@ -15,7 +15,7 @@ namespace
 {
 /// Wall time one chunk of steps may hold the lock [s]: what a service call waits at most
 /// on top of its own work while a run goes on.
-constexpr double kChunkSeconds = 0.01;
+constexpr double kChunkSeconds = 0.005;
 /// A progress line in the log every this many wall seconds of a run [s].
 constexpr double kProgressLogPeriod = 2.0;
 /// Action feedback at most this often [s].

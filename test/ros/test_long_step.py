@@ -27,8 +27,10 @@ LIMIT = 0.2  # [s] the longest another service may take to answer during a run
 
 
 def watch(seconds):
-    """get_state as often as it answers for `seconds`: (latencies, times)."""
-    get = rospy.ServiceProxy(NS + "get_state", GetState, persistent=False)
+    """get_state as often as it answers for `seconds`: (latencies, times). One connection
+    for all the calls, so that what is timed is the node's answer (a new connection per
+    call also asks the master where the service is, every time)."""
+    get = rospy.ServiceProxy(NS + "get_state", GetState, persistent=True)
     latencies, times = [], []
     end = time.time() + seconds
     while time.time() < end:
