@@ -1,0 +1,137 @@
+// Stage 5, commit: every ball to the step's end, back on the floor, its velocity
+// there (settled across the step's resting contacts), its turn by rolling; and, while the
+// visiting order stays, the next step's prediction. Reads motions_, states_, resting_;
+// writes balls_, feet_.
+#include "step_types.hpp"
+
+#include "ball_collision_sim/core/response.hpp"
+
+#include <cmath>
+
+namespace ball_collision_sim::core
+{
+using namespace step;
+
+namespace
+{
+/// sin(x) / x and cos(x) from y = x^2 (both are even in x): series where |x| is small,
+/// the usual way elsewhere; so a caller that has x^2 takes no square root. The series are
+/// summed in pairs of terms (Estrin's scheme) so that they take a few dependent steps
+/// rather than one per term.
+void sincCosOfSquare(double y, double& sinc, double& c)
+{
+  if (!(y <= 0.25))
+  {
+    const double x = std::sqrt(y);
+    sinc = std::sin(x) / x;
+    c = std::cos(x);
+    return;
+  }
+  // Taylor series to x^16 and x^18: the first term left out is below 3e-23 for |x| <= 1/2.
+  // s[k] = (-1)^k / (2k + 1)!, c[k] = (-1)^k / (2k)!
+  constexpr double s1 = -1.0 / 6, s2 = 1.0 / 120, s3 = -1.0 / 5040, s4 = 1.0 / 362880, s5 = -1.0 / 39916800,
+                   s6 = 1.0 / 6227020800, s7 = -1.0 / 1307674368000, s8 = 1.0 / 355687428096000;
+  constexpr double c1 = -1.0 / 2, c2 = 1.0 / 24, c3 = -1.0 / 720, c4 = 1.0 / 40320, c5 = -1.0 / 3628800,
+                   c6 = 1.0 / 479001600, c7 = -1.0 / 87178291200, c8 = 1.0 / 20922789888000,
+                   c9 = -1.0 / 6402373705728000;
+  const double x2 = y, x4 = x2 * x2, x8 = x4 * x4;
+  sinc = ((1 + s1 * x2) + x4 * (s2 + s3 * x2)) + x8 * (((s4 + s5 * x2) + x4 * (s6 + s7 * x2)) + x8 * s8);
+  c = ((1 + c1 * x2) + x4 * (c2 + c3 * x2)) + x8 * (((c4 + c5 * x2) + x4 * (c6 + c7 * x2)) + x8 * (c8 + c9 * x2));
+}
+}  // namespace
+
+void World::commitToFloor(bool predict_next)
+{
+  // Without resting contacts every ball is finished in one pass; with them, velocities
+  // are settled across the contacts first.
+  const bool settle = !resting_.empty() || !blocked_sets_.empty();
+  if (curved())
+    floor_normals_.resize(balls_.size());
+  for (std::size_t i = 0; i < balls_.size(); ++i)
+  {
+    prefetchBall(i + kPrefetchAhead, true);
+    Motion& m = motions_[i];
+    Ball& ball = balls_[order_[i]];
+    Vec3 p = positionAt(i, 1.0);
+    Vec3 normal = up_;
+    if (plane_)
+    {
+      p = onFloor(i, p);
+      normal = plane_normal_;
+    }
+    else if (floor_)
+    {
+      // The chord ends on the floor (endOnFloor) except where a ball was stopped by the
+      // event cap, was held, or its constraints did not settle: then it stays at its
+      // chord's end, clear of everything, a little off the floor until the next step puts
+      // it back.
+      const FloorFoot foot = floor_->project(p, floor_uv_[i]);
+      feet_[order_[i]] = foot.uv;
+      normal = foot.normal;
+      floor_normals_[i] = normal;
+    }
+    const Vec3 moved = p - ball.position;
+    ball.position = p;
+    ball.velocity = states_[i].frozen ? Vec3::Zero() : onFloorVelocity(i, 1.0, p, normal);
+    if (!settle)
+    {
+      roll(i, normal, moved);
+      if (predict_next)
+        predictMotion(i);
+    }
+    else
+      m.p0 = moved;  // the motion is done with: p0 keeps the step's move for roll()
+  }
+  if (!settle)
+    return;
+  // Resting contacts keep no closing speed into the step that follows.
+  for (std::size_t i = 0; i < balls_.size(); ++i)
+    balls_[order_[i]].velocity = allowed(i, balls_[order_[i]].velocity);
+  for (const RestingContact& contact : resting_)
+  {
+    Ball& a = balls_[order_[contact.ball]];
+    Ball& b = balls_[order_[contact.other]];
+    const double inv_a = states_[contact.ball].frozen ? 0.0 : 1.0 / a.mass;
+    const double inv_b = states_[contact.other].frozen ? 0.0 : 1.0 / b.mass;
+    const double closing = a.velocity.dot(contact.dir_ball) - b.velocity.dot(contact.dir_other);
+    if (closing > 0)
+    {
+      const double j = collisionImpulse(closing, inv_a, contact.dir_ball, inv_b, contact.dir_other, 0.0);
+      a.velocity -= (j * inv_a) * contact.dir_ball;
+      b.velocity += (j * inv_b) * contact.dir_other;
+    }
+  }
+  for (std::size_t i = 0; i < balls_.size(); ++i)
+  {
+    const Vec3& normal = plane_ ? plane_normal_ : floor_ ? floor_normals_[i] : up_;
+    Ball& ball = balls_[order_[i]];
+    if (floor_ && !resting_.empty())
+      ball.velocity -= ball.velocity.dot(normal) * normal;
+    roll(i, normal, motions_[i].p0);
+    if (predict_next)
+      predictMotion(i);
+  }
+}
+
+void World::roll(std::size_t i, const Vec3& normal, const Vec3& d)
+{
+  // Rolling without slip: turned by |d| / r about n x d, d the move along the floor
+  // (|n x d| is its length). Its angular velocity follows from n and v when asked for.
+  Ball& ball = balls_[order_[i]];
+  const double half_inv_radius = 0.5 / ball.radius;
+  const Vec3 axis = normal.cross(d);
+  const double axis_squared = axis.squaredNorm();
+  if (axis_squared > 0)
+  {
+    // the half angle x = |n x d| / 2r; sin(x) / |n x d| = sinc(x) / 2r
+    double sinc_half = 1, cos_half = 1;
+    sincCosOfSquare(axis_squared * (half_inv_radius * half_inv_radius), sinc_half, cos_half);
+    const Vec3 k = (sinc_half * half_inv_radius) * axis;
+    Quat q = Quat(cos_half, k.x(), k.y(), k.z()) * ball.orientation;
+    // back to unit length: the product of unit quaternions is off by round-off only, so
+    // one Newton step of 1/sqrt does
+    q.coeffs() *= 1.5 - 0.5 * q.coeffs().squaredNorm();
+    ball.orientation = q;
+  }
+}
+}  // namespace ball_collision_sim::core

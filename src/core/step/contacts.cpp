@@ -1,0 +1,191 @@
+// Resting contacts: the directions a ball may not move along for the rest of the step,
+// holding balls still, and keeping a motion on the floor and within its energy.
+// Reads and writes motions_, states_, blocked_sets_.
+#include "step_types.hpp"
+
+#include "ball_collision_sim/core/response.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ball_collision_sim::core
+{
+using namespace step;
+
+Vec3 World::allowed(std::size_t i, const Vec3& w) const
+{
+  const std::int32_t blocked = states_[i].blocked;
+  return blocked < 0 ? w : blocked_sets_[static_cast<std::size_t>(blocked)].allowed(w);
+}
+
+void World::addBlocked(std::size_t i, const Vec3& direction)
+{
+  MotionState& m = states_[i];
+  if (m.blocked < 0)
+  {
+    m.blocked = static_cast<std::int32_t>(blocked_sets_.size());
+    blocked_sets_.emplace_back();
+  }
+  blocked_sets_[static_cast<std::size_t>(m.blocked)].add(direction);
+}
+
+void World::hold(std::size_t i)
+{
+  if (!states_[i].held)
+    ++stats_.held_balls;
+  states_[i].held = true;
+}
+
+void World::endOnFloor(std::size_t i)
+{
+  // The chord must end on the floor, where the step's end puts the ball: a ball moved
+  // there after its motion was checked could be pressed into what it touches. Taking
+  // out the blocked directions moves the end off a curved floor; back onto it and out of
+  // them again, in turn, until both hold.
+  Motion& m = motions_[i];
+  const double rest = 1 - m.x0;
+  if (!curved() || states_[i].frozen || !(rest > 0))
+    return;
+  const double roundoff = roundoffAt(m.p0, m.radius);
+  for (int pass = 0; pass < 32; ++pass)
+  {
+    const Vec3 on = (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest;
+    const Vec3 free = allowed(i, on);
+    const double off = (free - on).norm();
+    const bool done = off <= 1e-15 * on.norm() || rest * off <= roundoff;
+    // (a pass that leaves the motion as it was would be repeated as it is: fully blocked
+    // off the floor, say)
+    const bool same = free == m.b;
+    m.b = done ? on : free;
+    if (done || same)
+      return;
+  }
+}
+
+void World::keepEnergy(std::size_t i)
+{
+  Motion& m = motions_[i];
+  const double rest = 1 - m.x0;
+  if (straight_ || states_[i].frozen || !(rest > 0))
+    return;
+  const Vec3& v0 = startVelocity(i);
+  // |v|^2 at the end of the step with the displacement b per unit of x, put on the floor
+  const auto speedSquaredWith = [&](const Vec3& b) {
+    return v0.squaredNorm() + 2 * gravity_.dot(onFloor(i, m.p0 + rest * b) - m.p0);
+  };
+  // ... with the motion cut to the fraction s of its chord
+  const auto speedSquared = [&](double s) { return speedSquaredWith(s * m.b); };
+  // ... where the chord itself ends: a motion kept out of its blocked directions can end
+  // off the floor, higher than where the floor under its end is
+  const auto chordSpeedSquared = [&](const Vec3& b) { return v0.squaredNorm() + 2 * rest * gravity_.dot(b); };
+  // (on a curved floor endOnFloor has put the chord's end on it, or as near as its blocked
+  // directions let it: the chord's own end is what counts)
+  const double full = curved() ? chordSpeedSquared(m.b) : speedSquared(1.0);
+  if (full >= 0)
+    return;
+  // The chord ends higher than the ball's energy reaches (a turning point on a curved
+  // floor, or a ball in a pile whose constraints turned its motion uphill): it stops
+  // where the energy runs out instead, so that no energy is made.
+  const double start = speedSquared(0.0);
+  double lo = 0.0;
+  if (start > 0)
+  {
+    if (!curved())
+      lo = start / (start - full);  // linear in s
+    else
+    {
+      // the root of the speed on [0, 1], kept bracketed: false position with the
+      // Illinois rule (a stalled end's value halved), bisection where that gains less
+      double hi = 1.0, f_lo = start, f_hi = full;
+      int last = 0;  // the end moved last: +1 lo, -1 hi
+      for (int k = 0; k < 50 && hi - lo > 1e-15; ++k)
+      {
+        const double width = hi - lo;
+        double mid = lo + width * (f_lo / (f_lo - f_hi));
+        if (!(mid > lo && mid < hi))
+          mid = 0.5 * (lo + hi);
+        const double f = speedSquared(mid);
+        if (f >= 0)
+        {
+          lo = mid;
+          f_lo = f;
+          if (last > 0)
+            f_hi *= 0.5;
+          last = 1;
+        }
+        else
+        {
+          hi = mid;
+          f_hi = f;
+          if (last < 0)
+            f_lo *= 0.5;
+          last = -1;
+        }
+        if (hi - lo > 0.5 * width && hi - lo > 1e-15)
+        {
+          // one end stuck: halve the bracket as well
+          const double half = 0.5 * (lo + hi);
+          const double g = speedSquared(half);
+          (g >= 0 ? lo : hi) = half;
+          (g >= 0 ? f_lo : f_hi) = g;
+          last = 0;
+        }
+      }
+    }
+    // (round-off may leave the end a hair too high; the speed is clamped to zero then)
+  }
+  m.b *= lo;
+  if (!curved())
+    return;
+  if (lo > 0)
+  {
+    const Vec3 b = allowed(i, (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest);
+    m.b = chordSpeedSquared(b) >= 0 ? b : Vec3::Zero();
+    if (m.b == Vec3::Zero())
+      hold(i);
+    return;
+  }
+  // A motion that starts at an impact inside the step starts on the chord, below or
+  // above the floor; where the floor above it is higher than the energy reaches, the
+  // ball slides downhill from there instead, as far as it takes to be low enough.
+  // Where it finds no way, it is held: it stays put through the step's resting contacts.
+  // (keepEnergy only ever holds a ball: an impact, not a new motion, lets it go)
+  const Vec3 foot = onFloor(i, m.p0);
+  const Vec3 downhill = tangentPart(gravity_, floorNormalAt(i, foot));
+  const double slope = downhill.norm();
+  if (!(slope > 0))
+    return hold(i);
+  // (a short way only: the chord's sag is small next to the ball; else it stays put)
+  // The reaches tried are first * 2^k below half the radius. Where the energy left grows
+  // with the reach (the lower the end, the more), halving the range of k after the
+  // longest has shown that one does finds the shortest that does; elsewhere it finds one
+  // that does, or, where the longest does not, holds the ball (which makes no energy).
+  const double first = std::max(-start / slope, 1e-12 * m.radius);
+  int count = 0;
+  while (count < 64 && std::ldexp(first, count) < 0.5 * m.radius)
+    ++count;
+  const auto motionTo = [&](int k) {
+    return allowed(i, (onFloor(i, foot + (std::ldexp(first, k) / slope) * downhill) - m.p0) / rest);
+  };
+  const auto keeps = [&](const Vec3& b) { return speedSquaredWith(b) >= 0 && chordSpeedSquared(b) >= 0; };
+  if (count == 0)
+    return hold(i);
+  Vec3 found = motionTo(count - 1);
+  if (!keeps(found))
+    return hold(i);
+  int fails = -1, works = count - 1;  // the largest k known to fail, the smallest known to work
+  while (works - fails > 1)
+  {
+    const int k = fails + (works - fails) / 2;
+    const Vec3 b = motionTo(k);
+    if (keeps(b))
+    {
+      works = k;
+      found = b;
+    }
+    else
+      fails = k;
+  }
+  m.b = found;
+}
+}  // namespace ball_collision_sim::core

@@ -1,0 +1,94 @@
+// A ball's motion on the floor within the step: where it is, the floor's normal under
+// it, its velocity there, the resting speed, and starting a new motion at an event.
+// Reads motions_, states_, the floor; writes motions_ and the start velocity.
+#include "step_types.hpp"
+
+#include "ball_collision_sim/core/response.hpp"
+
+#include <cmath>
+
+namespace ball_collision_sim::core
+{
+using namespace step;
+
+Vec3 World::positionAt(std::size_t i, double x) const
+{
+  const Motion& m = motions_[i];
+  return m.p0 + (x - m.x0) * m.b;
+}
+
+Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
+{
+  if (plane_)
+    return plane_normal_;
+  if (!floor_)
+    return up_;
+  return floor_->project(position, floor_uv_[i]).normal;
+}
+
+Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
+{
+  const Motion& m = motions_[i];
+  const Vec3& v0 = startVelocity(i);
+  Vec3 v = v0 + ((x - m.x0) * dt_) * gravity_;
+  if (floor_)
+    v -= v.dot(normal) * normal;
+  if (straight_)
+    return v;  // no force along the floor: the motion is the chord itself
+  // Under a force along the floor the ball's path is a curve and its motion in the step
+  // the chord across it, which runs off the curve; so where an impact stops the chord,
+  // the velocity the force gave by then does not go with the height the chord reached.
+  // Keep the frictionless ball's |v|^2 = |v0|^2 + 2 <g, p - p0> (the course code's
+  // correction on its curved floor).
+  const double target = v0.squaredNorm() + 2 * gravity_.dot(position - m.p0);
+  const double norm = v.norm();
+  if (target <= 0 || norm == 0)
+    return Vec3::Zero();
+  return v * (std::sqrt(target) / norm);
+}
+
+double World::restingSpeed(const Vec3& floor_normal) const
+{
+  if (plane_ && plane_resting_speed_ > 0)
+    return plane_resting_speed_;
+  const Vec3 along = floor_ ? tangentPart(gravity_, floor_normal) : gravity_;
+  return kRestingSteps * dt_ * along.norm() + kRestingSpeedFloor;
+}
+
+void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact)
+{
+  Motion& m = motions_[i];
+  Vec3& v0 = startVelocity(i);
+  if (impact)
+    states_[i].held = false;
+  m.x0 = x;
+  m.p0 = position;
+  if (states_[i].frozen)
+  {
+    v0 = m.b = Vec3::Zero();
+    return;
+  }
+  v0 = allowed(i, velocity);
+  if (states_[i].held)
+  {
+    m.b = Vec3::Zero();  // still held (no impact let it go): it keeps no motion
+    return;
+  }
+  const double rest = 1 - x;
+  m.b = rest > 0 ? Vec3((predictedEnd(i, position, v0, rest * dt_) - position) / rest) : Vec3(dt_ * v0);
+  m.b = allowed(i, m.b);
+  endOnFloor(i);
+  keepEnergy(i);
+  if (states_[i].held)
+    m.b = Vec3::Zero();
+}
+
+Vec3 World::onFloor(std::size_t i, const Vec3& q) const
+{
+  if (plane_)
+    return q + (motions_[i].radius + plane_offset_ - plane_normal_.dot(q)) * plane_normal_;
+  if (!floor_)
+    return q;
+  return floor_->ballCentre(floor_->project(q, floor_uv_[i]), motions_[i].radius);
+}
+}  // namespace ball_collision_sim::core

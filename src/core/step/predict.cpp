@@ -1,0 +1,81 @@
+// Stage 1, predict: each ball's free motion over the step, from its record (position,
+// velocity) and the floor, and its swept box in the grid.
+// Reads balls_, order_, feet_; writes motions_, states_, floor_uv_ and the grid's boxes.
+#include "step_types.hpp"
+
+#include <utility>
+
+namespace ball_collision_sim::core
+{
+using namespace step;
+
+void World::prefetchBall(std::size_t k, bool write) const
+{
+  if (k >= order_.size())
+    return;
+  const char* at = reinterpret_cast<const char*>(&balls_[order_[k]]);
+  if (write)
+  {
+    __builtin_prefetch(at, 1);
+    __builtin_prefetch(at + 64, 1);
+    __builtin_prefetch(at + sizeof(Ball) - 1, 1);
+  }
+  else
+  {
+    __builtin_prefetch(at);
+    __builtin_prefetch(at + 64);
+  }
+}
+
+void World::predictMotions()
+{
+  static_assert(sizeof(Motion) == 64, "a Motion fills one cache line");
+  grid_.start(balls_.size(), up_);
+  // (taken back at once, so that a step cut short by an exception leaves none ready)
+  if (std::exchange(motions_ready_, false))
+    return;  // the last step's commit predicted them
+  motions_.resize(balls_.size());
+  states_.resize(balls_.size());
+  floor_uv_.resize(curved() ? balls_.size() : 0);
+  for (std::size_t i = 0; i < balls_.size(); ++i)
+  {
+    prefetchBall(i + kPrefetchAhead, false);
+    predictMotion(i);
+  }
+}
+
+void World::predictMotion(std::size_t i)
+{
+  const Ball& ball = balls_[order_[i]];
+  Motion& m = motions_[i];
+  m = Motion{};
+  states_[i] = MotionState{};
+  m.radius = ball.radius;
+  m.p0 = ball.position;
+  if (!floor_uv_.empty())
+    floor_uv_[i] = feet_[order_[i]];
+  const Vec3 end = predictedEnd(i, m.p0, ball.velocity, dt_);
+  m.b = end - m.p0;
+  if (curved())
+    keepEnergy(i);  // on a plane the first chord ends where the exact path does
+  const Vec3 reach = m.p0 + m.b;
+  grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, reach, ball.radius));
+}
+
+Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span)
+{
+  // seed (1): ds = dt v + dt^2 g / 2, then back onto the floor, seed (2)-(4)
+  const Vec3 q = p + span * v + (0.5 * span * span) * gravity_;
+  if (!curved())
+    return onFloor(i, q);
+  const FloorFoot foot = floor_->project(q, floor_uv_[i]);
+  floor_uv_[i] = foot.uv;
+  return floor_->ballCentre(foot, motions_[i].radius);
+}
+
+Aabb World::currentBox(std::size_t i) const
+{
+  const Motion& m = motions_[i];
+  return sweptBox(m.p0, m.p0 + (1 - m.x0) * m.b, m.radius);
+}
+}  // namespace ball_collision_sim::core

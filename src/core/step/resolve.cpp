@@ -1,0 +1,245 @@
+// Stage 4, resolve: events in time order, earliest first; an impact bounces (or, slow
+// enough, becomes a resting contact), and the balls involved get new motions and are
+// detected again. Reads and writes motions_, states_, the queue, balls_' velocities;
+// writes events_ and stats_.
+#include "step_types.hpp"
+
+#include "ball_collision_sim/core/response.hpp"
+#include "ball_collision_sim/core/time_of_impact.hpp"
+
+#include <algorithm>
+
+namespace ball_collision_sim::core
+{
+using namespace step;
+
+void World::resolveEventsInTimeOrder()
+{
+  const EventLater later{&event_pool_, &order_};
+  while (!heap_.empty())
+  {
+    {
+      // the first event's balls' data are fetched while the queue is put in order
+      const auto fetch = [&](std::uint32_t k) {
+        __builtin_prefetch(&states_[k]);
+        __builtin_prefetch(&motions_[k]);
+        __builtin_prefetch(&order_[k]);
+      };
+      const Event& next = event_pool_[heap_.front().slot];
+      fetch(next.i);
+      if (!next.wall)
+        fetch(next.j);
+    }
+    std::pop_heap(heap_.begin(), heap_.end(), later);
+    const std::uint32_t slot = heap_.back().slot;
+    heap_.pop_back();
+    const Event event = event_pool_[slot];
+    free_slots_.push_back(slot);
+    // The next event is most likely the one now first: its record is fetched while this
+    // one is handled (events in time order reach the balls' data at random).
+    if (!heap_.empty())
+      __builtin_prefetch(&event_pool_[heap_.front().slot]);
+    if (states_[event.i].epoch != event.epoch_i || (!event.wall && states_[event.j].epoch != event.epoch_j))
+    {
+      ++stats_.stale_events;  // a ball involved has had an event since this was found
+      continue;
+    }
+    if (event.wall)
+      resolveBallWall(event);
+    else
+      resolveBallBall(event);
+  }
+}
+
+void World::resolveBallWall(const Event& event)
+{
+  const std::size_t i = event.i;
+  const Wall& wall = walls_[event.j];
+  const Ball& ball = balls_[order_[i]];
+  const Vec3 p = positionAt(i, event.x);
+  const Vec3 floor_normal = floorNormalAt(i, p);
+  Vec3 v = onFloorVelocity(i, event.x, p, floor_normal);
+
+  const Vec3 n = -event.normal;  // from the ball toward the wall
+  Vec3 dir = floor_ ? tangentPart(n, floor_normal) : n;
+  if (dir.squaredNorm() < 1e-12)
+    dir = n;  // a wall parallel to the floor: answer in space
+  dir.normalize();
+  const double closing = v.dot(dir);
+  const bool resting = closing <= restingSpeed(floor_normal);
+  const double inv_mass = states_[i].frozen ? 0.0 : 1.0 / ball.mass;
+  const double impulse =
+      collisionImpulse(std::max(closing, 0.0), inv_mass, dir, 0.0, dir, resting ? 0.0 : wall.restitution);
+  v -= (impulse * inv_mass) * dir;
+
+  if (resting)
+  {
+    // leaning on the wall until the step ends; where the floor is not square to the wall,
+    // also no motion into the wall itself (else it comes back at once, again and again)
+    addBlocked(i, dir);
+    if (dir.dot(n) < 1 - 1e-12)
+      addBlocked(i, n);
+  }
+  startMotion(i, event.x, p, v, !resting);
+  recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
+              event);
+  countEvent(i);
+  detect(i);
+}
+
+void World::resolveBallBall(const Event& event)
+{
+  const std::size_t i = event.i, j = event.j;
+  const Ball& a = balls_[order_[i]];
+  const Ball& b = balls_[order_[j]];
+  const Vec3 pa = positionAt(i, event.x);
+  const Vec3 pb = positionAt(j, event.x);
+  const Vec3 na = floorNormalAt(i, pa);
+  const Vec3 nb = floorNormalAt(j, pb);
+  Vec3 va = onFloorVelocity(i, event.x, pa, na);
+  Vec3 vb = onFloorVelocity(j, event.x, pb, nb);
+  if (states_[i].frozen)
+    va = Vec3::Zero();
+  if (states_[j].frozen)
+    vb = Vec3::Zero();
+
+  Vec3 n = pb - pa;
+  const double dist = n.norm();
+  n = dist > 0 ? Vec3(n / dist) : Vec3(Vec3::UnitX());
+  Motion& ma = motions_[i];
+  Motion& mb = motions_[j];
+  // Each ball is pushed along the normal's part tangent to the floor under it, less any
+  // part toward what it leans on (that part of the impulse goes into the wall).
+  const Vec3 along_a = floor_ ? tangentPart(n, na) : n;
+  const Vec3 along_b = floor_ ? tangentPart(n, nb) : n;
+  const Vec3 ta = -allowed(i, -along_a);
+  const Vec3 tb = allowed(j, along_b);
+  const double inv_a = states_[i].frozen ? 0.0 : 1.0 / a.mass;
+  const double inv_b = states_[j].frozen ? 0.0 : 1.0 / b.mass;
+  const double closing = va.dot(ta) - vb.dot(tb);
+  const bool resting = closing <= std::max(restingSpeed(na), restingSpeed(nb));
+  const double impulse =
+      collisionImpulse(std::max(closing, 0.0), inv_a, ta, inv_b, tb, resting ? 0.0 : scene_.restitution);
+  va -= (impulse * inv_a) * ta;
+  vb += (impulse * inv_b) * tb;
+
+  bool both_still = false;
+  if (resting)
+  {
+    // A ball that cannot give way along the contact blocks the other's approach for the
+    // rest of the step, and two balls that are both all but still (a pile at rest) block
+    // each other, so that piles settle in one event per contact instead of passing
+    // vanishing impulses back and forth.
+    const double still = std::max(restingSpeed(na), restingSpeed(nb));
+    both_still = va.norm() <= still && vb.norm() <= still;
+    // (a held ball gives no way either)
+    const bool a_fixed =
+        both_still || states_[i].held || inv_a * ta.squaredNorm() < 1e-12 * inv_b * tb.squaredNorm();
+    const bool b_fixed =
+        both_still || states_[j].held || inv_b * tb.squaredNorm() < 1e-12 * inv_a * ta.squaredNorm();
+    if (a_fixed && along_b.squaredNorm() > 0)
+      addBlocked(j, -along_b.normalized());
+    if (b_fixed && along_a.squaredNorm() > 0)
+      addBlocked(i, along_a.normalized());
+  }
+  MotionState& sa = states_[i];
+  MotionState& sb = states_[j];
+  startMotion(i, event.x, pa, va, !resting);
+  startMotion(j, event.x, pb, vb, !resting);
+  if (resting)
+  {
+    // (a held ball does not give way)
+    const double move_a = sa.held ? 0.0 : inv_a, move_b = sb.held ? 0.0 : inv_b;
+    // No approach left in the motions either (gravity along the floor would press them
+    // together again at once). On a curved floor, putting the ends back on the floor can
+    // bring some back: in turn, a few times.
+    // (until what approach is left is round-off of the positions)
+    const double rest = 1 - event.x;
+    const double roundoff = curved() ? roundoffAt(pa, ma.radius) + roundoffAt(pb, mb.radius) : 0.0;
+    for (int pass = 0; pass < (curved() ? 32 : 1); ++pass)
+    {
+      const Vec3 ua = curved() ? n : ta, ub = curved() ? n : tb;
+      const double into = ma.b.dot(ua) - mb.b.dot(ub);
+      const double k = move_a * ta.dot(ua) + move_b * tb.dot(ub);
+      if (!(into > 0 && k > 0 && rest * into > roundoff))
+        break;
+      const double jb = into / k;
+      ma.b -= (jb * move_a) * ta;
+      mb.b += (jb * move_b) * tb;
+      if (!sa.held)
+        endOnFloor(i);
+      if (!sb.held)
+        endOnFloor(j);
+    }
+    // Two balls all but still whose motions still close in (a pile in a corner of a
+    // curved floor, where the floor, the walls and each other leave no room to settle
+    // into), or that are in a jam: they stay where they are for the rest of the step,
+    // whatever resting contact comes next (else each such contact would start them
+    // again, and one the next, without end). So do two whose motions keepEnergy turned
+    // back into each other (shortened or slid downhill) by more than detection lets
+    // pass: it would find this contact again at once, and again.
+    keepEnergy(i);
+    keepEnergy(j);
+    const bool jammed = sa.events >= kJamEventsPerBallStep || sb.events >= kJamEventsPerBallStep;
+    const double closing_in = rest * (ma.b.dot(n) - mb.b.dot(n));
+    const bool again = closing_in > kClosingSlop * (ma.radius + mb.radius);
+    if (jammed || (both_still && closing_in > 0) || again)
+    {
+      ma.b = mb.b = Vec3::Zero();
+      hold(i);
+      hold(j);
+    }
+    resting_.push_back({i, j, ta, tb});
+  }
+  recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, impulse, closing, resting, event);
+  countEvent(i);
+  countEvent(j);
+  detect(i);
+  detect(j);
+}
+
+void World::countEvent(std::size_t i)
+{
+  MotionState& m = states_[i];
+  ++m.epoch;  // what was predicted for this ball before is stale now
+  // (counted up to one past the cap only: a frozen ball can still be hit by many others)
+  if (!m.frozen && ++m.events > kMaxEventsPerBallStep)
+  {
+    m.frozen = true;
+    startVelocity(i) = Vec3::Zero();
+    motions_[i].b = Vec3::Zero();
+    ++stats_.frozen_balls;
+  }
+  // its new motion may reach beyond where the grid has it
+  grid_.update(static_cast<std::uint32_t>(i), currentBox(i));
+}
+
+void World::recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,
+                        double impulse, double closing, bool resting, const Event& event)
+{
+  ++stats_.events;
+  if (resting)
+    ++stats_.resting_events;
+  if (!record_events_)
+    return;
+  CollisionEvent out;
+  out.kind = kind;
+  out.time = (static_cast<double>(stats_.steps) + event.x) * dt_;
+  out.ball = ball;
+  out.other = other;
+  out.feature = event.feature;
+  out.point = point;
+  out.normal = normal;
+  out.impulse = impulse;
+  out.approach_speed = closing;
+  out.resting = resting;
+  events_.push_back(out);
+}
+
+void World::recordEvents(bool record)
+{
+  record_events_ = record;
+  if (!record)
+    std::vector<CollisionEvent>().swap(events_);
+}
+}  // namespace ball_collision_sim::core

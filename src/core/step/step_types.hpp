@@ -1,0 +1,121 @@
+// The step's own types and tunables, shared by the files of the step (src/core/step/):
+// a ball's motion within the step, its counters, the directions it may not move along,
+// and a predicted event. Not part of the public interface.
+#pragma once
+
+#include "ball_collision_sim/core/world.hpp"
+
+#include <array>
+#include <cstdint>
+#include <limits>
+
+namespace ball_collision_sim::core
+{
+namespace step
+{
+/// A ball with more events than this in one step is stopped for the rest of the step
+/// and acts as immovable: a guard against endless chatter in jammed piles.
+inline constexpr std::uint32_t kMaxEventsPerBallStep = 256;
+/// Two balls at a resting contact, one of which has had this many events in the step,
+/// still or not, are in a jam that answers pair by pair only pass around (each pushes one
+/// of them into a third ball, which pushes it back): they are held for the rest of the step.
+inline constexpr std::uint32_t kJamEventsPerBallStep = 16;
+/// A closing speed below what gravity along the floor adds in this many steps is a
+/// resting contact: the motion is stopped along the normal instead of bounced, so a
+/// ball leaning on a wall neither jitters nor makes endless events.
+inline constexpr double kRestingSteps = 2.0;
+/// ... and below this [m/s] always (flat floors, where gravity adds nothing).
+inline constexpr double kRestingSpeedFloor = 1e-9;
+
+/// A length [m] below the round-off of positions around p (with a ball of radius r):
+/// where the corrections of a ball's motion on a curved floor are down to this, putting
+/// it on the floor and out of what it leans on only trade round-off back and forth.
+inline double roundoffAt(const Vec3& p, double r)
+{
+  return 16 * std::numeric_limits<double>::epsilon() * (p.cwiseAbs().maxCoeff() + r);
+}
+}  // namespace step
+
+/// A ball's straight motion inside the current step, in the step fraction x shared by all
+/// balls: centre c(x) = p0 + (x - x0) b for x in [x0, 1]. A new one starts at every event.
+/// It holds what detection reads, in one cache line; the ball's velocity at x0 is kept in
+/// the ball itself while the step runs (startVelocity()), its counters in a MotionState.
+struct alignas(64) World::Motion
+{
+  double x0 = 0.0;               ///< where this motion starts, fraction of the step
+  Vec3 p0 = Vec3::Zero();        ///< centre at x0 [m]
+  Vec3 b = Vec3::Zero();         ///< displacement per unit of x [m]; zero while frozen
+  double radius = 0.0;           ///< the ball's [m]
+};
+
+/// The rest of a ball's state in the step.
+struct World::MotionState
+{
+  std::uint32_t epoch = 0;       ///< bumped at every event of this ball
+  std::uint16_t events = 0;      ///< events of this ball in this step, until it is frozen
+  bool frozen = false;
+  /// Held (see hold()): in a jam at a resting contact, or left no motion its energy allows;
+  /// it stays where it is through resting contacts for the rest of the step (an impact
+  /// lets it go).
+  bool held = false;
+  std::int32_t blocked = -1;     ///< its BlockedSet this step, if any
+};
+static_assert(step::kMaxEventsPerBallStep < 0xffff, "MotionState::events counts to one past the cap");
+
+/// Unit directions a ball may not move along for the rest of the step: toward a wall it
+/// leans on, or toward a ball that cannot give way. A ball in a corner or in a pile at
+/// rest has several; most balls have none, and no set.
+struct World::BlockedSet
+{
+  std::array<Vec3, 8> directions;
+  std::uint8_t count = 0;
+
+  /// `w` without its parts along the blocked directions: the nearest vector with
+  /// <w, d> <= 0 for every blocked d, by cyclic projection; zero (which always qualifies)
+  /// when that does not settle.
+  Vec3 allowed(Vec3 w) const
+  {
+    const double scale = w.norm();
+    for (int pass = 0; pass < 16; ++pass)
+    {
+      bool changed = false;
+      for (std::uint8_t k = 0; k < count; ++k)
+      {
+        const double into = w.dot(directions[k]);
+        if (into > 0)
+        {
+          w -= into * directions[k];
+          changed = true;
+        }
+      }
+      if (!changed)
+        return w;
+    }
+    for (std::uint8_t k = 0; k < count; ++k)
+      if (w.dot(directions[k]) > 1e-14 * scale)
+        return Vec3::Zero();
+    return w;
+  }
+  void add(const Vec3& direction)
+  {
+    for (std::uint8_t k = 0; k < count; ++k)
+      if (directions[k].dot(direction) > 1 - 1e-12)
+        return;
+    if (count < directions.size())
+      directions[count++] = direction;
+  }
+};
+
+/// A predicted impact; stale once either ball's epoch has moved on.
+struct World::Event
+{
+  double x;                  ///< step fraction of the impact
+  std::uint32_t i;           ///< ball index (the lower one for ball-ball)
+  std::uint32_t j;           ///< other ball index, or wall index
+  std::uint32_t epoch_i;
+  std::uint32_t epoch_j;
+  bool wall;
+  WallFeature feature;
+  Vec3 normal;               ///< ball-wall: unit, from the wall toward the ball
+};
+}  // namespace ball_collision_sim::core
