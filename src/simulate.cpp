@@ -161,10 +161,10 @@ private:
 
 int run(const SimulateOptions& options)
 {
-  Scene scene;
+  ball_collision_sim::yaml::SceneFile file;
   try
   {
-    scene = ball_collision_sim::yaml::loadValidScene(options.scene_path);
+    file = ball_collision_sim::yaml::loadValidSceneFile(options.scene_path);
   }
   catch (const ball_collision_sim::yaml::SceneError& e)
   {
@@ -176,7 +176,7 @@ int run(const SimulateOptions& options)
   std::unique_ptr<World> world;
   try
   {
-    world = std::make_unique<World>(scene);
+    world = std::make_unique<World>(file.scene);
   }
   catch (const std::invalid_argument& e)
   {
@@ -211,7 +211,8 @@ int run(const SimulateOptions& options)
     try
     {
       bag = std::make_unique<ball_collision_sim::bridge::RunBag>(
-          options.bag_path, *world, ball_collision_sim::yaml::writeScene(scene), options.marker_rate);
+          options.bag_path, *world, file.node, ball_collision_sim::yaml::writeScene(file.scene, file.node),
+          options.marker_rate);
     }
     catch (const rosbag::BagException& e)
     {

@@ -43,8 +43,8 @@ std::string problemOf(const std::string& text)
 {
   try
   {
-    const Scene s = parseScene(text, "t.yaml");
-    const auto issues = ball_collision_sim::core::validate(s);
+    // the scene and the node's settings beside it, as simulate and the node check them
+    const auto issues = ball_collision_sim::yaml::validate(ball_collision_sim::yaml::parseSceneFile(text, "t.yaml"));
     return issues.empty() ? "" : "t.yaml: " + ball_collision_sim::core::joinIssues(issues);
   }
   catch (const SceneError& e)
@@ -202,12 +202,13 @@ TEST(BadScenes, EachGivesOneLineNamingTheKeyAndTheReason)
 
 TEST(BadScenes, IntegersAreAcceptedWhereRealsAreExpected)
 {
-  const Scene s = parseScene(
+  const auto file = ball_collision_sim::yaml::parseSceneFile(
       "floor: {type: plane, point: [-1, -1, 0], u: [2, 0, 0], v: [0, 2, 0]}\n"
       "walls: [{point: [-1, -1, 0], u: [2, 0, 0], v: [0, 0, 1], restitution: 1}]\n"
       "balls: [{position: [0, 0, 1], velocity: [1, -2, 0], radius: 1, mass: 3}]\n"
       "dt: 1\nrestitution: 0\ngravity: [0, 0, -10]\nreal_time_factor: 2\nmarker_rate: 10\n"
       "random_balls: {count: 0, radius: [1, 2], mass: [1, 1], speed: [0, 1]}");
+  const Scene& s = file.scene;
   EXPECT_TRUE(ball_collision_sim::core::validate(s).empty()) << ball_collision_sim::core::joinIssues(ball_collision_sim::core::validate(s));
   EXPECT_EQ(s.balls[0].radius, 1.0);
   EXPECT_EQ(s.balls[0].mass, 3.0);
@@ -215,7 +216,7 @@ TEST(BadScenes, IntegersAreAcceptedWhereRealsAreExpected)
   EXPECT_EQ(*s.walls[0].restitution, 1.0);
   EXPECT_EQ(s.dt, 1.0);
   EXPECT_EQ(s.gravity.z(), -10.0);
-  EXPECT_EQ(s.node.real_time_factor, 2.0);
+  EXPECT_EQ(file.node.real_time_factor, 2.0);
   EXPECT_EQ(s.random_balls->radius.max, 2.0);
 }
 

@@ -23,6 +23,7 @@
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -571,14 +572,19 @@ TEST(SceneParams, SameSceneAsTheYamlReader)
 {
   for (const char* name : {"default", "billiards", "bowl", "newtons_cradle", "random_gas"})
   {
-    const bcs::core::Scene from_params = bcs::bridge::loadSceneParams(ros::NodeHandle(std::string("/scenes/") + name));
-    const bcs::core::Scene from_yaml =
-        bcs::yaml::loadValidScene(std::string(BCS_CONFIG_DIR) + "/" + name + ".yaml");
+    const bcs::yaml::SceneFile params = bcs::bridge::loadSceneParams(ros::NodeHandle(std::string("/scenes/") + name));
+    const bcs::yaml::SceneFile file = bcs::yaml::loadValidSceneFile(std::string(BCS_CONFIG_DIR) + "/" + name + ".yaml");
+    const bcs::core::Scene& from_params = params.scene;
+    const bcs::core::Scene& from_yaml = file.scene;
     EXPECT_EQ(from_params.dt, from_yaml.dt) << name;
     EXPECT_EQ(from_params.gravity, from_yaml.gravity) << name;
     EXPECT_EQ(from_params.restitution, from_yaml.restitution) << name;
     EXPECT_EQ(from_params.walls.size(), from_yaml.walls.size()) << name;
-    EXPECT_EQ(from_params.node.real_time_factor, from_yaml.node.real_time_factor) << name;
+    EXPECT_EQ(params.node.real_time_factor, file.node.real_time_factor) << name;
+    std::vector<std::string> a = params.node_keys, b = file.node_keys;  // (the parameter server sorts them)
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    EXPECT_EQ(a, b) << name;
     // every ball, explicit or random, to the bit
     EXPECT_EQ(bcs::core::World(from_params).stateHash(), bcs::core::World(from_yaml).stateHash()) << name;
   }

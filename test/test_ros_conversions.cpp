@@ -29,11 +29,12 @@ TEST(ToYaml, KeepsTypesSoTheReaderJudgesThemAlike)
   tree["gravity"][0] = 0.0;
   tree["gravity"][1] = 0.0;
   tree["gravity"][2] = -9.81;
-  const core::Scene scene = yaml::parseScene(bridge::toYaml(tree), "params");
+  const yaml::SceneFile file = yaml::parseSceneFile(bridge::toYaml(tree), "params");
+  const core::Scene& scene = file.scene;
   EXPECT_EQ(scene.dt, 0.005);
   EXPECT_EQ(scene.restitution, 1.0);
   EXPECT_EQ(scene.frame_id, "map \"x\"");
-  EXPECT_TRUE(scene.node.start_paused);
+  EXPECT_TRUE(file.node.start_paused);
   EXPECT_EQ(scene.gravity.z(), -9.81);
 
   // a real where an integer is expected stays a real, and is refused
@@ -218,7 +219,7 @@ core::Scene headOnScene()
 TEST(BallColors, BySpeedFromBlueThroughMagentaToYellow)
 {
   bridge::BallColoring coloring;
-  coloring.mode = core::BallColor::kSpeed;
+  coloring.mode = BallColor::kSpeed;
   coloring.speed_max = 2.0;
   const auto still = bridge::ballColor(ballMoving(0, 0.0), coloring);
   const auto slow = bridge::ballColor(ballMoving(0, 0.5), coloring);
@@ -254,7 +255,7 @@ TEST(BallColors, BySpeedFromBlueThroughMagentaToYellow)
 TEST(BallColors, ByIdDoNotChangeWithSpeed)
 {
   bridge::BallColoring coloring;
-  coloring.mode = core::BallColor::kId;
+  coloring.mode = BallColor::kId;
   coloring.speed_max = 2.0;
   const auto still = bridge::ballColor(ballMoving(3, 0.0), coloring);
   EXPECT_TRUE(sameColor(still, bridge::ballColor(ballMoving(3, 1.9), coloring)));
@@ -267,23 +268,24 @@ TEST(BallColors, ByIdDoNotChangeWithSpeed)
 TEST(BallColors, SpeedScaleFromTheSettingsOrTheFastestBall)
 {
   core::Scene scene = headOnScene();
+  NodeSettings node;
   // speed_color_max 0: the fastest ball at the start, 1.5 m/s
-  bridge::BallColoring coloring = bridge::ballColoring(core::World(scene));
-  EXPECT_EQ(coloring.mode, core::BallColor::kSpeed);
+  bridge::BallColoring coloring = bridge::ballColoring(core::World(scene), node);
+  EXPECT_EQ(coloring.mode, BallColor::kSpeed);
   EXPECT_DOUBLE_EQ(coloring.speed_max, 1.5);
-  scene.node.speed_color_max = 4.0;
-  scene.node.ball_color = core::BallColor::kId;
-  coloring = bridge::ballColoring(core::World(scene));
-  EXPECT_EQ(coloring.mode, core::BallColor::kId);
+  node.speed_color_max = 4.0;
+  node.ball_color = BallColor::kId;
+  coloring = bridge::ballColoring(core::World(scene), node);
+  EXPECT_EQ(coloring.mode, BallColor::kId);
   EXPECT_DOUBLE_EQ(coloring.speed_max, 4.0);
   // every ball still: 1 m/s, not a division by zero
-  scene.node.speed_color_max = 0.0;
+  node.speed_color_max = 0.0;
   for (core::BallDef& b : scene.balls)
     b.velocity = core::Vec3::Zero();
-  EXPECT_DOUBLE_EQ(bridge::ballColoring(core::World(scene)).speed_max, 1.0);
+  EXPECT_DOUBLE_EQ(bridge::ballColoring(core::World(scene), node).speed_max, 1.0);
   // sphere lists (many balls) carry the same colours per point
   core::World world(headOnScene());
-  const bridge::BallColoring by_speed = bridge::ballColoring(world);
+  const bridge::BallColoring by_speed = bridge::ballColoring(world, NodeSettings());
   const auto lists = bridge::ballMarkers(world, "world", ros::Time(1.0), 1, by_speed);
   ASSERT_EQ(lists.markers.size(), 1u);
   ASSERT_EQ(lists.markers[0].colors.size(), 2u);
@@ -293,12 +295,12 @@ TEST(BallColors, SpeedScaleFromTheSettingsOrTheFastestBall)
 
 TEST(SceneYaml, BallColorSettingsAreCheckedByName)
 {
-  EXPECT_EQ(yaml::parseScene("ball_color: id").node.ball_color, core::BallColor::kId);
-  EXPECT_EQ(yaml::parseScene("ball_color: speed").node.ball_color, core::BallColor::kSpeed);
-  EXPECT_EQ(yaml::parseScene("{}").node.ball_color, core::BallColor::kSpeed);
-  EXPECT_EQ(yaml::parseScene("speed_color_max: 3").node.speed_color_max, 3.0);
-  EXPECT_FALSE(yaml::parseScene("collision_flashes: false").node.collision_flashes);
-  EXPECT_TRUE(yaml::parseScene("{}").node.collision_flashes);
+  EXPECT_EQ(yaml::parseSceneFile("ball_color: id").node.ball_color, BallColor::kId);
+  EXPECT_EQ(yaml::parseSceneFile("ball_color: speed").node.ball_color, BallColor::kSpeed);
+  EXPECT_EQ(yaml::parseSceneFile("{}").node.ball_color, BallColor::kSpeed);
+  EXPECT_EQ(yaml::parseSceneFile("speed_color_max: 3").node.speed_color_max, 3.0);
+  EXPECT_FALSE(yaml::parseSceneFile("collision_flashes: false").node.collision_flashes);
+  EXPECT_TRUE(yaml::parseSceneFile("{}").node.collision_flashes);
   auto error = [](const std::string& text) {
     try
     {
@@ -320,7 +322,7 @@ TEST(SceneYaml, BallColorSettingsAreCheckedByName)
   // the parameter server's strings come through toYaml quoted, and are read alike
   XmlRpc::XmlRpcValue params;
   params["ball_color"] = std::string("id");
-  EXPECT_EQ(yaml::parseScene(bridge::toYaml(params)).node.ball_color, core::BallColor::kId);
+  EXPECT_EQ(yaml::parseSceneFile(bridge::toYaml(params)).node.ball_color, BallColor::kId);
   params["ball_color"] = std::string("fast");
   EXPECT_NE(error(bridge::toYaml(params)).find("ball_color: expected speed or id"), std::string::npos);
 }
@@ -384,12 +386,12 @@ TEST(CollisionFlashes, InTheBagAtTheContactPointOnlyWhenSwitchedOn)
 {
   for (const bool on : {true, false})
   {
-    core::Scene scene = headOnScene();
-    scene.node.collision_flashes = on;
-    core::World world(scene);
+    NodeSettings node;
+    node.collision_flashes = on;
+    core::World world(headOnScene());
     const std::string path = "/tmp/bcs_flashes_" + std::to_string(getpid()) + (on ? "_on" : "_off") + ".bag";
     {
-      bridge::RunBag bag(path, world, "{}", 20.0);  // markers every 5 steps
+      bridge::RunBag bag(path, world, node, "{}", 20.0);  // markers every 5 steps
       for (int k = 0; k < 60; ++k)
       {
         world.step();

@@ -25,6 +25,7 @@ using ball_collision_sim::core::Vec3;
 using ball_collision_sim::yaml::loadSceneFile;
 using ball_collision_sim::yaml::loadValidScene;
 using ball_collision_sim::yaml::parseScene;
+using ball_collision_sim::yaml::parseSceneFile;
 using ball_collision_sim::yaml::SceneError;
 
 const std::string kDataDir = BCS_TEST_DATA_DIR;
@@ -72,7 +73,7 @@ void expectVec(const Vec3& actual, double x, double y, double z)
 
 TEST(SceneYaml, ReadsEveryField)
 {
-  const Scene scene = parseScene(R"(
+  const auto file = parseSceneFile(R"(
 frame_id: map
 dt: 0.005
 real_time_factor: 0.5
@@ -104,12 +105,13 @@ marker_rate: 30
 tf_rate: 50.5
 tf_max_balls: 100
 )");
+  const Scene& scene = file.scene;
   EXPECT_EQ(scene.frame_id, "map");
   EXPECT_EQ(scene.dt, 0.005);
-  EXPECT_EQ(scene.node.real_time_factor, 0.5);
-  EXPECT_EQ(scene.node.marker_rate, 30);
-  EXPECT_EQ(scene.node.tf_rate, 50.5);
-  EXPECT_EQ(scene.node.tf_max_balls, 100);
+  EXPECT_EQ(file.node.real_time_factor, 0.5);
+  EXPECT_EQ(file.node.marker_rate, 30);
+  EXPECT_EQ(file.node.tf_rate, 50.5);
+  EXPECT_EQ(file.node.tf_max_balls, 100);
   expectVec(scene.gravity, 0.1, -0.2, -9.5);
   EXPECT_EQ(scene.restitution, 0.9);
 
@@ -176,10 +178,11 @@ TEST(SceneYaml, ReadsAPlaneFloor)
 TEST(SceneYaml, AppliesTheDocumentedDefaults)
 {
   const Scene defaults;
-  const Scene scene = parseScene("balls: [{position: [1, 2, 3], radius: 0.5}]\nfloor: {}\nrandom_balls: {count: 3}");
+  const auto file = parseSceneFile("balls: [{position: [1, 2, 3], radius: 0.5}]\nfloor: {}\nrandom_balls: {count: 3}");
+  const Scene& scene = file.scene;
   EXPECT_EQ(scene.frame_id, "world");
   EXPECT_EQ(scene.dt, 0.01);
-  EXPECT_EQ(scene.node.real_time_factor, 1.0);
+  EXPECT_EQ(file.node.real_time_factor, 1.0);
   expectVec(scene.gravity, 0, 0, -9.81);
   EXPECT_EQ(scene.restitution, 1.0);
   EXPECT_TRUE(scene.walls.empty());
@@ -224,9 +227,10 @@ TEST(SceneYaml, EmptySectionsMeanAbsent)
 
 TEST(SceneYaml, AcceptsIntegersWhereRealsAreExpected)
 {
-  const Scene scene = parseScene(
+  const auto file = parseSceneFile(
       "dt: 1\nrestitution: 0\ngravity: [0, 0, -10]\nballs: [{position: [1, -2, +3], radius: 1, mass: 2}]\n"
       "random_balls: {count: +4, radius: [1, 2]}\nreal_time_factor: 0");
+  const Scene& scene = file.scene;
   EXPECT_EQ(scene.dt, 1.0);
   EXPECT_EQ(scene.restitution, 0.0);
   expectVec(scene.gravity, 0, 0, -10);
@@ -235,7 +239,7 @@ TEST(SceneYaml, AcceptsIntegersWhereRealsAreExpected)
   EXPECT_EQ(scene.balls[0].mass, 2.0);
   EXPECT_EQ(scene.random_balls->count, 4);
   EXPECT_EQ(scene.random_balls->radius.min, 1.0);
-  EXPECT_EQ(scene.node.real_time_factor, 0.0);
+  EXPECT_EQ(file.node.real_time_factor, 0.0);
 }
 
 TEST(SceneYaml, AcceptsNumberSpellings)
@@ -274,15 +278,15 @@ TEST(SceneYaml, AcceptsAndIgnoresNodeOnlyKeys)
     else
       text += std::string(key) + ": 10\n";
   }
-  const auto scene = parseScene(text);
-  EXPECT_EQ(scene.node.marker_rate, 10);
-  EXPECT_EQ(scene.node.tf_max_balls, 10);
-  EXPECT_FALSE(scene.node.publish_collisions);
-  EXPECT_FALSE(scene.node.collision_flashes);
-  EXPECT_EQ(scene.node.ball_color, ball_collision_sim::core::BallColor::kId);
-  EXPECT_EQ(scene.node.speed_color_max, 10);
-  EXPECT_EQ(scene.node.publish_clock, false);
-  EXPECT_EQ(scene.node.frame_prefix, "sim_a/");
+  const auto file = parseSceneFile(text);
+  EXPECT_EQ(file.node.marker_rate, 10);
+  EXPECT_EQ(file.node.tf_max_balls, 10);
+  EXPECT_FALSE(file.node.publish_collisions);
+  EXPECT_FALSE(file.node.collision_flashes);
+  EXPECT_EQ(file.node.ball_color, ball_collision_sim::BallColor::kId);
+  EXPECT_EQ(file.node.speed_color_max, 10);
+  EXPECT_EQ(file.node.publish_clock, false);
+  EXPECT_EQ(file.node.frame_prefix, "sim_a/");
   EXPECT_EQ(errorOf("tf_rate: fast"), "t.yaml: tf_rate: expected a number, got fast");
   EXPECT_EQ(errorOf("frame_prefix: /a/"), "t.yaml: frame_prefix: must not start with '/' (tf2 frame names do not), got \"/a/\"");
   EXPECT_EQ(errorOf("publish_clock: yes"), "t.yaml: publish_clock: expected true or false, got yes");
@@ -595,31 +599,33 @@ TEST(SceneWriter, WritesWhatReadsBackToTheSameBits)
   paths.push_back(kDataDir + "/good_small.yaml");
   for (const std::string& path : paths)
   {
-    const Scene scene = loadValidScene(path);
-    const std::string text = writeScene(scene);
-    const Scene again = parseScene(text, path + " (written)");
-    EXPECT_EQ(writeScene(again), text) << path;
-    EXPECT_EQ(World(again).stateHash(), World(scene).stateHash()) << path;
-    EXPECT_EQ(again.restitution, scene.restitution) << path;
-    EXPECT_EQ(again.node.real_time_factor, scene.node.real_time_factor) << path;
-    EXPECT_EQ(again.walls.size(), scene.walls.size()) << path;
+    const auto file = ball_collision_sim::yaml::loadValidSceneFile(path);
+    const std::string text = writeScene(file.scene, file.node);
+    const auto again = parseSceneFile(text, path + " (written)");
+    EXPECT_EQ(writeScene(again.scene, again.node), text) << path;
+    EXPECT_EQ(World(again.scene).stateHash(), World(file.scene).stateHash()) << path;
+    EXPECT_EQ(again.scene.restitution, file.scene.restitution) << path;
+    EXPECT_EQ(again.node.real_time_factor, file.node.real_time_factor) << path;
+    EXPECT_EQ(again.node.max_balls, file.node.max_balls) << path;
+    EXPECT_EQ(again.scene.walls.size(), file.scene.walls.size()) << path;
   }
   Scene odd;
   odd.dt = 0.1 + 0.2;  // 0.30000000000000004: 17 digits are the shortest here
   odd.restitution = 0.15;
   odd.gravity = Vec3(1e-7, -3, 2.5e20);
   odd.frame_id = "map \"x\"";
-  odd.node.frame_prefix = "";
-  const std::string text = writeScene(odd);
+  ball_collision_sim::NodeSettings node;
+  node.frame_prefix = "";
+  const std::string text = writeScene(odd, node);
   EXPECT_NE(text.find("dt: 0.30000000000000004\n"), std::string::npos) << text;
   EXPECT_NE(text.find("restitution: 0.15\n"), std::string::npos) << text;
   // reals stay reals for YAML 1.1 readers (rosparam): a point, and a signed exponent
   EXPECT_NE(text.find("gravity: [1.0e-07, -3.0, 2.5e+20]\n"), std::string::npos) << text;
   EXPECT_NE(text.find("frame_prefix: \"\"\n"), std::string::npos) << text;
-  const Scene back = parseScene(text);
-  EXPECT_EQ(back.dt, odd.dt);
-  EXPECT_EQ(back.gravity, odd.gravity);
-  EXPECT_EQ(back.frame_id, odd.frame_id);
+  const auto back = parseSceneFile(text);
+  EXPECT_EQ(back.scene.dt, odd.dt);
+  EXPECT_EQ(back.scene.gravity, odd.gravity);
+  EXPECT_EQ(back.scene.frame_id, odd.frame_id);
   EXPECT_EQ(back.node.frame_prefix, "");
   EXPECT_FALSE(back.node.publish_clock.has_value());
 }

@@ -264,23 +264,6 @@ std::vector<SceneIssue> validate(const Scene& scene)
     check.fail("frame_id", "must not be empty");
   if (check.finite("dt", scene.dt) && !(scene.dt > 0 && scene.dt <= 10))
     check.fail("dt", "must be in (0, 10] s (got " + formatNumber(scene.dt) + ")");
-  const NodeSettings& node = scene.node;
-  if (check.finite("real_time_factor", node.real_time_factor) && node.real_time_factor < 0)
-    check.fail("real_time_factor", "must be >= 0 (0 = as fast as possible)");
-  for (const auto& [key, rate] : {std::pair{"marker_rate", node.marker_rate}, std::pair{"tf_rate", node.tf_rate},
-                                  std::pair{"state_rate", node.state_rate}})
-    if (check.finite(key, rate) && !(rate >= 0 && rate <= 1e6))
-      check.fail(key, "must be in [0, 1e6] Hz (got " + formatNumber(rate) + ")");
-  if (node.marker_list_threshold < 0)
-    check.fail("marker_list_threshold", "must be >= 0 (got " + std::to_string(node.marker_list_threshold) + ")");
-  if (node.max_balls < 1)
-    check.fail("max_balls", "must be >= 1 (got " + std::to_string(node.max_balls) + ")");
-  if (node.tf_max_balls < 0)
-    check.fail("tf_max_balls", "must be >= 0 (got " + std::to_string(node.tf_max_balls) + ")");
-  if (check.finite("status_period", node.status_period) && !(node.status_period >= 0 && node.status_period <= 1e6))
-    check.fail("status_period", "must be in [0, 1e6] s (0 = no status line; got " + formatNumber(node.status_period) + ")");
-  check.positive("click_radius", node.click_radius, kMinLength, kMaxLength, "m");
-  check.positive("click_mass", node.click_mass, kMinMass, kMaxMass, "kg");
   const bool gravity_ok = check.bounded("gravity", scene.gravity, 1e6, "m/s^2");
   check.unitInterval("restitution", scene.restitution);
 

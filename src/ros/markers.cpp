@@ -101,7 +101,7 @@ visualization_msgs::Marker wallMarker(const core::Wall& wall, const std::string&
 
 std_msgs::ColorRGBA ballColor(const core::Ball& ball, const BallColoring& coloring)
 {
-  if (coloring.mode == core::BallColor::kId)
+  if (coloring.mode == BallColor::kId)
     return hue(0.61803398875 * ball.id + 0.05, 0.95, 1.0);
   const double t = coloring.speed_max > 0 ? std::clamp(ball.velocity.norm() / coloring.speed_max, 0.0, 1.0) : 1.0;
   const std_msgs::ColorRGBA slow = rgba(0.2, 0.35, 1.0, 1.0), middle = rgba(0.9, 0.15, 0.65, 1.0),

@@ -95,7 +95,7 @@ bool SimulatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
 
 bool SimulatorNode::onLoadScene(LoadScene::Request& req, LoadScene::Response& res)
 {
-  RequestedScene requested;
+  yaml::SceneFile requested;
   try
   {
     requested = sceneOfRequest(req);  // the reading and checking needs no lock
@@ -106,12 +106,12 @@ bool SimulatorNode::onLoadScene(LoadScene::Request& req, LoadScene::Response& re
     res.message = e.what();
     return true;
   }
-  core::Scene in_use;
+  NodeSettings in_use;
   {
     const Lock guard = lock();
     cancel_run_ = running_;
-    core::NodeSettings node = settings_.node;
-    copyKeys(requested.node_keys, requested.scene.node, node);
+    NodeSettings node = settings_.node;
+    copyKeys(requested.node_keys, requested.node, node);
     const auto& keys = requested.node_keys;
     if (std::find(keys.begin(), keys.end(), "start_paused") != keys.end())
       paused_ = node.start_paused;
@@ -123,19 +123,18 @@ bool SimulatorNode::onLoadScene(LoadScene::Request& req, LoadScene::Response& re
     coloring_ = ballColoring(world_, settings_.node);  // the speed scale of the new world
     restartTimer();  // the new scene's dt
     lost_total_ = 0;
-    in_use = world_.scene();
-    in_use.node = settings_.node;
+    in_use = settings_.node;
     std_msgs::String text;
-    text.data = yaml::writeScene(in_use);
+    text.data = yaml::writeScene(world_.scene(), in_use);
     scene_pub_.publish(text);
     redraw();
     res.message = "loaded " + scene_source_ + ": " + std::to_string(world_.balls().size()) + " balls, " +
                   std::to_string(world_.walls().size()) + " walls" + (paused_ ? ", paused" : "");
   }
   // the master and dynamic_reconfigure's clients learn of it after the lock is let go
-  writeSceneParams(pnh_, in_use);
+  writeSceneParams(pnh_, requested.scene, in_use);
   if (reconfigure_)
-    reconfigure_->updateConfig(toConfig(in_use.node));
+    reconfigure_->updateConfig(toConfig(in_use));
   res.success = true;
   ROS_INFO("ball_sim: %s", res.message.c_str());
   return true;
@@ -192,7 +191,7 @@ void SimulatorNode::onClickedPoint(const geometry_msgs::PointStamped& msg)
 void SimulatorNode::onReconfigure(SimulatorConfig& config, std::uint32_t)
 {
   const Lock guard = lock();
-  core::NodeSettings node = settings_.node;
+  NodeSettings node = settings_.node;
   for (const std::string& refused : applyConfig(config, node))
     ROS_WARN("ball_sim: dynamic_reconfigure: %s; kept the value in use", refused.c_str());
   applySettings(node);  // dynamic_reconfigure writes the values back to the parameters

@@ -14,7 +14,7 @@ std::string defaultFramePrefix(const std::string& ns)
   return prefix.empty() ? prefix : prefix + "/";
 }
 
-ResolvedSettings resolve(const core::NodeSettings& node, const std::string& ns)
+ResolvedSettings resolve(const NodeSettings& node, const std::string& ns)
 {
   ResolvedSettings out;
   out.node = node;
@@ -25,7 +25,7 @@ ResolvedSettings resolve(const core::NodeSettings& node, const std::string& ns)
   return out;
 }
 
-void copyKeys(const std::vector<std::string>& keys, const core::NodeSettings& from, core::NodeSettings& to)
+void copyKeys(const std::vector<std::string>& keys, const NodeSettings& from, NodeSettings& to)
 {
   for (const std::string& key : keys)
   {
@@ -66,7 +66,7 @@ void copyKeys(const std::vector<std::string>& keys, const core::NodeSettings& fr
   }
 }
 
-SimulatorConfig toConfig(const core::NodeSettings& node)
+SimulatorConfig toConfig(const NodeSettings& node)
 {
   SimulatorConfig config = SimulatorConfig::__getDefault__();
   config.real_time_factor = node.real_time_factor;
@@ -80,13 +80,13 @@ SimulatorConfig toConfig(const core::NodeSettings& node)
   config.status_period = node.status_period;
   config.max_balls = node.max_balls;
   config.marker_list_threshold = node.marker_list_threshold;
-  config.ball_color = node.ball_color == core::BallColor::kSpeed ? "speed" : "id";
+  config.ball_color = node.ball_color == BallColor::kSpeed ? "speed" : "id";
   config.speed_color_max = node.speed_color_max;
   config.collision_flashes = node.collision_flashes;
   return config;
 }
 
-std::vector<std::string> applyConfig(SimulatorConfig& config, core::NodeSettings& node)
+std::vector<std::string> applyConfig(SimulatorConfig& config, NodeSettings& node)
 {
   std::vector<std::string> kept;
   // dynamic_reconfigure has clamped every number to its bounds, which are the scene's;
@@ -114,11 +114,11 @@ std::vector<std::string> applyConfig(SimulatorConfig& config, core::NodeSettings
   node.publish_collisions = config.publish_collisions;
   node.collision_flashes = config.collision_flashes;
   if (config.ball_color == "speed" || config.ball_color == "id")
-    node.ball_color = config.ball_color == "speed" ? core::BallColor::kSpeed : core::BallColor::kId;
+    node.ball_color = config.ball_color == "speed" ? BallColor::kSpeed : BallColor::kId;
   else
   {
     kept.push_back("ball_color: expected speed or id, got \"" + config.ball_color + "\"");
-    config.ball_color = node.ball_color == core::BallColor::kSpeed ? "speed" : "id";
+    config.ball_color = node.ball_color == BallColor::kSpeed ? "speed" : "id";
   }
   return kept;
 }

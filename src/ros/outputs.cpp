@@ -39,12 +39,7 @@ tf2_msgs::TFMessage transformsMessage(const core::World& world, const std::strin
   return msg;
 }
 
-BallColoring ballColoring(const core::World& world)
-{
-  return ballColoring(world, world.scene().node);
-}
-
-BallColoring ballColoring(const core::World& world, const core::NodeSettings& node)
+BallColoring ballColoring(const core::World& world, const NodeSettings& node)
 {
   BallColoring coloring;
   coloring.mode = node.ball_color;

@@ -168,17 +168,17 @@ std::string resolvePath(const std::string& path)
 }
 }  // namespace
 
-RequestedScene sceneOfRequest(const LoadScene::Request& req)
+yaml::SceneFile sceneOfRequest(const LoadScene::Request& req)
 {
   if (req.path.empty() == req.yaml.empty())
     throw yaml::SceneError(req.path.empty() ? "path: missing (give a scene file in path, or its text in yaml)"
                                             : "yaml: give either path or yaml, not both");
   const std::string source = req.path.empty() ? "yaml" : resolvePath(req.path);
-  const std::string text = req.path.empty() ? req.yaml : yaml::readSceneFile(source);
-  RequestedScene out{yaml::parseScene(text, source), yaml::nodeKeysIn(text)};
-  const std::vector<core::SceneIssue> issues = core::validate(out.scene);
+  const std::string text = req.path.empty() ? req.yaml : yaml::readTextFile(source);
+  yaml::SceneFile file = yaml::parseSceneFile(text, source);
+  const std::vector<core::SceneIssue> issues = yaml::validate(file);
   if (!issues.empty())
     throw yaml::SceneError(source + ": " + core::joinIssues(issues));
-  return out;
+  return file;
 }
 }  // namespace ball_collision_sim::bridge

@@ -15,15 +15,17 @@
 
 namespace ball_collision_sim::bridge
 {
-RunBag::RunBag(const std::string& path, const core::World& world, const std::string& scene_yaml, double marker_rate)
+RunBag::RunBag(const std::string& path, const core::World& world, const NodeSettings& node,
+               const std::string& scene_yaml, double marker_rate)
     : path_(path)
     , active_path_(path + ".active")
     , frame_id_(world.scene().frame_id)
-    , state_every_(stepsPer(world.scene().node.state_rate, world.dt()))
-    , tf_every_(world.scene().node.tf_rate > 0 ? stepsPer(world.scene().node.tf_rate, world.dt()) : 0)
+    , state_every_(stepsPer(node.state_rate, world.dt()))
+    , tf_every_(node.tf_rate > 0 ? stepsPer(node.tf_rate, world.dt()) : 0)
     , marker_every_(marker_rate > 0 ? stepsPer(marker_rate, world.dt()) : 0)
-    , tf_max_balls_(static_cast<std::size_t>(world.scene().node.tf_max_balls))
-    , coloring_(ballColoring(world))
+    , tf_max_balls_(static_cast<std::size_t>(node.tf_max_balls))
+    , node_(node)
+    , coloring_(ballColoring(world, node))
 {
   bag_.open(active_path_, rosbag::bagmode::Write);
   const ros::Time stamp(world.time());
@@ -63,7 +65,7 @@ void RunBag::writeView(const core::World& world, const ros::Time& stamp)
   if (world.stats().steps == 0 || (marker_every_ > 0 && world.stats().steps % marker_every_ == 0))
   {
     visualization_msgs::MarkerArray markers = ballMarkers(
-        world, frame_id_, stamp, static_cast<std::size_t>(world.scene().node.marker_list_threshold), coloring_);
+        world, frame_id_, stamp, static_cast<std::size_t>(node_.marker_list_threshold), coloring_);
     const std::vector<visualization_msgs::Marker> flashes = flashes_.take(frame_id_, stamp);
     markers.markers.insert(markers.markers.end(), flashes.begin(), flashes.end());
     write("/ball_sim/markers", stamp, markers);
@@ -74,7 +76,7 @@ void RunBag::afterStep(const core::World& world)
 {
   const ros::Time stamp(world.time());
   write("/clock", stamp, clockMessage(stamp));
-  if (world.scene().node.publish_collisions)
+  if (node_.publish_collisions)
     for (const core::CollisionEvent& event : world.lastEvents())
     {
       const auto msg = toMsg(event, frame_id_);
@@ -82,7 +84,7 @@ void RunBag::afterStep(const core::World& world)
     }
   if (world.stats().steps % state_every_ == 0)
     write("/ball_sim/ball_states", stamp, statesMessage(world, frame_id_, stamp));
-  if (marker_every_ > 0 && world.scene().node.collision_flashes)
+  if (marker_every_ > 0 && node_.collision_flashes)
     flashes_.add(world.lastEvents());
   writeView(world, stamp);
 }

@@ -100,20 +100,17 @@ std::string toYaml(XmlRpc::XmlRpcValue& value)
   }
 }
 
-core::Scene loadSceneParams(const ros::NodeHandle& nh, std::string* yaml_text)
+yaml::SceneFile loadSceneParams(const ros::NodeHandle& nh)
 {
   const std::string source = "parameter server (" + nh.getNamespace() + ")";
   XmlRpc::XmlRpcValue tree;
   if (!nh.getParam(nh.getNamespace(), tree) || tree.getType() != XmlRpc::XmlRpcValue::TypeStruct)
     throw yaml::SceneError(source + ": no scene there (load one with <rosparam command=\"load\" file=\"SCENE.yaml\"/>)");
-  const std::string text = toYaml(tree);
-  const core::Scene scene = yaml::parseScene(text, source);
-  const std::vector<core::SceneIssue> issues = core::validate(scene);
+  yaml::SceneFile file = yaml::parseSceneFile(toYaml(tree), source);
+  const std::vector<core::SceneIssue> issues = yaml::validate(file);
   if (!issues.empty())
     throw yaml::SceneError(source + ": " + core::joinIssues(issues));
-  if (yaml_text)
-    *yaml_text = text;
-  return scene;
+  return file;
 }
 namespace
 {
@@ -165,8 +162,8 @@ XmlRpc::XmlRpcValue toXmlRpc(const std::string& yaml_text)
   return toXmlRpc(YAML::Load(yaml_text));
 }
 
-void writeSceneParams(const ros::NodeHandle& nh, const core::Scene& scene)
+void writeSceneParams(const ros::NodeHandle& nh, const core::Scene& scene, const NodeSettings& node)
 {
-  ros::param::set(nh.getNamespace(), toXmlRpc(yaml::writeScene(scene)));
+  ros::param::set(nh.getNamespace(), toXmlRpc(yaml::writeScene(scene, node)));
 }
 }  // namespace ball_collision_sim::bridge

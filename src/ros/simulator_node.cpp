@@ -33,18 +33,15 @@ double timerPeriod(double dt, double factor)
   return factor > 0 ? std::clamp(dt / factor, 1e-3, kStepBudget) : 1e-3;
 }
 
-/// The scene as the node runs it: its settings with frame_prefix and publish_clock made definite.
-core::Scene sceneInUse(const core::World& world, const ResolvedSettings& settings)
-{
-  core::Scene scene = world.scene();
-  scene.node = settings.node;
-  return scene;
-}
 }  // namespace
 
-SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-    : world_(loadSceneParams(pnh))
-    , settings_(resolve(world_.scene().node, nh.getNamespace()))
+SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh) : SimulatorNode(nh, pnh, loadSceneParams(pnh))
+{
+}
+
+SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh, const yaml::SceneFile& file)
+    : world_(file.scene)
+    , settings_(resolve(file.node, nh.getNamespace()))
     , frame_id_(world_.scene().frame_id)
     , coloring_(ballColoring(world_, settings_.node))
     , paused_(settings_.node.start_paused)
@@ -54,7 +51,7 @@ SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
 {
   state_every_ = stepsPer(settings_.node.state_rate, world_.dt());
   // What the node runs, every default spelled out, back where the scene came from.
-  writeSceneParams(pnh_, sceneInUse(world_, settings_));
+  writeSceneParams(pnh_, world_.scene(), settings_.node);
   advertise();
 
   anchorClock();
@@ -119,7 +116,7 @@ void SimulatorNode::advertise()
   applyWiring(settings_);
   scene_pub_ = pnh_.advertise<std_msgs::String>("scene", 1, true);
   std_msgs::String scene;
-  scene.data = yaml::writeScene(sceneInUse(world_, settings_));
+  scene.data = yaml::writeScene(world_.scene(), settings_.node);
   scene_pub_.publish(scene);
 
   services_.push_back(pnh_.advertiseService("get_state", &SimulatorNode::onGetState, this));
@@ -412,9 +409,9 @@ void SimulatorNode::applyWiring(const ResolvedSettings& settings)
   settings_.node.publish_clock = settings.publish_clock;
 }
 
-void SimulatorNode::applySettings(const core::NodeSettings& node)
+void SimulatorNode::applySettings(const NodeSettings& node)
 {
-  const core::NodeSettings old = settings_.node;
+  const NodeSettings old = settings_.node;
   settings_.node = node;
   settings_.node.frame_prefix = settings_.frame_prefix;
   settings_.node.publish_clock = settings_.publish_clock;

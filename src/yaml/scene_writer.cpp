@@ -80,7 +80,7 @@ void writeRandomBalls(std::ostream& out, const core::RandomBallsDef& random)
     out << "  region: {min: " << vec(random.region->min) << ", max: " << vec(random.region->max) << "}\n";
 }
 
-void writeNodeSettings(std::ostream& out, const core::NodeSettings& node)
+void writeNodeSettings(std::ostream& out, const NodeSettings& node)
 {
   auto flag = [](bool value) { return value ? "true" : "false"; };
   out << "real_time_factor: " << real(node.real_time_factor) << "\nmarker_rate: " << real(node.marker_rate)
@@ -89,7 +89,7 @@ void writeNodeSettings(std::ostream& out, const core::NodeSettings& node)
       << "\nstart_paused: " << flag(node.start_paused) << "\nclick_radius: " << real(node.click_radius)
       << "\nclick_mass: " << real(node.click_mass) << "\nstatus_period: " << real(node.status_period)
       << "\nmax_balls: " << node.max_balls << "\nmarker_list_threshold: " << node.marker_list_threshold
-      << "\nball_color: " << (node.ball_color == core::BallColor::kSpeed ? "speed" : "id")
+      << "\nball_color: " << (node.ball_color == BallColor::kSpeed ? "speed" : "id")
       << "\nspeed_color_max: " << real(node.speed_color_max)
       << "\ncollision_flashes: " << flag(node.collision_flashes) << "\n";
   if (node.publish_clock)
@@ -99,7 +99,7 @@ void writeNodeSettings(std::ostream& out, const core::NodeSettings& node)
 }
 }  // namespace
 
-std::string writeScene(const core::Scene& scene)
+std::string writeScene(const core::Scene& scene, const NodeSettings& node)
 {
   std::ostringstream out;
   out << "frame_id: " << quoted(scene.frame_id) << "\ndt: " << real(scene.dt) << "\ngravity: " << vec(scene.gravity)
@@ -120,7 +120,7 @@ std::string writeScene(const core::Scene& scene)
         << ", radius: " << real(ball.radius) << ", mass: " << real(ball.mass) << "}\n";
   if (scene.random_balls)
     writeRandomBalls(out, *scene.random_balls);
-  writeNodeSettings(out, scene.node);
+  writeNodeSettings(out, node);
   return out.str();
 }
 }  // namespace ball_collision_sim::yaml

@@ -1,11 +1,14 @@
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
 
+#include "ball_collision_sim/core/format.hpp"
+
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -566,7 +569,7 @@ bool readBool(const YAML::Node& node, const std::string& key)
 
 // The node's own settings: kept in the scene so that one reader and one validate()
 // serve the node and the offline tool.
-void readNodeSettings(const MapFields& fields, core::NodeSettings& node)
+void readNodeSettings(const MapFields& fields, NodeSettings& node)
 {
   auto number = [&](const char* name, double& out) {
     if (const YAML::Node* value = fields.find(name))
@@ -609,7 +612,7 @@ void readNodeSettings(const MapFields& fields, core::NodeSettings& node)
   {
     if (!value->IsScalar() || (value->Scalar() != "speed" && value->Scalar() != "id"))
       fail("ball_color", "expected speed or id, got " + describe(*value));
-    node.ball_color = value->Scalar() == "speed" ? core::BallColor::kSpeed : core::BallColor::kId;
+    node.ball_color = value->Scalar() == "speed" ? BallColor::kSpeed : BallColor::kId;
   }
   if (const YAML::Node* value = fields.find("speed_color_max"))
   {
@@ -619,7 +622,7 @@ void readNodeSettings(const MapFields& fields, core::NodeSettings& node)
   }
 }
 
-core::Scene readScene(const YAML::Node& root)
+SceneFile readSceneFile(const YAML::Node& root)
 {
   if (!root.IsMap())
   {
@@ -630,7 +633,8 @@ core::Scene readScene(const YAML::Node& root)
   allowed.insert(allowed.end(), kNodeOnlyKeys.begin(), kNodeOnlyKeys.end());
   const MapFields fields(root, "", allowed);
 
-  core::Scene scene;
+  SceneFile file;
+  core::Scene& scene = file.scene;
   if (const YAML::Node* frame_id = fields.find("frame_id"))
   {
     scene.frame_id = readString(*frame_id, "frame_id");
@@ -665,8 +669,14 @@ core::Scene readScene(const YAML::Node& root)
   {
     scene.random_balls = readRandomBalls(*random, "random_balls");
   }
-  readNodeSettings(fields, scene.node);
-  return scene;
+  readNodeSettings(fields, file.node);
+  for (const auto& item : root)
+  {
+    const std::string key = item.first.Scalar();
+    if (std::find(kNodeOnlyKeys.begin(), kNodeOnlyKeys.end(), key) != kNodeOnlyKeys.end())
+      file.node_keys.push_back(key);
+  }
+  return file;
 }
 
 // Sees a document's events and ignores them: for counting documents.
@@ -700,7 +710,7 @@ std::string withMark(const std::string& source, const YAML::Mark& mark)
 }
 }  // namespace
 
-core::Scene parseScene(const std::string& yaml_text, const std::string& source_name)
+SceneFile parseSceneFile(const std::string& yaml_text, const std::string& source_name)
 {
   // YAML allows no NUL; yaml-cpp stops reading at one and then yields empty documents
   // without end, so a binary file is refused here, by the offset of its first NUL.
@@ -740,7 +750,7 @@ core::Scene parseScene(const std::string& yaml_text, const std::string& source_n
   }
   try
   {
-    return readScene(root);
+    return readSceneFile(root);
   }
   catch (const KeyError& e)
   {
@@ -753,7 +763,52 @@ core::Scene parseScene(const std::string& yaml_text, const std::string& source_n
   }
 }
 
-std::string readSceneFile(const std::string& path)
+core::Scene parseScene(const std::string& yaml_text, const std::string& source_name)
+{
+  return parseSceneFile(yaml_text, source_name).scene;
+}
+
+std::vector<core::SceneIssue> validateNodeSettings(const NodeSettings& node)
+{
+  using core::formatNumber;
+  std::vector<core::SceneIssue> issues;
+  const auto fail = [&](const char* key, const std::string& reason) { issues.push_back({key, reason}); };
+  const auto finite = [&](const char* key, double value) {
+    if (!std::isfinite(value))
+      fail(key, "must be finite (got " + formatNumber(value) + ")");
+    return std::isfinite(value);
+  };
+  // > 0 and within [least, most]
+  const auto positive = [&](const char* key, double value, double least, double most, const char* unit) {
+    if (!finite(key, value))
+      return;
+    if (!(value > 0))
+      fail(key, "must be > 0 (got " + formatNumber(value) + ")");
+    else if (value < least)
+      fail(key, "must be >= " + formatNumber(least) + " " + unit + " (got " + formatNumber(value) + ")");
+    else if (value > most)
+      fail(key, "must be <= " + formatNumber(most) + " " + unit + " (got " + formatNumber(value) + ")");
+  };
+  if (finite("real_time_factor", node.real_time_factor) && node.real_time_factor < 0)
+    fail("real_time_factor", "must be >= 0 (0 = as fast as possible)");
+  for (const auto& [key, rate] : {std::pair{"marker_rate", node.marker_rate}, std::pair{"tf_rate", node.tf_rate},
+                                  std::pair{"state_rate", node.state_rate}})
+    if (finite(key, rate) && !(rate >= 0 && rate <= 1e6))
+      fail(key, "must be in [0, 1e6] Hz (got " + formatNumber(rate) + ")");
+  if (node.marker_list_threshold < 0)
+    fail("marker_list_threshold", "must be >= 0 (got " + std::to_string(node.marker_list_threshold) + ")");
+  if (node.max_balls < 1)
+    fail("max_balls", "must be >= 1 (got " + std::to_string(node.max_balls) + ")");
+  if (node.tf_max_balls < 0)
+    fail("tf_max_balls", "must be >= 0 (got " + std::to_string(node.tf_max_balls) + ")");
+  if (finite("status_period", node.status_period) && !(node.status_period >= 0 && node.status_period <= 1e6))
+    fail("status_period", "must be in [0, 1e6] s (0 = no status line; got " + formatNumber(node.status_period) + ")");
+  positive("click_radius", node.click_radius, core::kMinLength, core::kMaxLength, "m");
+  positive("click_mass", node.click_mass, core::kMinMass, core::kMaxMass, "kg");
+  return issues;
+}
+
+std::string readTextFile(const std::string& path)
 {
   errno = 0;
   const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
@@ -785,39 +840,28 @@ std::string readSceneFile(const std::string& path)
 
 core::Scene loadSceneFile(const std::string& path)
 {
-  return parseScene(readSceneFile(path), path);
+  return parseScene(readTextFile(path), path);
 }
 
-std::vector<std::string> nodeKeysIn(const std::string& yaml_text)
+std::vector<core::SceneIssue> validate(const SceneFile& file)
 {
-  std::vector<std::string> keys;
-  try
-  {
-    const YAML::Node root = YAML::Load(yaml_text);
-    if (!root.IsMap())
-      return keys;
-    for (const auto& item : root)
-    {
-      const std::string key = item.first.Scalar();
-      if (std::find(kNodeOnlyKeys.begin(), kNodeOnlyKeys.end(), key) != kNodeOnlyKeys.end())
-        keys.push_back(key);
-    }
-  }
-  catch (const YAML::Exception&)
-  {
-    // parseScene() reports malformed text
-  }
-  return keys;
+  std::vector<core::SceneIssue> issues = core::validate(file.scene);
+  const std::vector<core::SceneIssue> node_issues = validateNodeSettings(file.node);
+  issues.insert(issues.end(), node_issues.begin(), node_issues.end());
+  return issues;
+}
+
+SceneFile loadValidSceneFile(const std::string& path)
+{
+  SceneFile file = parseSceneFile(readTextFile(path), path);
+  const std::vector<core::SceneIssue> issues = validate(file);
+  if (!issues.empty())
+    throw SceneError(path + ": " + core::joinIssues(issues));
+  return file;
 }
 
 core::Scene loadValidScene(const std::string& path)
 {
-  core::Scene scene = loadSceneFile(path);
-  const std::vector<core::SceneIssue> issues = core::validate(scene);
-  if (!issues.empty())
-  {
-    throw SceneError(path + ": " + core::joinIssues(issues));
-  }
-  return scene;
+  return loadValidSceneFile(path).scene;
 }
 }  // namespace ball_collision_sim::yaml

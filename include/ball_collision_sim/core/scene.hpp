@@ -71,39 +71,6 @@ struct RandomBallsDef
   std::optional<Region> region;
 };
 
-/// How the node draws its balls.
-enum class BallColor
-{
-  kSpeed,  ///< by speed, on a scale up to NodeSettings::speed_color_max
-  kId,     ///< a fixed colour per id
-};
-
-/// Settings read only by the ROS node; the offline tool accepts and ignores them.
-struct NodeSettings
-{
-  double real_time_factor = 1.0;  ///< simulated / wall time; 0 = as fast as possible
-  double marker_rate = 30.0;      ///< markers per second of wall time [Hz]; 0 = none
-  double tf_rate = 30.0;          ///< tf frames per second of wall time [Hz]; 0 = none
-  int tf_max_balls = 500;         ///< only the first this many balls get a tf frame
-  double state_rate = 0.0;        ///< ball_states per simulated second [Hz]; 0 = every step
-  bool publish_collisions = true; ///< one message per handled collision
-  bool start_paused = false;      ///< wait for ~pause false (or ~step) before moving
-  double click_radius = 0.1;      ///< radius of balls added from rviz clicks [m]
-  double click_mass = 1.0;        ///< mass of balls added from rviz clicks [kg]
-  double status_period = 0.0;     ///< a status line every this many wall seconds [s]; 0 = none
-  int max_balls = 100000;         ///< add_ball and clicks are refused past this many balls
-  int marker_list_threshold = 1000;  ///< past this many balls, one sphere list per radius
-  BallColor ball_color = BallColor::kSpeed;  ///< how balls are coloured
-  double speed_color_max = 0.0;  ///< speed at the top of the colour scale [m/s]; 0 = the fastest ball at the start
-  bool collision_flashes = true;  ///< a short-lived marker at each collision's contact point
-  /// whether this node publishes /clock; unset: only a node in the root namespace does,
-  /// so that of several simulators in namespaces none does unless asked
-  std::optional<bool> publish_clock;
-  /// put before each ball's tf frame name (ball_<id>); unset: the node's namespace
-  /// ("a/" in /a, "" in the root namespace), so that simulators side by side share no frame
-  std::optional<std::string> frame_prefix;
-};
-
 /// Everything a simulation starts from. Defaults are the documented YAML defaults.
 struct Scene
 {
@@ -115,7 +82,6 @@ struct Scene
   std::vector<WallDef> walls;
   std::vector<BallDef> balls;
   std::optional<RandomBallsDef> random_balls;
-  NodeSettings node;
 };
 
 /// One problem found in a scene: the key it concerns and why.

@@ -5,6 +5,7 @@
 #include "ball_collision_sim/core/floor.hpp"
 #include "ball_collision_sim/core/scene.hpp"
 #include "ball_collision_sim/core/wall.hpp"
+#include "ball_collision_sim/node_settings.hpp"
 
 #include <ros/time.h>
 #include <std_msgs/ColorRGBA.h>
@@ -32,7 +33,7 @@ constexpr double kFlashSize = 0.12;
 /// How balls are coloured.
 struct BallColoring
 {
-  core::BallColor mode = core::BallColor::kSpeed;
+  BallColor mode = BallColor::kSpeed;
   double speed_max = 1.0;  ///< speed shown at the top of the scale, and above it [m/s]; > 0
 };
 

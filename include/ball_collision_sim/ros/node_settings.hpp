@@ -1,6 +1,6 @@
 #pragma once
 
-#include "ball_collision_sim/core/scene.hpp"
+#include "ball_collision_sim/node_settings.hpp"
 
 #include <ball_collision_sim/SimulatorConfig.h>
 #include <ros/node_handle.h>
@@ -13,7 +13,7 @@ namespace ball_collision_sim::bridge
 /// The node's settings with what depends on where it runs made definite.
 struct ResolvedSettings
 {
-  core::NodeSettings node;
+  NodeSettings node;
   std::string frame_prefix;   ///< before each ball's tf frame name
   bool publish_clock = true;  ///< whether this node publishes /clock
 };
@@ -24,16 +24,16 @@ std::string defaultFramePrefix(const std::string& ns);
 
 /// Fills in frame_prefix and publish_clock where the settings leave them unset: by
 /// default only a node in the root namespace publishes /clock.
-ResolvedSettings resolve(const core::NodeSettings& node, const std::string& ns);
+ResolvedSettings resolve(const NodeSettings& node, const std::string& ns);
 
 /// Copies the settings named by `keys` (node keys, e.g. "marker_rate") from `from` to `to`.
-void copyKeys(const std::vector<std::string>& keys, const core::NodeSettings& from, core::NodeSettings& to);
+void copyKeys(const std::vector<std::string>& keys, const NodeSettings& from, NodeSettings& to);
 
 /// The run-time settings as dynamic_reconfigure's config.
-SimulatorConfig toConfig(const core::NodeSettings& node);
+SimulatorConfig toConfig(const NodeSettings& node);
 
 /// The settings `config` asks for; a value the scene's validation would refuse (a ball
 /// colour other than speed or id) keeps its old value, and `config` is corrected to it.
 /// Returns one "key: reason" line per value kept.
-std::vector<std::string> applyConfig(SimulatorConfig& config, core::NodeSettings& node);
+std::vector<std::string> applyConfig(SimulatorConfig& config, NodeSettings& node);
 }  // namespace ball_collision_sim::bridge

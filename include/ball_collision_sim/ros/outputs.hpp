@@ -2,6 +2,7 @@
 
 #include "ball_collision_sim/core/world.hpp"
 #include "ball_collision_sim/ros/markers.hpp"
+#include "ball_collision_sim/node_settings.hpp"
 
 #include <ball_collision_sim/BallStateArray.h>
 #include <ros/time.h>
@@ -26,12 +27,10 @@ BallStateArray statesMessage(const core::World& world, const std::string& frame_
 /// frame_id -> prefix + ball_<id> for the first `max_balls` balls.
 tf2_msgs::TFMessage transformsMessage(const core::World& world, const std::string& frame_id, const ros::Time& stamp,
                                       std::size_t max_balls, const std::string& prefix = "");
-/// The colouring the scene's node settings ask for: ball_color, and as the top of the speed
+/// The colouring the node's settings ask for: ball_color, and as the top of the speed
 /// scale speed_color_max, or when that is 0 the fastest ball of `world` now (1 m/s when
 /// every ball is still).
-BallColoring ballColoring(const core::World& world);
-/// The same with `node`'s ball_color and speed_color_max in place of the scene's.
-BallColoring ballColoring(const core::World& world, const core::NodeSettings& node);
+BallColoring ballColoring(const core::World& world, const NodeSettings& node);
 /// A sphere marker per ball, or, past `list_threshold` balls, one sphere list per radius
 /// (rviz draws a few lists far faster than thousands of markers).
 visualization_msgs::MarkerArray ballMarkers(const core::World& world, const std::string& frame_id,

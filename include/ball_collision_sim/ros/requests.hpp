@@ -2,6 +2,7 @@
 
 #include "ball_collision_sim/core/placement.hpp"
 #include "ball_collision_sim/core/world.hpp"
+#include "ball_collision_sim/yaml/scene_yaml.hpp"
 
 #include <ball_collision_sim/AddBall.h>
 #include <ball_collision_sim/AddWall.h>
@@ -55,15 +56,8 @@ void answerGetState(const core::World& world, bool paused, const std::string& fr
 /// BallState of ball `id` (which must exist).
 BallState ballState(const core::World& world, int id);
 
-/// A scene from a load_scene request, and the node keys its text sets.
-struct RequestedScene
-{
-  core::Scene scene;
-  std::vector<std::string> node_keys;
-};
-
 /// The scene a load_scene request names, read and validated: from `path` (absolute,
 /// relative to the node's working directory, or package://PACKAGE/PATH) or from `yaml`,
 /// exactly one of them. Throws yaml::SceneError with the field or key and the reason.
-RequestedScene sceneOfRequest(const LoadScene::Request& req);
+yaml::SceneFile sceneOfRequest(const LoadScene::Request& req);
 }  // namespace ball_collision_sim::bridge

@@ -3,6 +3,7 @@
 #include "ball_collision_sim/core/world.hpp"
 #include "ball_collision_sim/ros/markers.hpp"
 #include "ball_collision_sim/ros/outputs.hpp"
+#include "ball_collision_sim/node_settings.hpp"
 
 #include <rosbag/bag.h>
 
@@ -24,7 +25,9 @@ class RunBag
 public:
   /// Opens PATH.active and writes the world as it starts; throws rosbag::BagException.
   /// @param marker_rate markers per simulated second [Hz]; 0 = only the first set
-  RunBag(const std::string& path, const core::World& world, const std::string& scene_yaml, double marker_rate);
+  /// @param node the node's settings of the scene file: state_rate, tf_rate, ... as the node would
+  RunBag(const std::string& path, const core::World& world, const NodeSettings& node, const std::string& scene_yaml,
+         double marker_rate);
   /// Without close(), the partial bag stays under PATH.active.
   ~RunBag();
   RunBag(const RunBag&) = delete;
@@ -52,6 +55,7 @@ private:
   std::uint64_t tf_every_;
   std::uint64_t marker_every_;  ///< 0: never after the start
   std::size_t tf_max_balls_;
+  NodeSettings node_;
   BallColoring coloring_;  ///< from the world at the start, like the node's
   CollisionFlashes flashes_;
   bool closed_ = false;

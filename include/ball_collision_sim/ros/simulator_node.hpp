@@ -5,6 +5,7 @@
 #include "ball_collision_sim/ros/node_settings.hpp"
 #include "ball_collision_sim/ros/outputs.hpp"
 #include "ball_collision_sim/ros/rate_limit.hpp"
+#include "ball_collision_sim/yaml/scene_yaml.hpp"
 
 #include <actionlib/server/simple_action_server.h>
 #include <ball_collision_sim/AddBall.h>
@@ -54,6 +55,7 @@ public:
   SimulatorNode& operator=(const SimulatorNode&) = delete;
 
 private:
+  SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh, const yaml::SceneFile& file);
   using Lock = std::unique_lock<std::mutex>;
   /// The lock, taken ahead of a running step loop (which waits while anyone asks).
   Lock lock();
@@ -80,7 +82,7 @@ private:
   void publishStates(const ros::Time& stamp);
   /// Takes run-time settings in: timer periods, rates, colours (frame_prefix and
   /// publish_clock stay as they are).
-  void applySettings(const core::NodeSettings& settings);
+  void applySettings(const NodeSettings& settings);
   /// Takes frame_prefix and publish_clock in: the /clock publisher is made or dropped.
   void applyWiring(const ResolvedSettings& settings);
   void startStatusTimer();

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "ball_collision_sim/core/scene.hpp"
+#include "ball_collision_sim/node_settings.hpp"
 
 #include <array>
 #include <stdexcept>
@@ -18,13 +19,37 @@ struct SceneError : std::runtime_error
   using std::runtime_error::runtime_error;
 };
 
-/// Top-level keys that only the ROS node uses (core::NodeSettings); the offline tool
-/// reads and checks them like every other key, and ignores them.
+/// Top-level keys that only the ROS node uses (NodeSettings); the offline tool reads and
+/// checks them like every other key, and ignores them.
 inline constexpr std::array<std::string_view, 17> kNodeOnlyKeys{
   "real_time_factor", "marker_rate", "tf_rate", "tf_max_balls", "state_rate", "publish_collisions",
   "start_paused", "click_radius", "click_mass", "status_period", "max_balls", "marker_list_threshold",
   "ball_color", "speed_color_max", "collision_flashes", "publish_clock", "frame_prefix",
 };
+
+/// A scene file: the scene, and the node's settings beside it.
+struct SceneFile
+{
+  core::Scene scene;
+  NodeSettings node;
+  std::vector<std::string> node_keys;  ///< the node keys the text sets, in the order written
+};
+
+/// Reads a scene file from YAML text: parseScene() and the node's settings. Their values
+/// are checked as they are read (types, ball_color, frame_prefix); their ranges by
+/// validateNodeSettings().
+SceneFile parseSceneFile(const std::string& yaml_text, const std::string& source_name = "<string>");
+
+/// Every problem of the node's settings (a negative rate, a radius out of range, ...),
+/// keyed by the setting's name.
+std::vector<core::SceneIssue> validateNodeSettings(const NodeSettings& node);
+
+/// core::validate() of the scene, then validateNodeSettings(): every issue of the file.
+std::vector<core::SceneIssue> validate(const SceneFile& file);
+
+/// parseSceneFile() of a file, then validate(): when it finds issues, throws SceneError
+/// "path: " + every issue.
+SceneFile loadValidSceneFile(const std::string& path);
 
 /// Reads a scene from YAML text (design.md section 5). Every key is checked: an unknown
 /// key, a value of the wrong type or a missing required key throws SceneError naming
@@ -37,23 +62,18 @@ inline constexpr std::array<std::string_view, 17> kNodeOnlyKeys{
 core::Scene parseScene(const std::string& yaml_text, const std::string& source_name = "<string>");
 
 /// A file's text; throws SceneError "path: cannot open file (...)" or "cannot read file".
-std::string readSceneFile(const std::string& path);
-
-/// The node-only keys (kNodeOnlyKeys) that the top level of a scene's text sets, in the
-/// order written; none when the text is not a YAML map.
-std::vector<std::string> nodeKeysIn(const std::string& yaml_text);
+std::string readTextFile(const std::string& path);
 
 /// parseScene() of a file's contents; errors are prefixed by `path`. An unreadable file
 /// throws SceneError "path: cannot open file (No such file or directory)".
 core::Scene loadSceneFile(const std::string& path);
 
-/// The scene as YAML text that parseScene() reads back to the same scene: block style,
+/// The scene and settings as YAML text that parseSceneFile() reads back to the same: block style,
 /// every key with its value (defaults included; random_balls as given, not expanded),
 /// each real in the fewest digits that read back to the same double, written so that
 /// YAML 1.1 readers (rosparam) take them as reals too.
-std::string writeScene(const core::Scene& scene);
+std::string writeScene(const core::Scene& scene, const NodeSettings& node);
 
-/// loadSceneFile(), then core::validate(): when it finds issues, throws SceneError
-/// "path: " + core::joinIssues(issues). The scene returned can build a core::World.
+/// loadValidSceneFile()'s scene: it can build a core::World.
 core::Scene loadValidScene(const std::string& path);
 }  // namespace ball_collision_sim::yaml
