@@ -176,7 +176,7 @@ int run(const SimulateOptions& options)
   std::unique_ptr<World> world;
   try
   {
-    world = std::make_unique<World>(file.scene);
+    world = std::make_unique<World>(file.scene, std::move(file.checked));
   }
   catch (const std::invalid_argument& e)
   {

@@ -44,7 +44,8 @@ std::string problemOf(const std::string& text)
   try
   {
     // the scene and the node's settings beside it, as simulate and the node check them
-    const auto issues = ball_collision_sim::yaml::validate(ball_collision_sim::yaml::parseSceneFile(text, "t.yaml"));
+    auto file = ball_collision_sim::yaml::parseSceneFile(text, "t.yaml");
+    const auto issues = ball_collision_sim::yaml::check(file);
     return issues.empty() ? "" : "t.yaml: " + ball_collision_sim::core::joinIssues(issues);
   }
   catch (const SceneError& e)

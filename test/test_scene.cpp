@@ -118,3 +118,43 @@ TEST(RandomBalls, PlacedClearDeterministicAndInsideTheRegion)
   scene.random_balls->count = 5000;  // no room
   EXPECT_EQ(keys(scene), std::vector<std::string>{"random_balls.count"});
 }
+
+// check() gives the balls as the world starts them: explicit, then random, each on the
+// floor with its foot point; a world built from them is the world built from the scene,
+// and so is the world after a reset (which places them again from the scene).
+TEST(Check, PlacesEveryBallOnceForTheWorld)
+{
+  Scene scene;
+  scene.floor = bowl(4, 0.5);
+  scene.balls = {ball(0.5, 0.2, 0.3, 0), ball(-0.8, 0.4, 0, 0.2)};
+  scene.balls[0].position.z() = 0.2;
+  scene.balls[1].position.z() = 0.3;
+  scene.random_balls = randomBalls(40, 9, {0.05, 0.1}, {1, 2}, {0, 1});
+  const SceneCheck checked = check(scene);
+  ASSERT_TRUE(checked.issues.empty()) << joinIssues(checked.issues);
+  ASSERT_EQ(checked.balls.size(), 42u);
+  const Floor floor(*scene.floor, scene.gravity);
+  for (const PlacedBall& b : checked.balls)
+  {
+    // its centre one radius above its foot point, along the normal there
+    const Vec3 centre = floor.point(b.foot) + b.def.radius * floor.normal(b.foot);
+    EXPECT_LT((b.def.position - centre).norm(), 1e-12);
+  }
+  World from_check(scene, check(scene)), from_scene(scene);
+  EXPECT_EQ(from_check.stateHash(), from_scene.stateHash());
+  for (int k = 0; k < 50; ++k)
+  {
+    from_check.step();
+    from_scene.step();
+  }
+  EXPECT_EQ(from_check.stateHash(), from_scene.stateHash());
+  from_check.reset();
+  EXPECT_EQ(from_check.stateHash(), World(scene).stateHash());
+  // a check with issues builds no world
+  Scene bad = scene;
+  bad.balls[0].radius = -1;
+  const SceneCheck refused = check(bad);
+  EXPECT_FALSE(refused.issues.empty());
+  EXPECT_TRUE(refused.balls.empty());
+  EXPECT_THROW(World(bad, refused), std::invalid_argument);
+}

@@ -255,9 +255,41 @@ std::string joinIssues(const std::vector<SceneIssue>& issues)
   return out;
 }
 
+namespace
+{
+/// The scene's explicit balls, and then `random` ones, each put on the floor.
+std::vector<PlacedBall> land(const Scene& scene, const std::vector<BallDef>& random)
+{
+  std::optional<Floor> floor;
+  if (scene.floor)
+    floor.emplace(*scene.floor, scene.gravity);
+  std::vector<PlacedBall> out;
+  out.reserve(scene.balls.size() + random.size());
+  for (const std::vector<BallDef>* list : {&scene.balls, &random})
+    for (const BallDef& def : *list)
+    {
+      PlacedBall ball{def, Vec2(0.5, 0.5)};
+      placeOnFloor(ball.def, floor, &ball.foot);
+      out.push_back(ball);
+    }
+  return out;
+}
+}  // namespace
+
 std::vector<SceneIssue> validate(const Scene& scene)
 {
-  std::vector<SceneIssue> issues;
+  return check(scene).issues;
+}
+
+std::vector<PlacedBall> placeBalls(const Scene& scene)
+{
+  return land(scene, placeRandomBalls(scene));
+}
+
+SceneCheck check(const Scene& scene)
+{
+  SceneCheck out;
+  std::vector<SceneIssue>& issues = out.issues;
   Checker check(issues);
 
   if (scene.frame_id.empty())
@@ -296,6 +328,7 @@ std::vector<SceneIssue> validate(const Scene& scene)
     checkOverlaps(check, placed, usable);
   }
 
+  std::vector<BallDef> random;
   if (scene.random_balls)
   {
     const RandomBallsDef& rb = *scene.random_balls;
@@ -326,14 +359,16 @@ std::vector<SceneIssue> validate(const Scene& scene)
     }
     if (ok && issues.empty() && rb.count > 0)
     {
-      const std::size_t placed = placeRandomBalls(scene).size();
-      if (placed < static_cast<std::size_t>(rb.count))
-        check.fail("random_balls.count", "room for only " + std::to_string(placed) + " of " +
+      random = placeRandomBalls(scene);
+      if (random.size() < static_cast<std::size_t>(rb.count))
+        check.fail("random_balls.count", "room for only " + std::to_string(random.size()) + " of " +
                                              std::to_string(rb.count) +
                                              " balls (use fewer or smaller balls, or a larger region)");
     }
   }
-  return issues;
+  if (issues.empty())
+    out.balls = land(scene, random);
+  return out;
 }
 
 std::vector<BallDef> allBalls(const Scene& scene)

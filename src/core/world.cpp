@@ -20,12 +20,15 @@
 namespace ball_collision_sim::core
 {
 
-World::World(const Scene& scene) : scene_(scene), dt_(scene.dt), gravity_(scene.gravity)
+World::World(const Scene& scene) : World(scene, check(scene))
 {
-  const std::vector<SceneIssue> issues = validate(scene);
-  if (!issues.empty())
-    throw std::invalid_argument(joinIssues(issues));
-  load();
+}
+
+World::World(const Scene& scene, SceneCheck checked) : scene_(scene), dt_(scene.dt), gravity_(scene.gravity)
+{
+  if (!checked.issues.empty())
+    throw std::invalid_argument(joinIssues(checked.issues));
+  load(checked.balls);
 }
 
 World::World(const World&) = default;
@@ -34,7 +37,7 @@ World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 World::~World() = default;
 
-void World::load()
+void World::load(const std::vector<PlacedBall>& balls)
 {
   dt_ = scene_.dt;
   gravity_ = scene_.gravity;
@@ -61,17 +64,14 @@ void World::load()
   balls_.clear();
   feet_.clear();
   next_ball_id_ = kFirstId;
-  const std::vector<BallDef> defs = allBalls(scene_);
-  balls_.reserve(defs.size());
+  balls_.reserve(balls.size());
   if (curved())
-    feet_.reserve(defs.size());
-  for (BallDef def : defs)
+    feet_.reserve(balls.size());
+  for (const PlacedBall& ball : balls)
   {
-    Vec2 foot(0.5, 0.5);
-    placeOnFloor(def, floor_, &foot);  // validate() has checked that it stands
-    balls_.push_back(makeBall(next_ball_id_++, def));
+    balls_.push_back(makeBall(next_ball_id_++, ball.def));
     if (curved())
-      feet_.push_back(foot);
+      feet_.push_back(ball.foot);
   }
   stats_ = WorldStats{};
   events_.clear();
@@ -80,7 +80,7 @@ void World::load()
 
 void World::reset()
 {
-  load();
+  load(placeBalls(scene_));
 }
 
 void World::forgetOrder()

@@ -10,6 +10,7 @@
 #include <std_msgs/String.h>
 
 #include <algorithm>
+#include <utility>
 
 namespace ball_collision_sim::bridge
 {
@@ -115,7 +116,7 @@ bool SimulatorNode::onLoadScene(LoadScene::Request& req, LoadScene::Response& re
     const auto& keys = requested.node_keys;
     if (std::find(keys.begin(), keys.end(), "start_paused") != keys.end())
       paused_ = node.start_paused;
-    world_ = core::World(requested.scene);
+    world_ = core::World(requested.scene, std::move(requested.checked));
     frame_id_ = world_.scene().frame_id;
     scene_source_ = req.path.empty() ? "load_scene's yaml" : req.path;
     applyWiring(resolve(node, nh_.getNamespace()));

@@ -176,7 +176,7 @@ yaml::SceneFile sceneOfRequest(const LoadScene::Request& req)
   const std::string source = req.path.empty() ? "yaml" : resolvePath(req.path);
   const std::string text = req.path.empty() ? req.yaml : yaml::readTextFile(source);
   yaml::SceneFile file = yaml::parseSceneFile(text, source);
-  const std::vector<core::SceneIssue> issues = yaml::validate(file);
+  const std::vector<core::SceneIssue> issues = yaml::check(file);
   if (!issues.empty())
     throw yaml::SceneError(source + ": " + core::joinIssues(issues));
   return file;

@@ -107,7 +107,7 @@ yaml::SceneFile loadSceneParams(const ros::NodeHandle& nh)
   if (!nh.getParam(nh.getNamespace(), tree) || tree.getType() != XmlRpc::XmlRpcValue::TypeStruct)
     throw yaml::SceneError(source + ": no scene there (load one with <rosparam command=\"load\" file=\"SCENE.yaml\"/>)");
   yaml::SceneFile file = yaml::parseSceneFile(toYaml(tree), source);
-  const std::vector<core::SceneIssue> issues = yaml::validate(file);
+  const std::vector<core::SceneIssue> issues = yaml::check(file);
   if (!issues.empty())
     throw yaml::SceneError(source + ": " + core::joinIssues(issues));
   return file;

@@ -17,6 +17,7 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 
 namespace ball_collision_sim::bridge
@@ -39,8 +40,8 @@ SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh) : Simulato
 {
 }
 
-SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh, const yaml::SceneFile& file)
-    : world_(file.scene)
+SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh, yaml::SceneFile file)
+    : world_(file.scene, std::move(file.checked))
     , settings_(resolve(file.node, nh.getNamespace()))
     , frame_id_(world_.scene().frame_id)
     , coloring_(ballColoring(world_, settings_.node))

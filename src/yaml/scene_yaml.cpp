@@ -843,9 +843,10 @@ core::Scene loadSceneFile(const std::string& path)
   return parseScene(readTextFile(path), path);
 }
 
-std::vector<core::SceneIssue> validate(const SceneFile& file)
+std::vector<core::SceneIssue> check(SceneFile& file)
 {
-  std::vector<core::SceneIssue> issues = core::validate(file.scene);
+  file.checked = core::check(file.scene);
+  std::vector<core::SceneIssue> issues = file.checked.issues;
   const std::vector<core::SceneIssue> node_issues = validateNodeSettings(file.node);
   issues.insert(issues.end(), node_issues.begin(), node_issues.end());
   return issues;
@@ -854,7 +855,7 @@ std::vector<core::SceneIssue> validate(const SceneFile& file)
 SceneFile loadValidSceneFile(const std::string& path)
 {
   SceneFile file = parseSceneFile(readTextFile(path), path);
-  const std::vector<core::SceneIssue> issues = validate(file);
+  const std::vector<core::SceneIssue> issues = check(file);
   if (!issues.empty())
     throw SceneError(path + ": " + core::joinIssues(issues));
   return file;

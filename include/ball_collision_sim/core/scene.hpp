@@ -92,9 +92,31 @@ struct SceneIssue
   std::string str() const { return key + ": " + reason; }
 };
 
-/// Every problem of the scene, in key order; empty when the scene can be simulated.
-/// Pure: it reads the scene and nothing else.
+/// A ball as a scene starts it: put on the floor, with its foot point (u, v) there.
+struct PlacedBall
+{
+  BallDef def;
+  Vec2 foot = Vec2(0.5, 0.5);
+};
+
+/// What checking a scene finds: every problem, in key order; or, when there is none,
+/// every ball (the explicit ones, then the random ones) put on the floor, ready for a
+/// World. Each ball is placed once, here.
+struct SceneCheck
+{
+  std::vector<SceneIssue> issues;
+  std::vector<PlacedBall> balls;
+};
+
+/// Checks the scene and places its balls. Pure: it reads the scene and nothing else.
+SceneCheck check(const Scene& scene);
+
+/// check(scene).issues: empty when the scene can be simulated.
 std::vector<SceneIssue> validate(const Scene& scene);
+
+/// The balls of a scene that passed check(), placed as check() places them (a World's
+/// reset places them again from its scene).
+std::vector<PlacedBall> placeBalls(const Scene& scene);
 
 /// Problems of one ball's own fields (finite, radius and mass > 0, sizes in range).
 /// Keys are `prefix` + field name, e.g. prefix "balls[3]." gives "balls[3].radius".

@@ -65,8 +65,11 @@ constexpr int kFirstId = 1;
 class World
 {
 public:
-  /// Builds the world of a scene; throws std::invalid_argument when validate() finds issues.
+  /// Builds the world of a scene; throws std::invalid_argument when check() finds issues.
   explicit World(const Scene& scene);
+  /// ... from `checked`, what check(scene) gave (so that a caller who has checked the
+  /// scene does not check and place it again).
+  World(const Scene& scene, SceneCheck checked);
   World(const World&);
   World& operator=(const World&);
   World(World&&) noexcept;
@@ -155,7 +158,7 @@ private:
     Vec3 dir_other;  ///< ... and, reversed, on `other`
   };
 
-  void load();
+  void load(const std::vector<PlacedBall>& balls);
   /// After an edit: the next step visits the balls in id order and predicts afresh.
   void forgetOrder();
   /// The ball of `placed`, a definition already put on the floor.

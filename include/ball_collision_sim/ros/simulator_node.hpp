@@ -55,7 +55,7 @@ public:
   SimulatorNode& operator=(const SimulatorNode&) = delete;
 
 private:
-  SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh, const yaml::SceneFile& file);
+  SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh, yaml::SceneFile file);
   using Lock = std::unique_lock<std::mutex>;
   /// The lock, taken ahead of a running step loop (which waits while anyone asks).
   Lock lock();

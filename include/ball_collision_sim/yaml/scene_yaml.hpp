@@ -33,6 +33,7 @@ struct SceneFile
   core::Scene scene;
   NodeSettings node;
   std::vector<std::string> node_keys;  ///< the node keys the text sets, in the order written
+  core::SceneCheck checked;            ///< what check() found: build a World from it
 };
 
 /// Reads a scene file from YAML text: parseScene() and the node's settings. Their values
@@ -44,10 +45,11 @@ SceneFile parseSceneFile(const std::string& yaml_text, const std::string& source
 /// keyed by the setting's name.
 std::vector<core::SceneIssue> validateNodeSettings(const NodeSettings& node);
 
-/// core::validate() of the scene, then validateNodeSettings(): every issue of the file.
-std::vector<core::SceneIssue> validate(const SceneFile& file);
+/// core::check() of the scene (kept in file.checked), then validateNodeSettings():
+/// every issue of the file.
+std::vector<core::SceneIssue> check(SceneFile& file);
 
-/// parseSceneFile() of a file, then validate(): when it finds issues, throws SceneError
+/// parseSceneFile() of a file, then check(): when it finds issues, throws SceneError
 /// "path: " + every issue.
 SceneFile loadValidSceneFile(const std::string& path);
 
