@@ -69,6 +69,21 @@ std::string placeOnFloor(BallDef& ball, const std::optional<Floor>& floor, Vec2*
   return "";
 }
 
+std::string overlapMessage(const std::string& what, double depth)
+{
+  return "overlaps " + what + " by " + formatNumber(depth) + " m";
+}
+
+std::string placeAmongWalls(BallDef& ball, const std::optional<Floor>& floor, const std::vector<Wall>& walls,
+                            Landing landing, Vec2* uv, const std::function<std::string(std::size_t)>& wall_name)
+{
+  std::string why = placeOnFloor(ball, floor, uv, landing);
+  if (why.empty())
+    if (const auto overlap = wallOverlap(ball, walls))
+      why = overlapMessage(wall_name(overlap->index), overlap->depth);
+  return why;
+}
+
 std::optional<Overlap> wallOverlap(const BallDef& ball, const std::vector<Wall>& walls)
 {
   for (std::size_t k = 0; k < walls.size(); ++k)
@@ -90,10 +105,7 @@ Placement::Placement(const Scene& scene)
 
 std::string Placement::place(BallDef& ball, Vec2* uv) const
 {
-  std::string why = placeOnFloor(ball, floor_, uv);
-  if (why.empty())
-    if (const auto overlap = wallOverlap(ball, walls_))
-      why = "overlaps walls[" + std::to_string(overlap->index) + "] by " + formatNumber(overlap->depth) + " m";
-  return why;
+  return placeAmongWalls(ball, floor_, walls_, Landing::kNearest, uv,
+                         [](std::size_t k) { return "walls[" + std::to_string(k) + "]"; });
 }
 }  // namespace ball_collision_sim::core

@@ -226,7 +226,7 @@ void checkOverlaps(Checker& check, const std::vector<BallDef>& placed, const std
   for (const auto& [a, b] : pairs)
   {
     const double depth = placed[a].radius + placed[b].radius - (placed[a].position - placed[b].position).norm();
-    check.fail(index("balls", b), "overlaps balls[" + std::to_string(a) + "] by " + formatNumber(depth) + " m");
+    check.fail(index("balls", b), overlapMessage(index("balls", a), depth));
   }
 }
 }  // namespace

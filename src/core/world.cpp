@@ -269,17 +269,16 @@ std::string World::place(BallDef& def, Landing landing, int ignore_id, Vec2& foo
   const std::vector<SceneIssue> issues = validateBall(def, "");
   if (!issues.empty())
     return joinIssues(issues);
-  const std::string why = placeOnFloor(def, floor_, &foot, landing);
+  const std::string why = placeAmongWalls(def, floor_, walls_, landing, &foot, [&](std::size_t k) {
+    return "wall " + std::to_string(walls_[k].id);
+  });
   if (!why.empty())
     return "position: " + why;
-  if (const auto overlap = wallOverlap(def, walls_))
-    return "position: overlaps wall " + std::to_string(walls_[overlap->index].id) + " by " +
-           formatNumber(overlap->depth) + " m";
   for (const Ball& other : balls_)
   {
     const double depth = def.radius + other.radius - (def.position - other.position).norm();
     if (other.id != ignore_id && depth > kContactTolerance)
-      return "position: overlaps ball " + std::to_string(other.id) + " by " + formatNumber(depth) + " m";
+      return "position: " + overlapMessage("ball " + std::to_string(other.id), depth);
   }
   return "";
 }

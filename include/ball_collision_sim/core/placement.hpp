@@ -4,6 +4,7 @@
 #include "ball_collision_sim/core/scene.hpp"
 #include "ball_collision_sim/core/wall.hpp"
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +38,15 @@ struct Overlap
   double depth = 0.0;     ///< [m]
 };
 std::optional<Overlap> wallOverlap(const BallDef& ball, const std::vector<Wall>& walls);
+
+/// "overlaps <what> by <depth> m": how every message says that a ball overlaps something.
+std::string overlapMessage(const std::string& what, double depth);
+
+/// The placement check of scene files, services and clicks alike: puts `ball` on the
+/// floor as `landing` says and checks it against the walls; why it cannot stand there
+/// ("off the floor (...)", or overlapMessage() with `wall_name(k)` naming walls[k]), or "".
+std::string placeAmongWalls(BallDef& ball, const std::optional<Floor>& floor, const std::vector<Wall>& walls,
+                            Landing landing, Vec2* uv, const std::function<std::string(std::size_t)>& wall_name);
 
 /// The floor and walls of a scene, to place balls among them.
 class Placement
