@@ -502,3 +502,35 @@ TEST(Editing, AddedBallSitsOnTheFloorAndMoves)
   EXPECT_TRUE(world.removeBall(added.id));
   EXPECT_EQ(world.findBall(added.id), nullptr);
 }
+
+// The step's tunables come from StepSettings: the resting speed decides whether a ball
+// touching a wall and closing at 1e-10 m/s rests on it or bounces off; a cap of one
+// event a step stops a ball after its first, and is counted; a cap beyond what the
+// counters hold is refused.
+TEST(StepSettings, TakenByTheWorldAtConstruction)
+{
+  Scene scene = flatScene();
+  addBox(scene, -2, 2, -2, 2);
+  scene.balls = {ball(1.9, 0, 1e-10, 0)};  // touching the east wall at x = 2
+  for (const double floor_speed : {1e-9, 0.0})
+  {
+    StepSettings settings;
+    settings.resting_speed_floor = floor_speed;
+    World world(scene, settings);
+    world.step();
+    ASSERT_EQ(world.lastEvents().size(), 1u) << floor_speed;
+    EXPECT_EQ(world.lastEvents()[0].resting, floor_speed > 0) << floor_speed;
+    EXPECT_EQ(world.balls()[0].velocity.x(), floor_speed > 0 ? 0.0 : -1e-10) << floor_speed;
+  }
+  Scene cradle = flatScene(-2, 3, -1, 1);
+  cradle.balls = {ball(-0.305, 0, 1, 0), ball(0, 0, 0, 0), ball(0.2, 0, 0, 0)};  // impacts at t = 0.105 s
+  StepSettings capped;
+  capped.max_events_per_ball_step = 1;
+  World world(cradle, capped);
+  for (int k = 0; k < 20; ++k)
+    world.step();
+  EXPECT_GT(world.stats().frozen_balls, 0u);
+  EXPECT_EQ(World(cradle).stats().frozen_balls, 0u);
+  capped.max_events_per_ball_step = 70000;
+  EXPECT_THROW(World(cradle, capped), std::invalid_argument);
+}

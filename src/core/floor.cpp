@@ -15,7 +15,8 @@ std::array<Vec3, 3> powerBasis(const Vec3& p0, const Vec3& p1, const Vec3& p2)
   return {p0, 2 * (p1 - p0), (p0 - 2 * p1) + p2};
 }
 
-constexpr double kInsideTolerance = 1e-9;
+/// Newton's method for the foot point converges quadratically from a guess near it;
+/// far from the surface its damped steps take longer, never this many in the tests.
 constexpr int kMaxNewtonIterations = 30;
 }  // namespace
 
@@ -155,8 +156,7 @@ FloorFoot Floor::project(const Vec3& q, const Vec2& guess) const
     foot.normal = orient(su.cross(sv).normalized());
     foot.height = (q - s).dot(foot.normal);
   }
-  foot.inside = (foot.uv.array() >= -kInsideTolerance).all() &&
-                (foot.uv.array() <= 1 + kInsideTolerance).all();
+  foot.inside = inside(foot.uv);
   return foot;
 }
 }  // namespace ball_collision_sim::core

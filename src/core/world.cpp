@@ -20,14 +20,18 @@
 namespace ball_collision_sim::core
 {
 
-World::World(const Scene& scene) : World(scene, check(scene))
+World::World(const Scene& scene, const StepSettings& settings) : World(scene, check(scene), settings)
 {
 }
 
-World::World(const Scene& scene, SceneCheck checked) : scene_(scene), dt_(scene.dt), gravity_(scene.gravity)
+World::World(const Scene& scene, SceneCheck checked, const StepSettings& settings)
+    : scene_(scene), settings_(settings), dt_(scene.dt), gravity_(scene.gravity)
 {
   if (!checked.issues.empty())
     throw std::invalid_argument(joinIssues(checked.issues));
+  // (a ball's event count is kept in 16 bits, up to one past the cap)
+  if (settings_.max_events_per_ball_step >= 0xffff)
+    throw std::invalid_argument("max_events_per_ball_step: must be below 65535");
   load(checked.balls);
 }
 
@@ -56,7 +60,7 @@ void World::load(const std::vector<PlacedBall>& balls)
   if (plane_)
     plane_resting_speed_ = restingSpeed(plane_normal_);
   const Vec3 along = plane_ ? tangentPart(gravity_, plane_normal_) : gravity_;
-  straight_ = !curved() && along.norm() <= 1e-12 * g;
+  straight_ = !curved() && along.norm() <= settings_.straight_gravity_ratio * g;
   walls_.clear();
   next_wall_id_ = kFirstId;
   for (const WallDef& def : scene_.walls)
@@ -125,7 +129,7 @@ void World::step()
   // space are neighbours in memory too; not after every step, as balls move less than a
   // cell in one: while the order stays, the commit predicts the next step's motions, with
   // each ball's record at hand.
-  const bool reorder = grid_.inCellOrder() && (order_age_ == 0 || order_age_ >= kReorderSteps);
+  const bool reorder = grid_.inCellOrder() && (order_age_ == 0 || order_age_ >= settings_.reorder_steps);
   commitToFloor(!reorder);     // every ball to the step's end, back on the floor
   if (reorder)
     grid_.reorder(order_);
@@ -153,76 +157,6 @@ Vec3 World::momentum() const
   for (const Ball& ball : balls_)
     p += ball.mass * ball.velocity;
   return p;
-}
-
-World::Bounds World::wallBounds() const
-{
-  Bounds bounds;
-  for (const Wall& wall : walls_)
-  {
-    bounds.lo = bounds.any ? bounds.lo.cwiseMin(wall.box_min) : wall.box_min;
-    bounds.hi = bounds.any ? bounds.hi.cwiseMax(wall.box_max) : wall.box_max;
-    bounds.any = true;
-  }
-  return bounds;
-}
-
-std::string World::whyLost(std::size_t k, const Bounds& bounds) const
-{
-  const Ball& ball = balls_[k];
-  if (floor_)
-  {
-    const Vec2 uv = plane_ ? floor_->planeParameters(ball.position) : feet_[k];
-    if ((uv.array() >= -1e-9).all() && (uv.array() <= 1 + 1e-9).all())
-      return "";
-    return "left the floor (its foot point at u = " + formatNumber(uv.x()) + ", v = " + formatNumber(uv.y()) +
-           " is outside [0, 1]^2)";
-  }
-  if (bounds.any && ((ball.position.array() < bounds.lo.array() - ball.radius).any() ||
-                     (ball.position.array() > bounds.hi.array() + ball.radius).any()))
-    return "left the walls' bounds";
-  return "";
-}
-
-int World::lostBalls() const
-{
-  const Bounds bounds = wallBounds();
-  int lost = 0;
-  for (std::size_t k = 0; k < balls_.size(); ++k)
-    lost += whyLost(k, bounds).empty() ? 0 : 1;
-  return lost;
-}
-
-std::vector<LostBall> World::removeLostBalls()
-{
-  std::vector<LostBall> lost;
-  if (!floor_ && walls_.empty())
-    return lost;
-  const Bounds bounds = wallBounds();
-  std::size_t kept = 0;
-  for (std::size_t k = 0; k < balls_.size(); ++k)
-  {
-    std::string why = whyLost(k, bounds);
-    if (!why.empty())
-    {
-      lost.push_back({balls_[k], angularVelocity(k), std::move(why)});
-      continue;
-    }
-    if (kept != k)
-    {
-      balls_[kept] = balls_[k];
-      if (!feet_.empty())
-        feet_[kept] = feet_[k];
-    }
-    ++kept;
-  }
-  if (lost.empty())
-    return lost;
-  balls_.resize(kept);
-  if (!feet_.empty())
-    feet_.resize(kept);
-  forgetOrder();
-  return lost;
 }
 
 std::uint64_t World::stateHash() const

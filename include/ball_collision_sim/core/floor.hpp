@@ -22,6 +22,15 @@ struct FloorFoot
 class Floor
 {
 public:
+  /// A foot point this far outside [0, 1]^2 in u or v is still on the floor: round-off
+  /// of Newton's method at the floor's edge [1].
+  static constexpr double kInsideTolerance = 1e-9;
+  /// True when (u, v) is on the floor (within kInsideTolerance).
+  static bool inside(const Vec2& uv)
+  {
+    return (uv.array() >= -kInsideTolerance).all() && (uv.array() <= 1 + kInsideTolerance).all();
+  }
+
   explicit Floor(const FloorDef& def, const Vec3& gravity);
 
   const FloorDef& def() const { return def_; }

@@ -6,6 +6,7 @@
 #include "ball_collision_sim/core/floor.hpp"
 #include "ball_collision_sim/core/placement.hpp"
 #include "ball_collision_sim/core/scene.hpp"
+#include "ball_collision_sim/core/step_settings.hpp"
 #include "ball_collision_sim/core/types.hpp"
 #include "ball_collision_sim/core/wall.hpp"
 
@@ -66,10 +67,10 @@ class World
 {
 public:
   /// Builds the world of a scene; throws std::invalid_argument when check() finds issues.
-  explicit World(const Scene& scene);
+  explicit World(const Scene& scene, const StepSettings& settings = StepSettings());
   /// ... from `checked`, what check(scene) gave (so that a caller who has checked the
   /// scene does not check and place it again).
-  World(const Scene& scene, SceneCheck checked);
+  World(const Scene& scene, SceneCheck checked, const StepSettings& settings = StepSettings());
   World(const World&);
   World& operator=(const World&);
   World(World&&) noexcept;
@@ -85,6 +86,7 @@ public:
   double dt() const { return dt_; }
   const Vec3& gravity() const { return gravity_; }
   const Scene& scene() const { return scene_; }
+  const StepSettings& stepSettings() const { return settings_; }
   const std::vector<Ball>& balls() const { return balls_; }
   const std::vector<Wall>& walls() const { return walls_; }
   const std::optional<Floor>& floor() const { return floor_; }
@@ -189,7 +191,6 @@ private:
   /// Asks for the k-th visited ball's record ahead of its use: the visiting order is
   /// known, but it reaches `balls_` out of memory order.
   void prefetchBall(std::size_t k, bool write) const;
-  static constexpr std::size_t kPrefetchAhead = 8;
   void buildBroadPhase();
   void findFirstImpacts();
   void resolveEventsInTimeOrder();
@@ -234,6 +235,7 @@ private:
   double restingSpeed(const Vec3& floor_normal) const;
 
   Scene scene_;
+  StepSettings settings_;
   double dt_;
   Vec3 gravity_;
   std::optional<Floor> floor_;
@@ -258,9 +260,8 @@ private:
   /// cell order (the step's work space is indexed by k). Reset when a ball is added or
   /// removed (walls do not enter the prediction).
   std::vector<std::uint32_t> order_;
-  /// Steps since order_ was set; it is set anew every kReorderSteps steps.
+  /// Steps since order_ was set; it is set anew every settings_.reorder_steps steps.
   std::uint32_t order_age_ = 0;
-  static constexpr std::uint32_t kReorderSteps = 8;
   /// motions_ (and states_, the grid's boxes) hold the next step's predicted motions.
   bool motions_ready_ = false;
   // per-step work space, kept between steps to avoid allocation

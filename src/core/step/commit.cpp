@@ -49,7 +49,7 @@ void World::commitToFloor(bool predict_next)
     floor_normals_.resize(balls_.size());
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
-    prefetchBall(i + kPrefetchAhead, true);
+    prefetchBall(i + settings_.prefetch_ahead, true);
     Motion& m = motions_[i];
     Ball& ball = balls_[order_[i]];
     Vec3 p = positionAt(i, 1.0);

@@ -15,7 +15,7 @@ using namespace step;
 Vec3 World::allowed(std::size_t i, const Vec3& w) const
 {
   const std::int32_t blocked = states_[i].blocked;
-  return blocked < 0 ? w : blocked_sets_[static_cast<std::size_t>(blocked)].allowed(w);
+  return blocked < 0 ? w : blocked_sets_[static_cast<std::size_t>(blocked)].allowed(w, settings_);
 }
 
 void World::addBlocked(std::size_t i, const Vec3& direction)
@@ -26,7 +26,7 @@ void World::addBlocked(std::size_t i, const Vec3& direction)
     m.blocked = static_cast<std::int32_t>(blocked_sets_.size());
     blocked_sets_.emplace_back();
   }
-  blocked_sets_[static_cast<std::size_t>(m.blocked)].add(direction);
+  blocked_sets_[static_cast<std::size_t>(m.blocked)].add(direction, settings_);
 }
 
 void World::hold(std::size_t i)
@@ -46,13 +46,13 @@ void World::endOnFloor(std::size_t i)
   const double rest = 1 - m.x0;
   if (!curved() || states_[i].frozen || !(rest > 0))
     return;
-  const double roundoff = roundoffAt(m.p0, m.radius);
-  for (int pass = 0; pass < 32; ++pass)
+  const double roundoff = roundoffAt(m.p0, m.radius, settings_);
+  for (int pass = 0; pass < settings_.correction_passes; ++pass)
   {
     const Vec3 on = (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest;
     const Vec3 free = allowed(i, on);
     const double off = (free - on).norm();
-    const bool done = off <= 1e-15 * on.norm() || rest * off <= roundoff;
+    const bool done = off <= settings_.correction_tolerance * on.norm() || rest * off <= roundoff;
     // (a pass that leaves the motion as it was would be repeated as it is: fully blocked
     // off the floor, say)
     const bool same = free == m.b;
@@ -98,7 +98,7 @@ void World::keepEnergy(std::size_t i)
       // Illinois rule (a stalled end's value halved), bisection where that gains less
       double hi = 1.0, f_lo = start, f_hi = full;
       int last = 0;  // the end moved last: +1 lo, -1 hi
-      for (int k = 0; k < 50 && hi - lo > 1e-15; ++k)
+      for (int k = 0; k < settings_.energy_root_iterations && hi - lo > settings_.energy_root_width; ++k)
       {
         const double width = hi - lo;
         double mid = lo + width * (f_lo / (f_lo - f_hi));
@@ -121,7 +121,7 @@ void World::keepEnergy(std::size_t i)
             f_lo *= 0.5;
           last = -1;
         }
-        if (hi - lo > 0.5 * width && hi - lo > 1e-15)
+        if (hi - lo > 0.5 * width && hi - lo > settings_.energy_root_width)
         {
           // one end stuck: halve the bracket as well
           const double half = 0.5 * (lo + hi);
@@ -160,9 +160,9 @@ void World::keepEnergy(std::size_t i)
   // with the reach (the lower the end, the more), halving the range of k after the
   // longest has shown that one does finds the shortest that does; elsewhere it finds one
   // that does, or, where the longest does not, holds the ball (which makes no energy).
-  const double first = std::max(-start / slope, 1e-12 * m.radius);
+  const double first = std::max(-start / slope, settings_.slide_first_reach * m.radius);
   int count = 0;
-  while (count < 64 && std::ldexp(first, count) < 0.5 * m.radius)
+  while (count < settings_.slide_doublings && std::ldexp(first, count) < settings_.slide_longest_reach * m.radius)
     ++count;
   const auto motionTo = [&](int k) {
     return allowed(i, (onFloor(i, foot + (std::ldexp(first, k) / slope) * downhill) - m.p0) / rest);

@@ -52,7 +52,7 @@ double World::restingSpeed(const Vec3& floor_normal) const
   if (plane_ && plane_resting_speed_ > 0)
     return plane_resting_speed_;
   const Vec3 along = floor_ ? tangentPart(gravity_, floor_normal) : gravity_;
-  return kRestingSteps * dt_ * along.norm() + kRestingSpeedFloor;
+  return settings_.resting_steps * dt_ * along.norm() + settings_.resting_speed_floor;
 }
 
 void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact)

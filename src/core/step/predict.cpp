@@ -39,7 +39,7 @@ void World::predictMotions()
   floor_uv_.resize(curved() ? balls_.size() : 0);
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
-    prefetchBall(i + kPrefetchAhead, false);
+    prefetchBall(i + settings_.prefetch_ahead, false);
     predictMotion(i);
   }
 }

@@ -62,7 +62,7 @@ void World::resolveBallWall(const Event& event)
 
   const Vec3 n = -event.normal;  // from the ball toward the wall
   Vec3 dir = floor_ ? tangentPart(n, floor_normal) : n;
-  if (dir.squaredNorm() < 1e-12)
+  if (dir.squaredNorm() < settings_.wall_along_floor_squared)
     dir = n;  // a wall parallel to the floor: answer in space
   dir.normalize();
   const double closing = v.dot(dir);
@@ -77,7 +77,7 @@ void World::resolveBallWall(const Event& event)
     // leaning on the wall until the step ends; where the floor is not square to the wall,
     // also no motion into the wall itself (else it comes back at once, again and again)
     addBlocked(i, dir);
-    if (dir.dot(n) < 1 - 1e-12)
+    if (dir.dot(n) < 1 - settings_.same_direction)
       addBlocked(i, n);
   }
   startMotion(i, event.x, p, v, !resting);
@@ -134,9 +134,9 @@ void World::resolveBallBall(const Event& event)
     both_still = va.norm() <= still && vb.norm() <= still;
     // (a held ball gives no way either)
     const bool a_fixed =
-        both_still || states_[i].held || inv_a * ta.squaredNorm() < 1e-12 * inv_b * tb.squaredNorm();
+        both_still || states_[i].held || inv_a * ta.squaredNorm() < settings_.fixed_mobility_ratio * inv_b * tb.squaredNorm();
     const bool b_fixed =
-        both_still || states_[j].held || inv_b * tb.squaredNorm() < 1e-12 * inv_a * ta.squaredNorm();
+        both_still || states_[j].held || inv_b * tb.squaredNorm() < settings_.fixed_mobility_ratio * inv_a * ta.squaredNorm();
     if (a_fixed && along_b.squaredNorm() > 0)
       addBlocked(j, -along_b.normalized());
     if (b_fixed && along_a.squaredNorm() > 0)
@@ -155,8 +155,9 @@ void World::resolveBallBall(const Event& event)
     // bring some back: in turn, a few times.
     // (until what approach is left is round-off of the positions)
     const double rest = 1 - event.x;
-    const double roundoff = curved() ? roundoffAt(pa, ma.radius) + roundoffAt(pb, mb.radius) : 0.0;
-    for (int pass = 0; pass < (curved() ? 32 : 1); ++pass)
+    const double roundoff =
+        curved() ? roundoffAt(pa, ma.radius, settings_) + roundoffAt(pb, mb.radius, settings_) : 0.0;
+    for (int pass = 0; pass < (curved() ? settings_.correction_passes : 1); ++pass)
     {
       const Vec3 ua = curved() ? n : ta, ub = curved() ? n : tb;
       const double into = ma.b.dot(ua) - mb.b.dot(ub);
@@ -180,7 +181,7 @@ void World::resolveBallBall(const Event& event)
     // pass: it would find this contact again at once, and again.
     keepEnergy(i);
     keepEnergy(j);
-    const bool jammed = sa.events >= kJamEventsPerBallStep || sb.events >= kJamEventsPerBallStep;
+    const bool jammed = sa.events >= settings_.jam_events_per_ball_step || sb.events >= settings_.jam_events_per_ball_step;
     const double closing_in = rest * (ma.b.dot(n) - mb.b.dot(n));
     const bool again = closing_in > kClosingSlop * (ma.radius + mb.radius);
     if (jammed || (both_still && closing_in > 0) || again)
@@ -203,7 +204,7 @@ void World::countEvent(std::size_t i)
   MotionState& m = states_[i];
   ++m.epoch;  // what was predicted for this ball before is stale now
   // (counted up to one past the cap only: a frozen ball can still be hit by many others)
-  if (!m.frozen && ++m.events > kMaxEventsPerBallStep)
+  if (!m.frozen && ++m.events > settings_.max_events_per_ball_step)
   {
     m.frozen = true;
     startVelocity(i) = Vec3::Zero();

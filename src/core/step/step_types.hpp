@@ -13,26 +13,12 @@ namespace ball_collision_sim::core
 {
 namespace step
 {
-/// A ball with more events than this in one step is stopped for the rest of the step
-/// and acts as immovable: a guard against endless chatter in jammed piles.
-inline constexpr std::uint32_t kMaxEventsPerBallStep = 256;
-/// Two balls at a resting contact, one of which has had this many events in the step,
-/// still or not, are in a jam that answers pair by pair only pass around (each pushes one
-/// of them into a third ball, which pushes it back): they are held for the rest of the step.
-inline constexpr std::uint32_t kJamEventsPerBallStep = 16;
-/// A closing speed below what gravity along the floor adds in this many steps is a
-/// resting contact: the motion is stopped along the normal instead of bounced, so a
-/// ball leaning on a wall neither jitters nor makes endless events.
-inline constexpr double kRestingSteps = 2.0;
-/// ... and below this [m/s] always (flat floors, where gravity adds nothing).
-inline constexpr double kRestingSpeedFloor = 1e-9;
-
 /// A length [m] below the round-off of positions around p (with a ball of radius r):
 /// where the corrections of a ball's motion on a curved floor are down to this, putting
 /// it on the floor and out of what it leans on only trade round-off back and forth.
-inline double roundoffAt(const Vec3& p, double r)
+inline double roundoffAt(const Vec3& p, double r, const StepSettings& settings)
 {
-  return 16 * std::numeric_limits<double>::epsilon() * (p.cwiseAbs().maxCoeff() + r);
+  return settings.roundoff_epsilons * std::numeric_limits<double>::epsilon() * (p.cwiseAbs().maxCoeff() + r);
 }
 }  // namespace step
 
@@ -52,7 +38,7 @@ struct alignas(64) World::Motion
 struct World::MotionState
 {
   std::uint32_t epoch = 0;       ///< bumped at every event of this ball
-  std::uint16_t events = 0;      ///< events of this ball in this step, until it is frozen
+  std::uint16_t events = 0;      ///< events of this ball in this step, up to one past the cap
   bool frozen = false;
   /// Held (see hold()): in a jam at a resting contact, or left no motion its energy allows;
   /// it stays where it is through resting contacts for the rest of the step (an impact
@@ -60,7 +46,6 @@ struct World::MotionState
   bool held = false;
   std::int32_t blocked = -1;     ///< its BlockedSet this step, if any
 };
-static_assert(step::kMaxEventsPerBallStep < 0xffff, "MotionState::events counts to one past the cap");
 
 /// Unit directions a ball may not move along for the rest of the step: toward a wall it
 /// leans on, or toward a ball that cannot give way. A ball in a corner or in a pile at
@@ -73,10 +58,10 @@ struct World::BlockedSet
   /// `w` without its parts along the blocked directions: the nearest vector with
   /// <w, d> <= 0 for every blocked d, by cyclic projection; zero (which always qualifies)
   /// when that does not settle.
-  Vec3 allowed(Vec3 w) const
+  Vec3 allowed(Vec3 w, const StepSettings& settings) const
   {
     const double scale = w.norm();
-    for (int pass = 0; pass < 16; ++pass)
+    for (int pass = 0; pass < settings.blocked_projection_passes; ++pass)
     {
       bool changed = false;
       for (std::uint8_t k = 0; k < count; ++k)
@@ -92,14 +77,14 @@ struct World::BlockedSet
         return w;
     }
     for (std::uint8_t k = 0; k < count; ++k)
-      if (w.dot(directions[k]) > 1e-14 * scale)
+      if (w.dot(directions[k]) > settings.blocked_slack * scale)
         return Vec3::Zero();
     return w;
   }
-  void add(const Vec3& direction)
+  void add(const Vec3& direction, const StepSettings& settings)
   {
     for (std::uint8_t k = 0; k < count; ++k)
-      if (directions[k].dot(direction) > 1 - 1e-12)
+      if (directions[k].dot(direction) > 1 - settings.same_direction)
         return;
     if (count < directions.size())
       directions[count++] = direction;

@@ -1,0 +1,77 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace ball_collision_sim::core
+{
+/// Every threshold and tunable of the step, with its unit and the reason for its value.
+/// The defaults are what the tests and benchmarks are measured with; a World takes them
+/// at construction.
+struct StepSettings
+{
+  // ---- resting contacts ---------------------------------------------------------------
+  /// A closing speed below what gravity along the floor adds in this many steps is a
+  /// resting contact: the motion is stopped along the normal instead of bounced, so a
+  /// ball leaning on a wall neither jitters nor makes endless events [steps].
+  double resting_steps = 2.0;
+  /// ... and below this always: flat floors, where gravity adds nothing [m/s].
+  double resting_speed_floor = 1e-9;
+  /// A ball with more events than this in one step is stopped for the rest of the step
+  /// and acts as immovable: a guard against endless chatter in jammed piles [events].
+  std::uint32_t max_events_per_ball_step = 256;
+  /// Two balls at a resting contact, one of which has had this many events in the step,
+  /// are in a jam that answers pair by pair only pass around: they are held for the rest
+  /// of the step [events].
+  std::uint32_t jam_events_per_ball_step = 16;
+  /// A ball that gives way less than this fraction of the other's mobility along a
+  /// resting contact counts as fixed there: it blocks the other's approach [ratio].
+  double fixed_mobility_ratio = 1e-12;
+  /// Passes of alternating corrections (onto the floor, out of blocked directions, the
+  /// approach of a resting pair) before giving up: each pass halves what is left in
+  /// practice, and 32 halvings reach round-off [passes].
+  int correction_passes = 32;
+  /// Cyclic projections out of a ball's blocked directions before it is given no motion
+  /// at all (which always satisfies them) [passes].
+  int blocked_projection_passes = 16;
+  /// A motion kept out of its blocked directions may still point into one by this much
+  /// of its length, round-off of the projections [ratio].
+  double blocked_slack = 1e-14;
+  /// Two blocked directions this close to parallel are one (1 - cosine) [ratio].
+  double same_direction = 1e-12;
+  /// A correction of a motion on a curved floor smaller than this part of it is done
+  /// [ratio]; see also roundoff_epsilons.
+  double correction_tolerance = 1e-15;
+  /// Where corrections are down to this many machine epsilons of the positions'
+  /// magnitude, they only trade round-off back and forth [epsilons].
+  double roundoff_epsilons = 16;
+  /// A wall whose normal's part along the floor is shorter than this (squared) is
+  /// parallel to the floor: a ball meets it in space, not along the floor [1].
+  double wall_along_floor_squared = 1e-12;
+
+  // ---- keeping a motion within its energy (curved floors) -----------------------------
+  /// Root finding on the chord for where the speed runs out: at most this many steps,
+  /// and until the bracket is this narrow [steps], [fraction of the step].
+  int energy_root_iterations = 50;
+  double energy_root_width = 1e-15;
+  /// Sliding downhill from an impact point above the floor: the shortest reach tried,
+  /// as a part of the radius, the longest as a part of it, and how many doublings lie
+  /// between [ratio], [ratio], [doublings].
+  double slide_first_reach = 1e-12;
+  double slide_longest_reach = 0.5;
+  int slide_doublings = 64;
+
+  // ---- the floor's kind ---------------------------------------------------------------
+  /// Gravity along a plane floor shorter than this part of gravity is none: balls move
+  /// in straight lines between impacts there [ratio].
+  double straight_gravity_ratio = 1e-12;
+
+  // ---- memory order -------------------------------------------------------------------
+  /// A ball's record is fetched this many balls ahead of its use in the visiting order
+  /// [balls].
+  std::size_t prefetch_ahead = 8;
+  /// The visiting order follows the grid's cell order anew every this many steps: balls
+  /// move less than a cell in a step [steps].
+  std::uint32_t reorder_steps = 8;
+};
+}  // namespace ball_collision_sim::core

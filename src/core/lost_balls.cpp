@@ -1,0 +1,81 @@
+// Balls that left the world: off the floor (their foot point outside it) or, without a
+// floor, outside the box the walls span. Reads balls_, feet_, walls_; removeLostBalls()
+// takes them out of balls_ and feet_.
+#include "ball_collision_sim/core/world.hpp"
+
+#include "ball_collision_sim/core/format.hpp"
+
+#include <utility>
+
+namespace ball_collision_sim::core
+{
+World::Bounds World::wallBounds() const
+{
+  Bounds bounds;
+  for (const Wall& wall : walls_)
+  {
+    bounds.lo = bounds.any ? bounds.lo.cwiseMin(wall.box_min) : wall.box_min;
+    bounds.hi = bounds.any ? bounds.hi.cwiseMax(wall.box_max) : wall.box_max;
+    bounds.any = true;
+  }
+  return bounds;
+}
+
+std::string World::whyLost(std::size_t k, const Bounds& bounds) const
+{
+  const Ball& ball = balls_[k];
+  if (floor_)
+  {
+    const Vec2 uv = plane_ ? floor_->planeParameters(ball.position) : feet_[k];
+    if (Floor::inside(uv))
+      return "";
+    return "left the floor (its foot point at u = " + formatNumber(uv.x()) + ", v = " + formatNumber(uv.y()) +
+           " is outside [0, 1]^2)";
+  }
+  if (bounds.any && ((ball.position.array() < bounds.lo.array() - ball.radius).any() ||
+                     (ball.position.array() > bounds.hi.array() + ball.radius).any()))
+    return "left the walls' bounds";
+  return "";
+}
+
+int World::lostBalls() const
+{
+  const Bounds bounds = wallBounds();
+  int lost = 0;
+  for (std::size_t k = 0; k < balls_.size(); ++k)
+    lost += whyLost(k, bounds).empty() ? 0 : 1;
+  return lost;
+}
+
+std::vector<LostBall> World::removeLostBalls()
+{
+  std::vector<LostBall> lost;
+  if (!floor_ && walls_.empty())
+    return lost;
+  const Bounds bounds = wallBounds();
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < balls_.size(); ++k)
+  {
+    std::string why = whyLost(k, bounds);
+    if (!why.empty())
+    {
+      lost.push_back({balls_[k], angularVelocity(k), std::move(why)});
+      continue;
+    }
+    if (kept != k)
+    {
+      balls_[kept] = balls_[k];
+      if (!feet_.empty())
+        feet_[kept] = feet_[k];
+    }
+    ++kept;
+  }
+  if (lost.empty())
+    return lost;
+  balls_.resize(kept);
+  if (!feet_.empty())
+    feet_.resize(kept);
+  forgetOrder();
+  return lost;
+}
+}  // namespace ball_collision_sim::core
