@@ -108,6 +108,28 @@ inline Scene slopePile()
   return scene;
 }
 
+/// `count` balls (radius 0.05-0.08 m, 0.5-2 kg, up to 1 m/s) dropped on a 2 m square
+/// plane sloped `degrees` along +x, walled in with walls of restitution `restitution`
+/// like the balls: they gather against the wall at the low end.
+inline Scene slopeWithWall(int count, double degrees, double restitution, std::uint64_t seed)
+{
+  Scene scene;
+  const double t = std::tan(degrees * M_PI / 180);
+  FloorDef f;
+  f.point = Vec3(-1, -1, 0);
+  f.u = Vec3(2, 0, -2 * t);  // downhill along +x
+  f.v = Vec3(0, 2, 0);
+  scene.floor = f;
+  scene.restitution = restitution;
+  const Vec3 up = f.u.cross(f.v).normalized();
+  scene.walls = {{f.point, f.u, 0.5 * up, {}},
+                 {f.point + f.v, f.u, 0.5 * up, {}},
+                 {f.point, f.v, 0.5 * up, {}},
+                 {f.point + f.u, f.v, 0.5 * up, {}}};
+  scene.random_balls = randomBalls(count, seed, {0.05, 0.08}, {0.5, 2}, {0, 1});
+  return scene;
+}
+
 /// Adds a ball of radius 0.01 m, on the floor, at the first free place of a 20 x 20 grid
 /// over [x0, x1] x [y0, y1] and removes it again; false when there was no room.
 inline bool addAndRemoveABall(core::World& world, double x0, double x1, double y0, double y1)

@@ -56,10 +56,8 @@ void World::load(const std::vector<PlacedBall>& balls)
     plane_normal_ = floor_->planeNormal();
     plane_offset_ = floor_->planeOffset();
   }
-  plane_resting_speed_ = 0.0;
-  if (plane_)
-    plane_resting_speed_ = restingSpeed(plane_normal_);
   const Vec3 along = plane_ ? tangentPart(gravity_, plane_normal_) : gravity_;
+  plane_gravity_along_ = plane_ ? along.norm() : 0.0;
   straight_ = !curved() && along.norm() <= settings_.straight_gravity_ratio * g;
   walls_.clear();
   next_wall_id_ = kFirstId;

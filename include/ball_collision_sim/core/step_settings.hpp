@@ -11,11 +11,14 @@ namespace ball_collision_sim::core
 struct StepSettings
 {
   // ---- resting contacts ---------------------------------------------------------------
-  /// A closing speed below what gravity along the floor adds in this many steps is a
-  /// resting contact: the motion is stopped along the normal instead of bounced, so a
-  /// ball leaning on a wall neither jitters nor makes endless events [steps].
-  double resting_steps = 2.0;
-  /// ... and below this always: flat floors, where gravity adds nothing [m/s].
+  /// An impact whose bounces to follow (each e times the last, gravity along the floor
+  /// bringing the ball back) would all be over within this many steps is a resting
+  /// contact: their sum, the motion stopped along the normal, is taken at once, so that
+  /// a ball leaning on a wall neither jitters nor makes endless events. At e = 1 they
+  /// never end: no resting contact [steps].
+  double resting_steps = 4.0;
+  /// ... and a closing speed below this always: round-off of speeds, where an impact
+  /// would be found again at once [m/s].
   double resting_speed_floor = 1e-9;
   /// A ball with more events than this in one step is stopped for the rest of the step
   /// and acts as immovable: a guard against endless chatter in jammed piles [events].

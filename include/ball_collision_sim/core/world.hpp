@@ -220,7 +220,11 @@ private:
   Vec3 positionAt(std::size_t i, double x) const;
   /// `w` less its parts along the directions the ball may not move this step.
   Vec3 allowed(std::size_t i, const Vec3& w) const;
-  void addBlocked(std::size_t i, const Vec3& direction);
+  /// Velocity `v` of ball i turned out of its blocked directions, keeping its speed where
+  /// speeds come from energy (gravity along the floor).
+  Vec3 redirected(std::size_t i, const Vec3& v) const;
+  /// Ball i may not move along `direction` for the rest of the step: it leans on a contact of this restitution.
+  void addBlocked(std::size_t i, const Vec3& direction, double restitution);
   /// While the step runs, a ball's velocity is the one at the start of its motion.
   Vec3& startVelocity(std::size_t i) { return balls_[order_[i]].velocity; }
   const Vec3& startVelocity(std::size_t i) const { return balls_[order_[i]].velocity; }
@@ -232,7 +236,11 @@ private:
   /// Shortens ball i's motion where its end would lie higher than its energy reaches.
   void keepEnergy(std::size_t i);
   Vec3 onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const;
-  double restingSpeed(const Vec3& floor_normal) const;
+  /// The closing speed at or below which an impact at restitution e is a resting contact.
+  double restingSpeed(const Vec3& floor_normal, double restitution) const;
+  /// A ball slower than this is all but still: gravity along the floor gives it as much
+  /// in resting_steps steps [m/s].
+  double stillSpeed(const Vec3& floor_normal) const;
 
   Scene scene_;
   StepSettings settings_;
@@ -240,11 +248,11 @@ private:
   Vec3 gravity_;
   std::optional<Floor> floor_;
   Vec3 up_ = Vec3::UnitZ();
-  /// A plane floor: its normal and offset, and the resting speed that goes with it.
+  /// A plane floor: its normal and offset, and gravity's part along it.
   bool plane_ = false;
   Vec3 plane_normal_ = Vec3::UnitZ();
   double plane_offset_ = 0.0;
-  double plane_resting_speed_ = 0.0;
+  double plane_gravity_along_ = 0.0;  ///< |gravity along the plane| [m/s^2]
   /// No force along the floor (a plane square to gravity, or no floor and no gravity):
   /// balls move in straight lines between impacts.
   bool straight_ = true;

@@ -86,7 +86,7 @@ void World::commitToFloor(bool predict_next)
     return;
   // Resting contacts keep no closing speed into the step that follows.
   for (std::size_t i = 0; i < balls_.size(); ++i)
-    balls_[order_[i]].velocity = allowed(i, balls_[order_[i]].velocity);
+    balls_[order_[i]].velocity = redirected(i, balls_[order_[i]].velocity);
   for (const RestingContact& contact : resting_)
   {
     Ball& a = balls_[order_[contact.ball]];
@@ -96,7 +96,13 @@ void World::commitToFloor(bool predict_next)
     const double closing = a.velocity.dot(contact.dir_ball) - b.velocity.dot(contact.dir_other);
     if (closing > 0)
     {
-      const double j = collisionImpulse(closing, inv_a, contact.dir_ball, inv_b, contact.dir_other, 0.0);
+      // the closing speed that gravity gave them in the step: bounced as an impact
+      // would be, or summed to rest (both balls' floors alike, whichever is which)
+      const Vec3& na = floor_normals_.empty() ? up_ : floor_normals_[contact.ball];
+      const Vec3& nb = floor_normals_.empty() ? up_ : floor_normals_[contact.other];
+      const double rest = std::max(restingSpeed(na, scene_.restitution), restingSpeed(nb, scene_.restitution));
+      const double e = closing <= rest ? 0.0 : scene_.restitution;
+      const double j = collisionImpulse(closing, inv_a, contact.dir_ball, inv_b, contact.dir_other, e);
       a.velocity -= (j * inv_a) * contact.dir_ball;
       b.velocity += (j * inv_b) * contact.dir_other;
     }
@@ -106,7 +112,13 @@ void World::commitToFloor(bool predict_next)
     const Vec3& normal = plane_ ? plane_normal_ : floor_ ? floor_normals_[i] : up_;
     Ball& ball = balls_[order_[i]];
     if (floor_ && !resting_.empty())
+    {
+      const double speed = ball.velocity.norm();
       ball.velocity -= ball.velocity.dot(normal) * normal;
+      const double along = ball.velocity.norm();
+      if (!straight_ && along > 0)
+        ball.velocity *= speed / along;
+    }
     roll(i, normal, motions_[i].p0);
     if (predict_next)
       predictMotion(i);

@@ -18,7 +18,21 @@ Vec3 World::allowed(std::size_t i, const Vec3& w) const
   return blocked < 0 ? w : blocked_sets_[static_cast<std::size_t>(blocked)].allowed(w, settings_);
 }
 
-void World::addBlocked(std::size_t i, const Vec3& direction)
+Vec3 World::redirected(std::size_t i, const Vec3& v) const
+{
+  // What a ball leans on takes the part of its velocity into it (the bounces that a
+  // resting contact sums); an elastic contact (e = 1, where only speeds at round-off
+  // rest) only turns it: where gravity pulls along the floor a ball's speed is its
+  // energy's (onFloorVelocity), and the turn keeps it.
+  const std::int32_t blocked = states_[i].blocked;
+  const Vec3 free = allowed(i, v);
+  const double speed = free.norm();
+  if (straight_ || blocked < 0 || !blocked_sets_[static_cast<std::size_t>(blocked)].elastic || !(speed > 0))
+    return free;
+  return free * (v.norm() / speed);
+}
+
+void World::addBlocked(std::size_t i, const Vec3& direction, double restitution)
 {
   MotionState& m = states_[i];
   if (m.blocked < 0)
@@ -26,7 +40,9 @@ void World::addBlocked(std::size_t i, const Vec3& direction)
     m.blocked = static_cast<std::int32_t>(blocked_sets_.size());
     blocked_sets_.emplace_back();
   }
-  blocked_sets_[static_cast<std::size_t>(m.blocked)].add(direction, settings_);
+  BlockedSet& set = blocked_sets_[static_cast<std::size_t>(m.blocked)];
+  set.add(direction, settings_);
+  set.elastic = set.elastic && !(restitution < 1);
 }
 
 void World::hold(std::size_t i)

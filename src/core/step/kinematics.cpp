@@ -6,6 +6,7 @@
 #include "ball_collision_sim/core/response.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace ball_collision_sim::core
 {
@@ -47,12 +48,25 @@ Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const
   return v * (std::sqrt(target) / norm);
 }
 
-double World::restingSpeed(const Vec3& floor_normal) const
+double World::stillSpeed(const Vec3& floor_normal) const
 {
-  if (plane_ && plane_resting_speed_ > 0)
-    return plane_resting_speed_;
-  const Vec3 along = floor_ ? tangentPart(gravity_, floor_normal) : gravity_;
-  return settings_.resting_steps * dt_ * along.norm() + settings_.resting_speed_floor;
+  const double a = plane_ ? plane_gravity_along_ : (floor_ ? tangentPart(gravity_, floor_normal) : gravity_).norm();
+  return settings_.resting_steps * dt_ * a + settings_.resting_speed_floor;
+}
+
+double World::restingSpeed(const Vec3& floor_normal, double restitution) const
+{
+  // After an impact at closing speed v, gravity along the floor (a) brings the ball back
+  // for bounces e times as fast each, which last 2 e v / (a (1 - e)) in all. Where that
+  // is within resting_steps steps, their sum, rest against what was hit, is taken at
+  // once: a resting contact. At e = 1 they never end (nor lose energy): no resting
+  // contact but at round-off speeds.
+  const double a = plane_ ? plane_gravity_along_ : (floor_ ? tangentPart(gravity_, floor_normal) : gravity_).norm();
+  if (!(restitution < 1))
+    return settings_.resting_speed_floor;
+  if (!(restitution > 0))
+    return std::numeric_limits<double>::infinity();  // no bounce at all
+  return settings_.resting_steps * dt_ * a * (1 - restitution) / (2 * restitution) + settings_.resting_speed_floor;
 }
 
 void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact)
@@ -68,7 +82,7 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
     v0 = m.b = Vec3::Zero();
     return;
   }
-  v0 = allowed(i, velocity);
+  v0 = redirected(i, velocity);
   if (states_[i].held)
   {
     m.b = Vec3::Zero();  // still held (no impact let it go): it keeps no motion

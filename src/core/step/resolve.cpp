@@ -66,7 +66,7 @@ void World::resolveBallWall(const Event& event)
     dir = n;  // a wall parallel to the floor: answer in space
   dir.normalize();
   const double closing = v.dot(dir);
-  const bool resting = closing <= restingSpeed(floor_normal);
+  const bool resting = closing <= restingSpeed(floor_normal, wall.restitution);
   const double inv_mass = states_[i].frozen ? 0.0 : 1.0 / ball.mass;
   const double impulse =
       collisionImpulse(std::max(closing, 0.0), inv_mass, dir, 0.0, dir, resting ? 0.0 : wall.restitution);
@@ -76,9 +76,9 @@ void World::resolveBallWall(const Event& event)
   {
     // leaning on the wall until the step ends; where the floor is not square to the wall,
     // also no motion into the wall itself (else it comes back at once, again and again)
-    addBlocked(i, dir);
+    addBlocked(i, dir, wall.restitution);
     if (dir.dot(n) < 1 - settings_.same_direction)
-      addBlocked(i, n);
+      addBlocked(i, n, wall.restitution);
   }
   startMotion(i, event.x, p, v, !resting);
   recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
@@ -117,7 +117,8 @@ void World::resolveBallBall(const Event& event)
   const double inv_a = states_[i].frozen ? 0.0 : 1.0 / a.mass;
   const double inv_b = states_[j].frozen ? 0.0 : 1.0 / b.mass;
   const double closing = va.dot(ta) - vb.dot(tb);
-  const bool resting = closing <= std::max(restingSpeed(na), restingSpeed(nb));
+  const bool resting =
+      closing <= std::max(restingSpeed(na, scene_.restitution), restingSpeed(nb, scene_.restitution));
   const double impulse =
       collisionImpulse(std::max(closing, 0.0), inv_a, ta, inv_b, tb, resting ? 0.0 : scene_.restitution);
   va -= (impulse * inv_a) * ta;
@@ -130,7 +131,7 @@ void World::resolveBallBall(const Event& event)
     // rest of the step, and two balls that are both all but still (a pile at rest) block
     // each other, so that piles settle in one event per contact instead of passing
     // vanishing impulses back and forth.
-    const double still = std::max(restingSpeed(na), restingSpeed(nb));
+    const double still = std::max(stillSpeed(na), stillSpeed(nb));
     both_still = va.norm() <= still && vb.norm() <= still;
     // (a held ball gives no way either)
     const bool a_fixed =
@@ -138,9 +139,9 @@ void World::resolveBallBall(const Event& event)
     const bool b_fixed =
         both_still || states_[j].held || inv_b * tb.squaredNorm() < settings_.fixed_mobility_ratio * inv_a * ta.squaredNorm();
     if (a_fixed && along_b.squaredNorm() > 0)
-      addBlocked(j, -along_b.normalized());
+      addBlocked(j, -along_b.normalized(), scene_.restitution);
     if (b_fixed && along_a.squaredNorm() > 0)
-      addBlocked(i, along_a.normalized());
+      addBlocked(i, along_a.normalized(), scene_.restitution);
   }
   MotionState& sa = states_[i];
   MotionState& sb = states_[j];

@@ -54,6 +54,10 @@ struct World::BlockedSet
 {
   std::array<Vec3, 8> directions;
   std::uint8_t count = 0;
+  /// Every contact that blocks it is elastic (e = 1): it turns the ball's velocity and
+  /// takes none of its speed. An inelastic one takes the part of the velocity into it,
+  /// the sum of the bounces that a resting contact stands for.
+  bool elastic = true;
 
   /// `w` without its parts along the blocked directions: the nearest vector with
   /// <w, d> <= 0 for every blocked d, by cyclic projection; zero (which always qualifies)
