@@ -108,17 +108,17 @@ inline Scene slopePile()
   return scene;
 }
 
-/// `count` balls (radius 0.05-0.08 m, 0.5-2 kg, up to 1 m/s) dropped on a 2 m square
-/// plane sloped `degrees` along +x, walled in with walls of restitution `restitution`
-/// like the balls: they gather against the wall at the low end.
-inline Scene slopeWithWall(int count, double degrees, double restitution, std::uint64_t seed)
+/// `count` balls (radius 0.05-0.08 m, 0.5-2 kg, up to 1 m/s) dropped on a square plane
+/// of `side` [m] sloped `degrees` along +x, walled in with walls of the balls'
+/// restitution: they gather against the wall at the low end.
+inline Scene slopeWithWall(int count, double degrees, double restitution, std::uint64_t seed, double side = 2)
 {
   Scene scene;
   const double t = std::tan(degrees * M_PI / 180);
   FloorDef f;
-  f.point = Vec3(-1, -1, 0);
-  f.u = Vec3(2, 0, -2 * t);  // downhill along +x
-  f.v = Vec3(0, 2, 0);
+  f.point = Vec3(-side / 2, -side / 2, 0);
+  f.u = Vec3(side, 0, -side * t);  // downhill along +x
+  f.v = Vec3(0, side, 0);
   scene.floor = f;
   scene.restitution = restitution;
   const Vec3 up = f.u.cross(f.v).normalized();

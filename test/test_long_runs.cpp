@@ -211,3 +211,108 @@ TEST(LongRun, ElasticPilesKeepTheirEnergyForAMinute)
     RecordProperty("energy_drift_" + std::to_string(world.balls().size()), std::to_string(worst / scale));
   }
 }
+
+// Dissipative piles come to rest and sleep: 60 and 200 balls at restitution 0.5 and 0.9
+// in a walled bowl and against the wall at the foot of a 10 degree slope. No step makes
+// energy (beyond round-off of the energies in play), no two balls overlap by more than
+// 1e-9 m at any step, every ball is asleep after 30 s with no kinetic energy left, and
+// asleep they make at most 0.01 events per ball and step. Twice the same: the same bits.
+TEST(LongRun, DissipativePilesComeToRestAndSleep)
+{
+  for (const double e : {0.5, 0.9})
+    for (const int n : {60, 200})
+      for (const bool slope : {false, true})
+      {
+        Scene scene;
+        if (slope)
+          scene = slopeWithWall(n, 10, e, 4, n > 100 ? 3.0 : 2.0);
+        else
+        {
+          scene.floor = bowl(3, 0.3);
+          addBox(scene, -1.5, 1.5, -1.5, 1.5, 1.0);
+          scene.restitution = e;
+          scene.random_balls = randomBalls(n, 4, {0.05, 0.08}, {0.5, 2}, {0, 1});
+        }
+        const std::string what = std::string(slope ? "slope" : "bowl") + " n=" + std::to_string(n) + " e=" + std::to_string(e);
+        World world(scene);
+        ASSERT_EQ(world.balls().size(), static_cast<std::size_t>(n)) << what;
+        const double k0 = world.energy().kinetic;
+        double mass = 0;
+        for (const Ball& b : world.balls())
+          mass += b.mass;
+        const double scale = k0 + mass * world.gravity().norm() * 1.0;  // heights span under a metre
+        double before = world.energy().total(), worst_rise = 0, worst_overlap = -1;
+        for (int k = 0; k < 3000; ++k)
+        {
+          world.step();
+          const double now = world.energy().total();
+          worst_rise = std::max(worst_rise, now - before);
+          before = now;
+          worst_overlap = std::max(worst_overlap, deepestOverlap(world.balls()));
+        }
+        EXPECT_LT(worst_rise / scale, 1e-9) << what;
+        EXPECT_LT(worst_overlap, 1e-9) << what;
+        EXPECT_EQ(world.stats().sleeping_balls, static_cast<std::uint64_t>(n)) << what;
+        EXPECT_LE(world.energy().kinetic, 1e-12 * k0) << what;
+        const std::uint64_t events = world.stats().events;
+        for (int k = 0; k < 100; ++k)
+          world.step();
+        EXPECT_LE(static_cast<double>(world.stats().events - events) / (100.0 * n), 0.01) << what;
+        EXPECT_EQ(world.lostBalls(), 0) << what;
+        EXPECT_EQ(world.stats().frozen_balls, 0u) << what;
+        if (n == 60 && e == 0.5)
+        {
+          World again(scene);
+          for (int k = 0; k < 3100; ++k)
+            again.step();
+          EXPECT_EQ(again.stateHash(), world.stateHash()) << what;
+        }
+      }
+}
+
+// A sleeping pile wakes where it is hit, and only the group it rests in. Two piles lie
+// asleep at the foot of a slope, parted by a wall down its middle; a ball sent uphill on
+// one side (an edit: everything wakes, and settles back to sleep at once) comes back
+// down into its pile, whose balls wake while the other pile sleeps on; then both sleep.
+TEST(Sleep, AnImpactWakesTheGroupItHits)
+{
+  const double slope = std::tan(10 * M_PI / 180);
+  Scene scene = slopeWithWall(40, 10, 0.5, 4, 3.0);
+  const Vec3 up = scene.floor->u.cross(scene.floor->v).normalized();
+  scene.walls.push_back({Vec3(-1.5, 0, 0) - 0.1 * up, Vec3(3, 0, -3 * slope), 0.5 * up, {}});
+  World world(scene);
+  for (int k = 0; k < 3000; ++k)
+    world.step();
+  ASSERT_EQ(world.stats().sleeping_balls, world.balls().size());
+  const auto onSide = [&](bool positive) {
+    std::size_t asleep = 0, all = 0;
+    for (const Ball& b : world.balls())
+      if ((b.position.y() > 0) == positive && b.position.x() > 0)
+      {
+        ++all;
+        asleep += b.asleep ? 1 : 0;
+      }
+    return std::pair{asleep, all};
+  };
+  BallDef bowler = ball(0.0, 0.7, -2.0, 0, 0.05, 1.0);  // uphill, on the y > 0 side
+  const AddResult added = world.addBall(bowler, Landing::kUnder);
+  ASSERT_TRUE(added.ok) << added.error;
+  bool other_slept_through = true, hit_woke = false;
+  std::uint64_t woken_before = world.stats().woken_balls;
+  for (int k = 0; k < 600; ++k)
+  {
+    world.step();
+    if (k < 150)
+      continue;  // back to sleep after the edit
+    const auto [asleep_other, all_other] = onSide(false);
+    other_slept_through = other_slept_through && asleep_other == all_other;
+    hit_woke = hit_woke || world.stats().woken_balls > woken_before;
+  }
+  EXPECT_TRUE(hit_woke);
+  EXPECT_TRUE(other_slept_through);
+  EXPECT_GT(onSide(false).second, 5u);
+  for (int k = 0; k < 3000; ++k)
+    world.step();
+  EXPECT_EQ(world.stats().sleeping_balls, world.balls().size());
+  EXPECT_LT(deepestOverlap(world.balls()), 1e-9);
+}

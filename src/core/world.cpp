@@ -32,6 +32,7 @@ World::World(const Scene& scene, SceneCheck checked, const StepSettings& setting
   // (a ball's event count is kept in 16 bits, up to one past the cap)
   if (settings_.max_events_per_ball_step >= 0xffff)
     throw std::invalid_argument("max_events_per_ball_step: must be below 65535");
+  sleep_steps_ = static_cast<std::uint16_t>(std::clamp(std::ceil(settings_.sleep_time / dt_), 1.0, 65535.0));
   load(checked.balls);
 }
 
@@ -87,6 +88,7 @@ void World::reset()
 
 void World::forgetOrder()
 {
+  wakeAll();
   order_.clear();
   order_age_ = 0;
   motions_ready_ = false;
@@ -327,6 +329,7 @@ AddResult World::addWall(const WallDef& def)
   }
   ++next_wall_id_;
   walls_.push_back(wall);
+  wakeAll();
   result.ok = true;
   result.id = wall.id;
   return result;
@@ -350,6 +353,7 @@ bool World::removeWall(int id)
   if (it == walls_.end())
     return false;
   walls_.erase(it);
+  wakeAll();  // what leaned on it
   return true;
 }
 }  // namespace ball_collision_sim::core

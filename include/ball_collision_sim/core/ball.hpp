@@ -2,6 +2,8 @@
 
 #include "ball_collision_sim/core/types.hpp"
 
+#include <cstdint>
+
 namespace ball_collision_sim::core
 {
 /// A ball. Physical fields carry units. Its angular velocity is that of rolling without
@@ -9,6 +11,11 @@ namespace ball_collision_sim::core
 struct Ball
 {
   int id = 0;
+  /// At rest in a group that leans on walls or the floor's slope: the step leaves it
+  /// where it is, without motion or events, until an impact or an edit wakes it.
+  bool asleep = false;
+  /// Steps in a row it has been all but still while leaning on something (to sleep).
+  std::uint16_t quiet_steps = 0;
   double radius = 0.1;                    ///< [m]
   double mass = 1.0;                      ///< [kg]
   Vec3 position = Vec3::Zero();           ///< centre [m]

@@ -52,6 +52,17 @@ struct StepSettings
   /// parallel to the floor: a ball meets it in space, not along the floor [1].
   double wall_along_floor_squared = 1e-12;
 
+  // ---- sleeping ----------------------------------------------------------------------
+  /// A ball slower than this while it leans on something is all but still: a millimetre
+  /// a second, well below what a viewer sees move, and what piles settle to in seconds
+  /// [m/s].
+  double sleep_speed = 1e-3;
+  /// A group of balls held together by resting contacts sleeps once every one of them
+  /// has been all but still this long [s] (at least one step).
+  double sleep_time = 0.5;
+  /// Balls this close count as touching when an impact wakes a sleeping group [m].
+  double touch_slack = 1e-6;
+
   // ---- keeping a motion within its energy (curved floors) -----------------------------
   /// Root finding on the chord for where the speed runs out: at most this many steps,
   /// and until the bracket is this narrow [steps], [fraction of the step].

@@ -37,6 +37,8 @@ struct WorldStats
   /// balls held still for the rest of a step: jammed at a resting contact, or with no
   /// motion their energy allows
   std::uint64_t held_balls = 0;
+  std::uint64_t sleeping_balls = 0;  ///< balls asleep after the last step (not a sum)
+  std::uint64_t woken_balls = 0;     ///< balls woken by impacts
 };
 
 /// Result of adding or editing an object: ok, or the reason it was refused (the world
@@ -215,6 +217,17 @@ private:
   void countEvent(std::size_t i);
   /// Ball i stays where it is through the step's resting contacts (counted once a step).
   void hold(std::size_t i);
+  /// Wakes sleeping ball i, and the sleeping balls that touch it, and those that touch
+  /// them: the group it rests in. Their motions start at the next step.
+  void wakeGroup(std::size_t i);
+  /// After the step's resting contacts are settled: counts the balls that lean on
+  /// something while all but still, and puts to sleep each group of them held together
+  /// by resting contacts whose every ball has been so for sleep_steps steps.
+  void sleepStillGroups();
+  /// Every ball awake (an edit: what held a group may be gone).
+  void wakeAll();
+  /// Whether a wall parts two balls that touch (they then lean on it, not on each other).
+  bool wallBetween(const Ball& a, const Ball& b) const;
   void recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,
                    double impulse, double closing, bool resting, const Event& event);
   Vec3 positionAt(std::size_t i, double x) const;
@@ -245,6 +258,8 @@ private:
   Scene scene_;
   StepSettings settings_;
   double dt_;
+  /// sleep_time in steps of dt (at least one, at most what Ball::quiet_steps counts)
+  std::uint16_t sleep_steps_ = 1;
   Vec3 gravity_;
   std::optional<Floor> floor_;
   Vec3 up_ = Vec3::UnitZ();

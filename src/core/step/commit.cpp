@@ -45,6 +45,7 @@ void World::commitToFloor(bool predict_next)
   // Without resting contacts every ball is finished in one pass; with them, velocities
   // are settled across the contacts first.
   const bool settle = !resting_.empty() || !blocked_sets_.empty();
+  std::uint64_t asleep = 0;
   if (curved())
     floor_normals_.resize(balls_.size());
   for (std::size_t i = 0; i < balls_.size(); ++i)
@@ -75,6 +76,8 @@ void World::commitToFloor(bool predict_next)
     ball.velocity = states_[i].frozen ? Vec3::Zero() : onFloorVelocity(i, 1.0, p, normal);
     if (!settle)
     {
+      ball.quiet_steps = 0;  // it leaned on nothing
+      asleep += ball.asleep ? 1 : 0;
       roll(i, normal, moved);
       if (predict_next)
         predictMotion(i);
@@ -83,7 +86,10 @@ void World::commitToFloor(bool predict_next)
       m.p0 = moved;  // the motion is done with: p0 keeps the step's move for roll()
   }
   if (!settle)
+  {
+    stats_.sleeping_balls = asleep;
     return;
+  }
   // Resting contacts keep no closing speed into the step that follows.
   for (std::size_t i = 0; i < balls_.size(); ++i)
     balls_[order_[i]].velocity = redirected(i, balls_[order_[i]].velocity);
@@ -120,9 +126,14 @@ void World::commitToFloor(bool predict_next)
         ball.velocity *= speed / along;
     }
     roll(i, normal, motions_[i].p0);
-    if (predict_next)
-      predictMotion(i);
   }
+  // Groups at rest sleep; where gravity does not pull along the floor, nothing gathers
+  // balls into groups, and none does.
+  if (!straight_)
+    sleepStillGroups();
+  if (predict_next)
+    for (std::size_t i = 0; i < balls_.size(); ++i)
+      predictMotion(i);
 }
 
 void World::roll(std::size_t i, const Vec3& normal, const Vec3& d)

@@ -45,6 +45,96 @@ void World::addBlocked(std::size_t i, const Vec3& direction, double restitution)
   set.elastic = set.elastic && !(restitution < 1);
 }
 
+void World::wakeGroup(std::size_t first)
+{
+  std::vector<std::size_t> todo{first};
+  while (!todo.empty())
+  {
+    const std::size_t k = todo.back();
+    todo.pop_back();
+    if (!states_[k].asleep)
+      continue;
+    states_[k].frozen = states_[k].asleep = false;
+    Ball& ball = balls_[order_[k]];
+    ball.asleep = false;
+    ball.quiet_steps = 0;
+    ++stats_.woken_balls;
+    grid_.query(static_cast<std::uint32_t>(k), [&](std::uint32_t other) {
+      const Ball& b = balls_[order_[other]];
+      if (states_[other].asleep && (b.position - ball.position).norm() <= b.radius + ball.radius + settings_.touch_slack &&
+          !wallBetween(ball, b))
+        todo.push_back(other);
+    });
+  }
+}
+
+bool World::wallBetween(const Ball& a, const Ball& b) const
+{
+  // Balls that touch one another meet where their centres' line crosses; balls on the
+  // two sides of a wall meet the wall there instead.
+  const Vec3 middle = 0.5 * (a.position + b.position);
+  const double near = 0.5 * std::min(a.radius, b.radius);
+  return std::any_of(walls_.begin(), walls_.end(), [&](const Wall& wall) { return wall.distance(middle) < near; });
+}
+
+void World::wakeAll()
+{
+  for (Ball& ball : balls_)
+  {
+    ball.asleep = false;
+    ball.quiet_steps = 0;
+  }
+  motions_ready_ = false;  // (a prediction made while they slept)
+}
+
+void World::sleepStillGroups()
+{
+  // Groups: balls joined by the step's resting contacts, by union-find over the visiting
+  // order (its smallest index stands for a group; the same groups whatever the order).
+  const std::size_t n = balls_.size();
+  std::vector<std::uint32_t> parent(n);
+  for (std::size_t k = 0; k < n; ++k)
+    parent[k] = static_cast<std::uint32_t>(k);
+  const auto root = [&](std::size_t k) {
+    while (parent[k] != k)
+      k = parent[k] = parent[parent[k]];
+    return k;
+  };
+  std::vector<char> leans(n, 0);
+  for (const RestingContact& c : resting_)
+  {
+    leans[c.ball] = leans[c.other] = 1;
+    if (states_[c.ball].asleep || states_[c.other].asleep)
+      continue;  // a sleeping ball holds the other like a wall does
+    const std::size_t a = root(c.ball), b = root(c.other);
+    parent[std::max(a, b)] = static_cast<std::uint32_t>(std::min(a, b));
+  }
+  // a group sleeps when every ball in it has been still long enough
+  std::vector<char> restless(n, 0);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    Ball& ball = balls_[order_[k]];
+    if (ball.asleep)
+      continue;
+    const bool still = (leans[k] || states_[k].blocked >= 0) && ball.velocity.norm() <= settings_.sleep_speed;
+    ball.quiet_steps = still ? static_cast<std::uint16_t>(std::min<int>(ball.quiet_steps + 1, 0xffff)) : 0;
+    if (ball.quiet_steps < sleep_steps_)
+      restless[root(k)] = 1;
+  }
+  std::uint64_t asleep = 0;
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    Ball& ball = balls_[order_[k]];
+    if (!ball.asleep && ball.quiet_steps >= sleep_steps_ && !restless[root(k)])
+    {
+      ball.asleep = true;
+      ball.velocity = Vec3::Zero();
+    }
+    asleep += ball.asleep ? 1 : 0;
+  }
+  stats_.sleeping_balls = asleep;
+}
+
 void World::hold(std::size_t i)
 {
   if (!states_[i].held)

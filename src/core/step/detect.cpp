@@ -89,9 +89,10 @@ void World::detectBall(std::size_t i, std::size_t j)
 {
   // Always in index order, so that the same pair gives the same bits whoever asks.
   const std::size_t a = std::min(i, j), b = std::max(i, j);
+  if (states_[a].frozen && states_[b].frozen)
+    return;  // neither moves (asleep, or stopped by the cap): no impact
   const Motion& ma = motions_[a];
   const Motion& mb = motions_[b];
-  // (two frozen balls have no motion, so no impact)
   const double xs = std::max(ma.x0, mb.x0);
   const Vec3 d = (ma.p0 + (xs - ma.x0) * ma.b) - (mb.p0 + (xs - mb.x0) * mb.b);
   const auto t = sphereSweep(d, ma.b - mb.b, ma.radius + mb.radius, 1 - xs);

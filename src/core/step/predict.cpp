@@ -54,6 +54,12 @@ void World::predictMotion(std::size_t i)
   m.p0 = ball.position;
   if (!floor_uv_.empty())
     floor_uv_[i] = feet_[order_[i]];
+  if (ball.asleep)
+  {
+    states_[i].frozen = states_[i].asleep = true;  // where it is, an obstacle, until woken
+    grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, m.p0, ball.radius));
+    return;
+  }
   const Vec3 end = predictedEnd(i, m.p0, ball.velocity, dt_);
   m.b = end - m.p0;
   if (curved())

@@ -106,6 +106,13 @@ void World::resolveBallBall(const Event& event)
   Vec3 n = pb - pa;
   const double dist = n.norm();
   n = dist > 0 ? Vec3(n / dist) : Vec3(Vec3::UnitX());
+  // An impact on a sleeping ball (not one that would rest on it) wakes its group.
+  if (states_[i].asleep != states_[j].asleep)
+  {
+    const double hit = states_[j].asleep ? va.dot(n) : -vb.dot(n);
+    if (hit > std::max(restingSpeed(na, scene_.restitution), restingSpeed(nb, scene_.restitution)))
+      wakeGroup(states_[j].asleep ? j : i);
+  }
   Motion& ma = motions_[i];
   Motion& mb = motions_[j];
   // Each ball is pushed along the normal's part tangent to the floor under it, less any

@@ -39,7 +39,10 @@ struct World::MotionState
 {
   std::uint32_t epoch = 0;       ///< bumped at every event of this ball
   std::uint16_t events = 0;      ///< events of this ball in this step, up to one past the cap
+  /// no motion for the rest of the step, immovable (inverse mass 0): stopped by the event
+  /// cap, or asleep
   bool frozen = false;
+  bool asleep = false;           ///< frozen because the ball sleeps: an impact wakes it
   /// Held (see hold()): in a jam at a resting contact, or left no motion its energy allows;
   /// it stays where it is through resting contacts for the rest of the step (an impact
   /// lets it go).
