@@ -3,6 +3,7 @@
 #include "ball_collision_sim/core/ball.hpp"
 #include "ball_collision_sim/core/broad_phase.hpp"
 #include "ball_collision_sim/core/collision_event.hpp"
+#include "ball_collision_sim/core/event_queue.hpp"
 #include "ball_collision_sim/core/floor.hpp"
 #include "ball_collision_sim/core/placement.hpp"
 #include "ball_collision_sim/core/scene.hpp"
@@ -140,19 +141,7 @@ private:
   struct Motion;
   struct MotionState;
   struct BlockedSet;
-  struct Event;
-  /// The queue holds the time of each pending event and its place in `event_pool_`.
-  struct QueuedEvent
-  {
-    double x;
-    std::uint32_t slot;
-  };
-  struct EventLater
-  {
-    const std::vector<Event>* pool;
-    const std::vector<std::uint32_t>* order;
-    bool operator()(const QueuedEvent& a, const QueuedEvent& b) const;
-  };
+  using Event = StepEvent;
   /// Two balls resting on each other: no closing speed is left at the step's end.
   struct RestingContact
   {
@@ -205,7 +194,6 @@ private:
 
   Vec3 predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span);
   Aabb currentBox(std::size_t i) const;
-  void pushEvent(const Event& event);
   void detect(std::size_t i);
   void detectWalls(std::size_t i);
   void detectBall(std::size_t i, std::size_t j);
@@ -290,9 +278,7 @@ private:
   // per-step work space, kept between steps to avoid allocation
   std::vector<Motion> motions_;
   std::vector<MotionState> states_;
-  std::vector<QueuedEvent> heap_;
-  std::vector<Event> event_pool_;
-  std::vector<std::uint32_t> free_slots_;
+  EventQueue queue_;
   StepGrid grid_;
   std::vector<Box32> wall_boxes_;
   std::vector<Vec3> floor_normals_;

@@ -15,8 +15,7 @@ using namespace step;
 
 void World::resolveEventsInTimeOrder()
 {
-  const EventLater later{&event_pool_, &order_};
-  while (!heap_.empty())
+  while (!queue_.empty())
   {
     {
       // the first event's balls' data are fetched while the queue is put in order
@@ -25,20 +24,12 @@ void World::resolveEventsInTimeOrder()
         __builtin_prefetch(&motions_[k]);
         __builtin_prefetch(&order_[k]);
       };
-      const Event& next = event_pool_[heap_.front().slot];
+      const Event& next = queue_.top();
       fetch(next.i);
       if (!next.wall)
         fetch(next.j);
     }
-    std::pop_heap(heap_.begin(), heap_.end(), later);
-    const std::uint32_t slot = heap_.back().slot;
-    heap_.pop_back();
-    const Event event = event_pool_[slot];
-    free_slots_.push_back(slot);
-    // The next event is most likely the one now first: its record is fetched while this
-    // one is handled (events in time order reach the balls' data at random).
-    if (!heap_.empty())
-      __builtin_prefetch(&event_pool_[heap_.front().slot]);
+    const Event event = queue_.pop();
     if (states_[event.i].epoch != event.epoch_i || (!event.wall && states_[event.j].epoch != event.epoch_j))
     {
       ++stats_.stale_events;  // a ball involved has had an event since this was found

@@ -98,16 +98,4 @@ struct World::BlockedSet
   }
 };
 
-/// A predicted impact; stale once either ball's epoch has moved on.
-struct World::Event
-{
-  double x;                  ///< step fraction of the impact
-  std::uint32_t i;           ///< ball index (the lower one for ball-ball)
-  std::uint32_t j;           ///< other ball index, or wall index
-  std::uint32_t epoch_i;
-  std::uint32_t epoch_j;
-  bool wall;
-  WallFeature feature;
-  Vec3 normal;               ///< ball-wall: unit, from the wall toward the ball
-};
 }  // namespace ball_collision_sim::core

@@ -1,0 +1,58 @@
+#pragma once
+
+#include "ball_collision_sim/core/types.hpp"
+#include "ball_collision_sim/core/wall.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace ball_collision_sim::core
+{
+/// An impact predicted inside the step; stale once either ball's epoch has moved on (it
+/// has had an event since).
+struct StepEvent
+{
+  double x;                  ///< step fraction of the impact
+  std::uint32_t i;           ///< visiting index of the ball (the lower one for ball-ball)
+  std::uint32_t j;           ///< visiting index of the other ball, or the wall's index
+  std::uint32_t epoch_i;
+  std::uint32_t epoch_j;
+  bool wall;
+  WallFeature feature;
+  Vec3 normal;               ///< ball-wall: unit, from the wall toward the ball
+};
+
+/// The step's pending events, earliest first. Ties go by the balls' places in the world's
+/// list (their ids' order), not by the order the step visits them in, so that a run is
+/// the same whatever that order is: a ball's wall events before its ball events, and
+/// pairs by their lower, then higher, ball. Events live in a pool and the heap holds
+/// their times and slots, so that sifting moves 16 bytes, not an event.
+class EventQueue
+{
+public:
+  /// Empties the queue; `order` maps visiting indices to places in the world's list and
+  /// must outlive the queue's use until the next start().
+  void start(const std::vector<std::uint32_t>* order);
+  void push(const StepEvent& event);
+  bool empty() const { return heap_.empty(); }
+  std::size_t size() const { return heap_.size(); }
+  /// The earliest event, still queued.
+  const StepEvent& top() const { return pool_[heap_.front().slot]; }
+  /// Takes the earliest event out.
+  StepEvent pop();
+
+private:
+  struct Entry
+  {
+    double x;
+    std::uint32_t slot;
+  };
+  /// Whether a comes after b.
+  bool later(const Entry& a, const Entry& b) const;
+
+  const std::vector<std::uint32_t>* order_ = nullptr;
+  std::vector<Entry> heap_;
+  std::vector<StepEvent> pool_;
+  std::vector<std::uint32_t> free_slots_;
+};
+}  // namespace ball_collision_sim::core

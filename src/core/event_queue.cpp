@@ -1,0 +1,61 @@
+#include "ball_collision_sim/core/event_queue.hpp"
+
+#include <algorithm>
+#include <array>
+
+namespace ball_collision_sim::core
+{
+void EventQueue::start(const std::vector<std::uint32_t>* order)
+{
+  order_ = order;
+  heap_.clear();
+  pool_.clear();
+  free_slots_.clear();
+}
+
+bool EventQueue::later(const Entry& qa, const Entry& qb) const
+{
+  if (qa.x != qb.x)
+    return qa.x > qb.x;
+  const StepEvent& a = pool_[qa.slot];
+  const StepEvent& b = pool_[qb.slot];
+  const auto key = [&](const StepEvent& e) {
+    const std::uint32_t i = (*order_)[e.i];
+    const std::uint32_t j = e.wall ? e.j : (*order_)[e.j];
+    using Key = std::array<std::uint32_t, 3>;
+    return e.wall ? Key{i, 0, j} : Key{std::min(i, j), 1, std::max(i, j)};
+  };
+  return key(a) > key(b);
+}
+
+void EventQueue::push(const StepEvent& event)
+{
+  std::uint32_t slot = 0;
+  if (free_slots_.empty())
+  {
+    slot = static_cast<std::uint32_t>(pool_.size());
+    pool_.push_back(event);
+  }
+  else
+  {
+    slot = free_slots_.back();
+    free_slots_.pop_back();
+    pool_[slot] = event;
+  }
+  heap_.push_back({event.x, slot});
+  std::push_heap(heap_.begin(), heap_.end(), [this](const Entry& a, const Entry& b) { return later(a, b); });
+}
+
+StepEvent EventQueue::pop()
+{
+  std::pop_heap(heap_.begin(), heap_.end(), [this](const Entry& a, const Entry& b) { return later(a, b); });
+  const std::uint32_t slot = heap_.back().slot;
+  heap_.pop_back();
+  free_slots_.push_back(slot);
+  // The next event is most likely the one now first: its record is fetched while this
+  // one is handled (events in time order reach the balls' data at random).
+  if (!heap_.empty())
+    __builtin_prefetch(&pool_[heap_.front().slot]);
+  return pool_[slot];
+}
+}  // namespace ball_collision_sim::core

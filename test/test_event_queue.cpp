@@ -1,0 +1,95 @@
+// The step's event queue: earliest first, and ties in the balls' order in the world
+// (ids), whatever order the step visits them in.
+#include "ball_collision_sim/core/event_queue.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <random>
+#include <vector>
+
+using namespace ball_collision_sim::core;
+
+namespace
+{
+StepEvent ballEvent(double x, std::uint32_t i, std::uint32_t j)
+{
+  return StepEvent{x, i, j, 0, 0, false, WallFeature::kFace, Vec3::Zero()};
+}
+
+StepEvent wallEvent(double x, std::uint32_t i, std::uint32_t wall)
+{
+  return StepEvent{x, i, wall, 0, 0, true, WallFeature::kFace, Vec3::UnitX()};
+}
+}  // namespace
+
+TEST(EventQueue, EarliestFirstAndTiesByTheBallsIdsNotTheVisitingOrder)
+{
+  // visiting index k is ball order[k] of the world's list
+  const std::vector<std::uint32_t> order{3, 0, 4, 1, 2};
+  EventQueue queue;
+  queue.start(&order);
+  queue.push(ballEvent(0.7, 0, 1));   // balls 3 and 0
+  queue.push(ballEvent(0.5, 2, 3));   // balls 4 and 1
+  queue.push(wallEvent(0.5, 2, 7));   // ball 4, wall 7
+  queue.push(ballEvent(0.5, 1, 4));   // balls 0 and 2
+  queue.push(wallEvent(0.5, 1, 9));   // ball 0, wall 9
+  queue.push(wallEvent(0.5, 1, 2));   // ball 0, wall 2
+  queue.push(ballEvent(0.25, 4, 0));  // balls 2 and 3
+  ASSERT_EQ(queue.size(), 7u);
+  std::vector<std::pair<double, std::vector<std::uint32_t>>> got;
+  while (!queue.empty())
+  {
+    const StepEvent e = queue.pop();
+    got.push_back({e.x, {order[e.i], e.wall ? 100 + e.j : order[e.j]}});
+  }
+  const std::vector<std::pair<double, std::vector<std::uint32_t>>> expected{
+      {0.25, {2, 3}},
+      // at 0.5: ball 0's walls (2 then 9), then the pairs by lower then higher ball:
+      // (0, 2), then ball 1's pair with 4, then ball 4's wall
+      {0.5, {0, 102}}, {0.5, {0, 109}}, {0.5, {0, 2}}, {0.5, {4, 1}}, {0.5, {4, 107}},
+      {0.7, {3, 0}},
+  };
+  EXPECT_EQ(got, expected);
+}
+
+// Many events pushed and popped in between, with slots reused: once the last is pushed,
+// what comes out is in order of time, then of the balls' ids as above.
+TEST(EventQueue, DrainsInOrderWithSlotsReused)
+{
+  std::vector<std::uint32_t> order(50);
+  for (std::uint32_t k = 0; k < order.size(); ++k)
+    order[k] = (k * 17) % 50;  // a scrambled visiting order
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<std::uint32_t> ball(0, 49);
+  std::uniform_int_distribution<int> time(0, 20);  // few distinct times: many ties
+  EventQueue queue;
+  queue.start(&order);
+  std::size_t pushed = 0, popped = 0;
+  for (int k = 0; k < 2000; ++k)
+  {
+    const std::uint32_t a = ball(rng), b = ball(rng);
+    queue.push((k % 3 == 0) ? wallEvent(time(rng) / 20.0, a, b % 6) : ballEvent(time(rng) / 20.0, a, b));
+    ++pushed;
+    if (k % 5 == 4)
+    {
+      queue.pop();
+      ++popped;
+    }
+  }
+  using Key = std::array<double, 4>;
+  const auto key = [&](const StepEvent& e) {
+    const double i = order[e.i], j = e.wall ? e.j : order[e.j];
+    return e.wall ? Key{e.x, i, 0, j} : Key{e.x, std::min(i, j), 1, std::max(i, j)};
+  };
+  std::vector<Key> drained;
+  while (!queue.empty())
+    drained.push_back(key(queue.pop()));
+  EXPECT_EQ(drained.size(), pushed - popped);
+  EXPECT_TRUE(std::is_sorted(drained.begin(), drained.end()));
+  // a queue that came out unsorted would fail here: the same keys shuffled are not
+  std::vector<Key> shuffled = drained;
+  std::shuffle(shuffled.begin(), shuffled.end(), rng);
+  EXPECT_FALSE(std::is_sorted(shuffled.begin(), shuffled.end()));
+}
