@@ -24,9 +24,9 @@ World::Bounds World::wallBounds() const
 std::string World::whyLost(std::size_t k, const Bounds& bounds) const
 {
   const Ball& ball = balls_[k];
-  if (floor_)
+  if (ground_.floor())
   {
-    const Vec2 uv = plane_ ? floor_->planeParameters(ball.position) : feet_[k];
+    const Vec2 uv = ground_.footParameters(ball.position, footOf(k));
     if (Floor::inside(uv))
       return "";
     return "left the floor (its foot point at u = " + formatNumber(uv.x()) + ", v = " + formatNumber(uv.y()) +
@@ -50,7 +50,7 @@ int World::lostBalls() const
 std::vector<LostBall> World::removeLostBalls()
 {
   std::vector<LostBall> lost;
-  if (!floor_ && walls_.empty())
+  if (!ground_.floor() && walls_.empty())
     return lost;
   const Bounds bounds = wallBounds();
   std::size_t kept = 0;

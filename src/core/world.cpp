@@ -25,7 +25,11 @@ World::World(const Scene& scene, const StepSettings& settings) : World(scene, ch
 }
 
 World::World(const Scene& scene, SceneCheck checked, const StepSettings& settings)
-    : scene_(scene), settings_(settings), dt_(scene.dt), gravity_(scene.gravity)
+    : scene_(scene)
+    , settings_(settings)
+    , dt_(scene.dt)
+    , gravity_(scene.gravity)
+    , ground_(scene.floor, scene.gravity, settings)
 {
   if (!checked.issues.empty())
     throw std::invalid_argument(joinIssues(checked.issues));
@@ -44,22 +48,6 @@ World::~World() = default;
 
 void World::load(const std::vector<PlacedBall>& balls)
 {
-  dt_ = scene_.dt;
-  gravity_ = scene_.gravity;
-  floor_.reset();
-  if (scene_.floor)
-    floor_.emplace(*scene_.floor, gravity_);
-  const double g = gravity_.norm();
-  up_ = floor_ ? floor_->up() : g > 0 ? Vec3(-gravity_ / g) : Vec3(Vec3::UnitZ());
-  plane_ = floor_ && floor_->isPlane();
-  if (plane_)
-  {
-    plane_normal_ = floor_->planeNormal();
-    plane_offset_ = floor_->planeOffset();
-  }
-  const Vec3 along = plane_ ? tangentPart(gravity_, plane_normal_) : gravity_;
-  plane_gravity_along_ = plane_ ? along.norm() : 0.0;
-  straight_ = !curved() && along.norm() <= settings_.straight_gravity_ratio * g;
   walls_.clear();
   next_wall_id_ = kFirstId;
   for (const WallDef& def : scene_.walls)
@@ -68,12 +56,12 @@ void World::load(const std::vector<PlacedBall>& balls)
   feet_.clear();
   next_ball_id_ = kFirstId;
   balls_.reserve(balls.size());
-  if (curved())
+  if (ground_.bends())
     feet_.reserve(balls.size());
   for (const PlacedBall& ball : balls)
   {
     balls_.push_back(makeBall(next_ball_id_++, ball.def));
-    if (curved())
+    if (ground_.bends())
       feet_.push_back(ball.foot);
   }
   stats_ = WorldStats{};
@@ -192,7 +180,7 @@ const Ball* World::findBall(int id) const
 Vec3 World::angularVelocity(std::size_t k) const
 {
   const Ball& ball = balls_.at(k);
-  const Vec3 normal = plane_ ? plane_normal_ : floor_ ? floor_->normal(feet_[k]) : up_;
+  const Vec3 normal = ground_.normalUnder(footOf(k));
   return normal.cross(ball.velocity) / ball.radius;
 }
 
@@ -203,7 +191,7 @@ std::string World::place(BallDef& def, Landing landing, int ignore_id, Vec2& foo
   const std::vector<SceneIssue> issues = validateBall(def, "");
   if (!issues.empty())
     return joinIssues(issues);
-  const std::string why = placeAmongWalls(def, floor_, walls_, landing, &foot, [&](std::size_t k) {
+  const std::string why = placeAmongWalls(def, ground_.floor(), walls_, landing, &foot, [&](std::size_t k) {
     return "wall " + std::to_string(walls_[k].id);
   });
   if (!why.empty())
@@ -227,7 +215,7 @@ AddResult World::addBall(const BallDef& def, Landing landing)
     return result;
   result.ok = true;
   const Ball ball = makeBall(next_ball_id_, placed);
-  if (curved())
+  if (ground_.bends())
   {
     feet_.push_back(foot);
     try
@@ -276,7 +264,7 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
     return result;
   balls_[k].position = def.position;
   balls_[k].velocity = def.velocity;
-  if (curved())
+  if (ground_.bends())
     feet_[k] = foot;
   forgetOrder();
   result.ok = true;
@@ -294,11 +282,7 @@ AddResult World::applyImpulse(int id, const Vec3& impulse)
   result.id = id;
   Ball& ball = balls_[k];
   Vec3 velocity = ball.velocity + impulse / ball.mass;
-  if (floor_)
-  {
-    const Vec3 normal = plane_ ? plane_normal_ : floor_->normal(feet_[k]);
-    velocity -= velocity.dot(normal) * normal;
-  }
+  velocity = ground_.along(velocity, ground_.normalUnder(footOf(k)));  // the floor takes the rest
   if (!(velocity.stableNorm() <= kMaxSpeed))
   {
     result.error = "impulse: would give ball " + std::to_string(id) + " a speed of " +

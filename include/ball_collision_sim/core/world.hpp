@@ -5,6 +5,7 @@
 #include "ball_collision_sim/core/collision_event.hpp"
 #include "ball_collision_sim/core/event_queue.hpp"
 #include "ball_collision_sim/core/floor.hpp"
+#include "ball_collision_sim/core/ground.hpp"
 #include "ball_collision_sim/core/placement.hpp"
 #include "ball_collision_sim/core/scene.hpp"
 #include "ball_collision_sim/core/step_settings.hpp"
@@ -92,7 +93,7 @@ public:
   const StepSettings& stepSettings() const { return settings_; }
   const std::vector<Ball>& balls() const { return balls_; }
   const std::vector<Wall>& walls() const { return walls_; }
-  const std::optional<Floor>& floor() const { return floor_; }
+  const std::optional<Floor>& floor() const { return ground_.floor(); }
   /// The collisions handled in the last step, in the order they were handled; empty
   /// while events are not recorded.
   const std::vector<CollisionEvent>& lastEvents() const { return events_; }
@@ -170,10 +171,12 @@ private:
   std::string whyLost(std::size_t k, const Bounds& bounds) const;
   /// The index of the ball with this id in balls_, or balls_.size().
   std::size_t indexOf(int id) const;
-  /// Unit vector against gravity (the floor's normal side).
-  const Vec3& up() const { return up_; }
-  /// A floor other than a plane: balls' foot points are found by Newton's method.
-  bool curved() const { return floor_ && !plane_; }
+  /// Ball i's foot point guess in this step (curved floors), or a value the ground does
+  /// not read.
+  const Vec2& guessOf(std::size_t i) const { return floor_uv_.empty() ? no_foot_ : floor_uv_[i]; }
+  Vec2& guessOf(std::size_t i) { return floor_uv_.empty() ? no_foot_ : floor_uv_[i]; }
+  /// balls_[k]'s foot point (curved floors), or a value the ground does not read.
+  const Vec2& footOf(std::size_t k) const { return feet_.empty() ? no_foot_ : feet_[k]; }
 
   // The stages of a step, in order.
   void predictMotions();
@@ -249,16 +252,7 @@ private:
   /// sleep_time in steps of dt (at least one, at most what Ball::quiet_steps counts)
   std::uint16_t sleep_steps_ = 1;
   Vec3 gravity_;
-  std::optional<Floor> floor_;
-  Vec3 up_ = Vec3::UnitZ();
-  /// A plane floor: its normal and offset, and gravity's part along it.
-  bool plane_ = false;
-  Vec3 plane_normal_ = Vec3::UnitZ();
-  double plane_offset_ = 0.0;
-  double plane_gravity_along_ = 0.0;  ///< |gravity along the plane| [m/s^2]
-  /// No force along the floor (a plane square to gravity, or no floor and no gravity):
-  /// balls move in straight lines between impacts.
-  bool straight_ = true;
+  Ground ground_;
   std::vector<Wall> walls_;
   std::vector<Ball> balls_;
   /// Curved floors: each ball's foot point (u, v), beside balls_ (empty otherwise).
@@ -283,6 +277,7 @@ private:
   std::vector<Box32> wall_boxes_;
   std::vector<Vec3> floor_normals_;
   std::vector<Vec2> floor_uv_;  ///< curved floors: each ball's last foot point, Newton's guess
+  Vec2 no_foot_ = Vec2(0.5, 0.5);  ///< the foot point where the ground keeps none
   std::vector<CollisionEvent> events_;
   bool record_events_ = true;
   std::vector<RestingContact> resting_;

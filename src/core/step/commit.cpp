@@ -46,31 +46,20 @@ void World::commitToFloor(bool predict_next)
   // are settled across the contacts first.
   const bool settle = !resting_.empty() || !blocked_sets_.empty();
   std::uint64_t asleep = 0;
-  if (curved())
+  if (settle)
     floor_normals_.resize(balls_.size());
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     prefetchBall(i + settings_.prefetch_ahead, true);
     Motion& m = motions_[i];
     Ball& ball = balls_[order_[i]];
-    Vec3 p = positionAt(i, 1.0);
-    Vec3 normal = up_;
-    if (plane_)
-    {
-      p = onFloor(i, p);
-      normal = plane_normal_;
-    }
-    else if (floor_)
-    {
-      // The chord ends on the floor (endOnFloor) except where a ball was stopped by the
-      // event cap, was held, or its constraints did not settle: then it stays at its
-      // chord's end, clear of everything, a little off the floor until the next step puts
-      // it back.
-      const FloorFoot foot = floor_->project(p, floor_uv_[i]);
-      feet_[order_[i]] = foot.uv;
-      normal = foot.normal;
+    const Ground::End end = ground_.end(positionAt(i, 1.0), m.radius, guessOf(i));
+    const Vec3& p = end.centre;
+    const Vec3& normal = end.normal;
+    if (!feet_.empty())
+      feet_[order_[i]] = end.foot;
+    if (settle)
       floor_normals_[i] = normal;
-    }
     const Vec3 moved = p - ball.position;
     ball.position = p;
     ball.velocity = states_[i].frozen ? Vec3::Zero() : onFloorVelocity(i, 1.0, p, normal);
@@ -104,8 +93,8 @@ void World::commitToFloor(bool predict_next)
     {
       // the closing speed that gravity gave them in the step: bounced as an impact
       // would be, or summed to rest (both balls' floors alike, whichever is which)
-      const Vec3& na = floor_normals_.empty() ? up_ : floor_normals_[contact.ball];
-      const Vec3& nb = floor_normals_.empty() ? up_ : floor_normals_[contact.other];
+      const Vec3& na = floor_normals_[contact.ball];
+      const Vec3& nb = floor_normals_[contact.other];
       const double rest = std::max(restingSpeed(na, scene_.restitution), restingSpeed(nb, scene_.restitution));
       const double e = closing <= rest ? 0.0 : scene_.restitution;
       const double j = collisionImpulse(closing, inv_a, contact.dir_ball, inv_b, contact.dir_other, e);
@@ -115,21 +104,23 @@ void World::commitToFloor(bool predict_next)
   }
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
-    const Vec3& normal = plane_ ? plane_normal_ : floor_ ? floor_normals_[i] : up_;
+    const Vec3& normal = floor_normals_[i];
     Ball& ball = balls_[order_[i]];
-    if (floor_ && !resting_.empty())
+    if (!resting_.empty())
     {
+      // the impulses across the contacts may leave it a part along the floor's normal,
+      // which the floor takes (where speeds are the energy's, it keeps the speed)
       const double speed = ball.velocity.norm();
-      ball.velocity -= ball.velocity.dot(normal) * normal;
+      ball.velocity = ground_.along(ball.velocity, normal);
       const double along = ball.velocity.norm();
-      if (!straight_ && along > 0)
+      if (!ground_.straight() && along > 0)
         ball.velocity *= speed / along;
     }
     roll(i, normal, motions_[i].p0);
   }
   // Groups at rest sleep; where gravity does not pull along the floor, nothing gathers
   // balls into groups, and none does.
-  if (!straight_)
+  if (!ground_.straight())
     sleepStillGroups();
   if (predict_next)
     for (std::size_t i = 0; i < balls_.size(); ++i)

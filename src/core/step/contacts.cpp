@@ -27,7 +27,7 @@ Vec3 World::redirected(std::size_t i, const Vec3& v) const
   const std::int32_t blocked = states_[i].blocked;
   const Vec3 free = allowed(i, v);
   const double speed = free.norm();
-  if (straight_ || blocked < 0 || !blocked_sets_[static_cast<std::size_t>(blocked)].elastic || !(speed > 0))
+  if (ground_.straight() || blocked < 0 || !blocked_sets_[static_cast<std::size_t>(blocked)].elastic || !(speed > 0))
     return free;
   return free * (v.norm() / speed);
 }
@@ -150,7 +150,7 @@ void World::endOnFloor(std::size_t i)
   // them again, in turn, until both hold.
   Motion& m = motions_[i];
   const double rest = 1 - m.x0;
-  if (!curved() || states_[i].frozen || !(rest > 0))
+  if (!ground_.bends() || states_[i].frozen || !(rest > 0))
     return;
   const double roundoff = roundoffAt(m.p0, m.radius, settings_);
   for (int pass = 0; pass < settings_.correction_passes; ++pass)
@@ -172,7 +172,7 @@ void World::keepEnergy(std::size_t i)
 {
   Motion& m = motions_[i];
   const double rest = 1 - m.x0;
-  if (straight_ || states_[i].frozen || !(rest > 0))
+  if (ground_.straight() || states_[i].frozen || !(rest > 0))
     return;
   const Vec3& v0 = startVelocity(i);
   // |v|^2 at the end of the step with the displacement b per unit of x, put on the floor
@@ -186,7 +186,7 @@ void World::keepEnergy(std::size_t i)
   const auto chordSpeedSquared = [&](const Vec3& b) { return v0.squaredNorm() + 2 * rest * gravity_.dot(b); };
   // (on a curved floor endOnFloor has put the chord's end on it, or as near as its blocked
   // directions let it: the chord's own end is what counts)
-  const double full = curved() ? chordSpeedSquared(m.b) : speedSquared(1.0);
+  const double full = ground_.bends() ? chordSpeedSquared(m.b) : speedSquared(1.0);
   if (full >= 0)
     return;
   // The chord ends higher than the ball's energy reaches (a turning point on a curved
@@ -196,7 +196,7 @@ void World::keepEnergy(std::size_t i)
   double lo = 0.0;
   if (start > 0)
   {
-    if (!curved())
+    if (!ground_.bends())
       lo = start / (start - full);  // linear in s
     else
     {
@@ -241,7 +241,7 @@ void World::keepEnergy(std::size_t i)
     // (round-off may leave the end a hair too high; the speed is clamped to zero then)
   }
   m.b *= lo;
-  if (!curved())
+  if (!ground_.bends())
     return;
   if (lo > 0)
   {

@@ -20,21 +20,15 @@ Vec3 World::positionAt(std::size_t i, double x) const
 
 Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
 {
-  if (plane_)
-    return plane_normal_;
-  if (!floor_)
-    return up_;
-  return floor_->project(position, floor_uv_[i]).normal;
+  return ground_.normalAt(position, guessOf(i));
 }
 
 Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
   const Motion& m = motions_[i];
   const Vec3& v0 = startVelocity(i);
-  Vec3 v = v0 + ((x - m.x0) * dt_) * gravity_;
-  if (floor_)
-    v -= v.dot(normal) * normal;
-  if (straight_)
+  const Vec3 v = ground_.along(v0 + ((x - m.x0) * dt_) * gravity_, normal);
+  if (ground_.straight())
     return v;  // no force along the floor: the motion is the chord itself
   // Under a force along the floor the ball's path is a curve and its motion in the step
   // the chord across it, which runs off the curve; so where an impact stops the chord,
@@ -50,8 +44,7 @@ Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const
 
 double World::stillSpeed(const Vec3& floor_normal) const
 {
-  const double a = plane_ ? plane_gravity_along_ : (floor_ ? tangentPart(gravity_, floor_normal) : gravity_).norm();
-  return settings_.resting_steps * dt_ * a + settings_.resting_speed_floor;
+  return settings_.resting_steps * dt_ * ground_.gravityAlong(floor_normal) + settings_.resting_speed_floor;
 }
 
 double World::restingSpeed(const Vec3& floor_normal, double restitution) const
@@ -61,7 +54,7 @@ double World::restingSpeed(const Vec3& floor_normal, double restitution) const
   // is within resting_steps steps, their sum, rest against what was hit, is taken at
   // once: a resting contact. At e = 1 they never end (nor lose energy): no resting
   // contact but at round-off speeds.
-  const double a = plane_ ? plane_gravity_along_ : (floor_ ? tangentPart(gravity_, floor_normal) : gravity_).norm();
+  const double a = ground_.gravityAlong(floor_normal);
   if (!(restitution < 1))
     return settings_.resting_speed_floor;
   if (!(restitution > 0))
@@ -99,10 +92,6 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
 
 Vec3 World::onFloor(std::size_t i, const Vec3& q) const
 {
-  if (plane_)
-    return q + (motions_[i].radius + plane_offset_ - plane_normal_.dot(q)) * plane_normal_;
-  if (!floor_)
-    return q;
-  return floor_->ballCentre(floor_->project(q, floor_uv_[i]), motions_[i].radius);
+  return ground_.land(q, motions_[i].radius, guessOf(i));
 }
 }  // namespace ball_collision_sim::core

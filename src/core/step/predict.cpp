@@ -30,13 +30,13 @@ void World::prefetchBall(std::size_t k, bool write) const
 void World::predictMotions()
 {
   static_assert(sizeof(Motion) == 64, "a Motion fills one cache line");
-  grid_.start(balls_.size(), up_);
+  grid_.start(balls_.size(), ground_.up());
   // (taken back at once, so that a step cut short by an exception leaves none ready)
   if (std::exchange(motions_ready_, false))
     return;  // the last step's commit predicted them
   motions_.resize(balls_.size());
   states_.resize(balls_.size());
-  floor_uv_.resize(curved() ? balls_.size() : 0);
+  floor_uv_.resize(feet_.empty() ? 0 : balls_.size());  // where balls keep foot points
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     prefetchBall(i + settings_.prefetch_ahead, false);
@@ -62,7 +62,7 @@ void World::predictMotion(std::size_t i)
   }
   const Vec3 end = predictedEnd(i, m.p0, ball.velocity, dt_);
   m.b = end - m.p0;
-  if (curved())
+  if (ground_.bends())
     keepEnergy(i);  // on a plane the first chord ends where the exact path does
   const Vec3 reach = m.p0 + m.b;
   grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, reach, ball.radius));
@@ -72,11 +72,7 @@ Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double spa
 {
   // seed (1): ds = dt v + dt^2 g / 2, then back onto the floor, seed (2)-(4)
   const Vec3 q = p + span * v + (0.5 * span * span) * gravity_;
-  if (!curved())
-    return onFloor(i, q);
-  const FloorFoot foot = floor_->project(q, floor_uv_[i]);
-  floor_uv_[i] = foot.uv;
-  return floor_->ballCentre(foot, motions_[i].radius);
+  return ground_.landKeepingFoot(q, motions_[i].radius, guessOf(i));
 }
 
 Aabb World::currentBox(std::size_t i) const

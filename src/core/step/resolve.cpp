@@ -52,7 +52,7 @@ void World::resolveBallWall(const Event& event)
   Vec3 v = onFloorVelocity(i, event.x, p, floor_normal);
 
   const Vec3 n = -event.normal;  // from the ball toward the wall
-  Vec3 dir = floor_ ? tangentPart(n, floor_normal) : n;
+  Vec3 dir = ground_.along(n, floor_normal);
   if (dir.squaredNorm() < settings_.wall_along_floor_squared)
     dir = n;  // a wall parallel to the floor: answer in space
   dir.normalize();
@@ -108,8 +108,8 @@ void World::resolveBallBall(const Event& event)
   Motion& mb = motions_[j];
   // Each ball is pushed along the normal's part tangent to the floor under it, less any
   // part toward what it leans on (that part of the impulse goes into the wall).
-  const Vec3 along_a = floor_ ? tangentPart(n, na) : n;
-  const Vec3 along_b = floor_ ? tangentPart(n, nb) : n;
+  const Vec3 along_a = ground_.along(n, na);
+  const Vec3 along_b = ground_.along(n, nb);
   const Vec3 ta = -allowed(i, -along_a);
   const Vec3 tb = allowed(j, along_b);
   const double inv_a = states_[i].frozen ? 0.0 : 1.0 / a.mass;
@@ -155,10 +155,10 @@ void World::resolveBallBall(const Event& event)
     // (until what approach is left is round-off of the positions)
     const double rest = 1 - event.x;
     const double roundoff =
-        curved() ? roundoffAt(pa, ma.radius, settings_) + roundoffAt(pb, mb.radius, settings_) : 0.0;
-    for (int pass = 0; pass < (curved() ? settings_.correction_passes : 1); ++pass)
+        ground_.bends() ? roundoffAt(pa, ma.radius, settings_) + roundoffAt(pb, mb.radius, settings_) : 0.0;
+    for (int pass = 0; pass < (ground_.bends() ? settings_.correction_passes : 1); ++pass)
     {
-      const Vec3 ua = curved() ? n : ta, ub = curved() ? n : tb;
+      const Vec3 ua = ground_.bends() ? n : ta, ub = ground_.bends() ? n : tb;
       const double into = ma.b.dot(ua) - mb.b.dot(ub);
       const double k = move_a * ta.dot(ua) + move_b * tb.dot(ub);
       if (!(into > 0 && k > 0 && rest * into > roundoff))

@@ -1,0 +1,70 @@
+#pragma once
+
+#include "ball_collision_sim/core/floor.hpp"
+#include "ball_collision_sim/core/scene.hpp"
+#include "ball_collision_sim/core/step_settings.hpp"
+#include "ball_collision_sim/core/types.hpp"
+
+#include <optional>
+
+namespace ball_collision_sim::core
+{
+/// What the balls move on: nothing, a plane, or a curved ("nine point") floor. The one
+/// place that knows which: the step asks it where a ball goes back onto the floor, the
+/// normal under it, what of a vector lies along the floor and how hard gravity pulls along
+/// it. On a curved floor a ball's foot point (u, v) is kept by the caller between calls,
+/// as Newton's first guess; elsewhere the guess is not used.
+class Ground
+{
+public:
+  Ground(const std::optional<FloorDef>& floor, const Vec3& gravity, const StepSettings& settings);
+
+  const std::optional<Floor>& floor() const { return floor_; }
+  /// Unit vector against gravity (the floor's normal side).
+  const Vec3& up() const { return up_; }
+  /// Gravity has no part along the floor (a plane square to it, or no floor and no
+  /// gravity): balls move in straight lines between impacts, at the speed they have.
+  bool straight() const { return straight_; }
+  /// A chord between two points of the floor leaves it (a curved floor): a motion
+  /// corrected after an impact is put back on the floor, and balls keep foot points.
+  bool bends() const { return floor_ && !plane_; }
+
+  /// The centre of a ball of radius r put back on the floor from q (q without a floor).
+  Vec3 land(const Vec3& q, double radius, const Vec2& guess) const;
+  /// The same, with the foot point found written back into `guess` (curved floors).
+  Vec3 landKeepingFoot(const Vec3& q, double radius, Vec2& guess) const;
+  /// The floor's unit normal under a ball centred at p (up without a floor).
+  Vec3 normalAt(const Vec3& p, const Vec2& guess) const;
+  /// The normal under a ball whose foot point is `foot` (curved floors; the plane's
+  /// normal, or up, elsewhere).
+  Vec3 normalUnder(const Vec2& foot) const;
+  /// w less its part along the floor's normal n; w itself without a floor.
+  Vec3 along(const Vec3& w, const Vec3& n) const;
+  /// |gravity along the floor| where its normal is n [m/s^2].
+  double gravityAlong(const Vec3& n) const;
+
+  /// Where a ball's motion ends the step: its centre (on a plane put on it; on a curved
+  /// floor its chord already ends there), the normal there, and the foot point.
+  struct End
+  {
+    Vec3 centre;
+    Vec3 normal;
+    Vec2 foot;
+  };
+  End end(const Vec3& p, double radius, const Vec2& guess) const;
+
+  /// The (u, v) of a ball's foot point, to tell whether it is on the floor: from its
+  /// centre on a plane, the kept one on a curved floor.
+  Vec2 footParameters(const Vec3& centre, const Vec2& kept) const;
+
+private:
+  std::optional<Floor> floor_;
+  Vec3 up_ = Vec3::UnitZ();
+  bool plane_ = false;
+  Vec3 plane_normal_ = Vec3::UnitZ();
+  double plane_offset_ = 0.0;
+  double plane_gravity_along_ = 0.0;  ///< |gravity along the plane| [m/s^2]
+  Vec3 gravity_;
+  bool straight_ = true;
+};
+}  // namespace ball_collision_sim::core

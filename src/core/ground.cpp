@@ -1,0 +1,88 @@
+#include "ball_collision_sim/core/ground.hpp"
+
+#include "ball_collision_sim/core/response.hpp"
+
+namespace ball_collision_sim::core
+{
+Ground::Ground(const std::optional<FloorDef>& floor, const Vec3& gravity, const StepSettings& settings)
+    : gravity_(gravity)
+{
+  if (floor)
+    floor_.emplace(*floor, gravity);
+  const double g = gravity.norm();
+  up_ = floor_ ? floor_->up() : g > 0 ? Vec3(-gravity / g) : Vec3(Vec3::UnitZ());
+  plane_ = floor_ && floor_->isPlane();
+  if (plane_)
+  {
+    plane_normal_ = floor_->planeNormal();
+    plane_offset_ = floor_->planeOffset();
+  }
+  const Vec3 along = plane_ ? tangentPart(gravity, plane_normal_) : gravity;
+  plane_gravity_along_ = plane_ ? along.norm() : 0.0;
+  straight_ = !bends() && along.norm() <= settings.straight_gravity_ratio * g;
+}
+
+Vec3 Ground::land(const Vec3& q, double radius, const Vec2& guess) const
+{
+  if (plane_)
+    return q + (radius + plane_offset_ - plane_normal_.dot(q)) * plane_normal_;
+  if (!floor_)
+    return q;
+  return floor_->ballCentre(floor_->project(q, guess), radius);
+}
+
+Vec3 Ground::landKeepingFoot(const Vec3& q, double radius, Vec2& guess) const
+{
+  if (!bends())
+    return land(q, radius, guess);
+  const FloorFoot foot = floor_->project(q, guess);
+  guess = foot.uv;
+  return floor_->ballCentre(foot, radius);
+}
+
+Vec3 Ground::normalAt(const Vec3& p, const Vec2& guess) const
+{
+  if (plane_)
+    return plane_normal_;
+  if (!floor_)
+    return up_;
+  return floor_->project(p, guess).normal;
+}
+
+Vec3 Ground::normalUnder(const Vec2& foot) const
+{
+  if (plane_)
+    return plane_normal_;
+  if (!floor_)
+    return up_;
+  return floor_->normal(foot);
+}
+
+Vec3 Ground::along(const Vec3& w, const Vec3& n) const
+{
+  return floor_ ? tangentPart(w, n) : w;
+}
+
+double Ground::gravityAlong(const Vec3& n) const
+{
+  return plane_ ? plane_gravity_along_ : along(gravity_, n).norm();
+}
+
+Ground::End Ground::end(const Vec3& p, double radius, const Vec2& guess) const
+{
+  if (plane_)
+    return {land(p, radius, guess), plane_normal_, guess};
+  if (!floor_)
+    return {p, up_, guess};
+  // The chord ends on the floor except where a ball was stopped by the event cap, was
+  // held, or its constraints did not settle: then it stays at its chord's end, clear of
+  // everything, a little off the floor until the next step puts it back.
+  const FloorFoot foot = floor_->project(p, guess);
+  return {p, foot.normal, foot.uv};
+}
+
+Vec2 Ground::footParameters(const Vec3& centre, const Vec2& kept) const
+{
+  return plane_ ? floor_->planeParameters(centre) : kept;
+}
+}  // namespace ball_collision_sim::core
