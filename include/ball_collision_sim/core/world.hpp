@@ -191,6 +191,17 @@ private:
   /// With predict_next, also predicts each ball's motion for the next step (which keeps
   /// this step's visiting order).
   void commitToFloor(bool predict_next);
+  /// Ball i to the step's end, on the floor, with its velocity there (the normal kept in
+  /// floor_normals_ when `settle`): its move over the step and the normal there.
+  struct Committed
+  {
+    Vec3 moved;
+    Vec3 normal;
+  };
+  Committed commitBall(std::size_t i, bool settle);
+  /// Velocities across the step's resting contacts: out of blocked directions, no
+  /// closing speed left (or bounced), along the floor.
+  void settleRestingVelocities();
   /// Turns ball i by its rolling over the step's move d (its angular velocity follows
   /// from its velocity when asked for: angularVelocity()).
   void roll(std::size_t i, const Vec3& floor_normal, const Vec3& d);
@@ -202,6 +213,21 @@ private:
   void detectBall(std::size_t i, std::size_t j);
   void resolveBallWall(const Event& event);
   void resolveBallBall(const Event& event);
+  /// A ball-ball contact as resolveBallBall() works it out: visiting indices, the normal
+  /// from i to j, the floor normals under them, the normal's parts along the floor, the
+  /// directions of the impulse on each, and their inverse masses (0: immovable).
+  struct PairContact
+  {
+    std::size_t i, j;
+    Vec3 n, na, nb, along_a, along_b, ta, tb;
+    double inv_a, inv_b;
+  };
+  /// A resting contact blocks the approach of a ball that the other cannot give way to
+  /// (both when both are all but still); returns whether both are.
+  bool blockAtRest(const PairContact& c, const Vec3& va, const Vec3& vb);
+  /// No approach left in the motions of a resting pair, and a pair that would close in
+  /// again at once, or is jammed, held still for the rest of the step.
+  void settleRestingPair(const PairContact& c, double x, const Vec3& pa, const Vec3& pb, bool both_still);
   /// Ball i's new motion from x on; an impact (not a resting contact) lets a held ball
   /// go, and a ball still held after it keeps no motion for the rest of the step.
   void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact);
@@ -239,6 +265,25 @@ private:
   void endOnFloor(std::size_t i);
   /// Shortens ball i's motion where its end would lie higher than its energy reaches.
   void keepEnergy(std::size_t i);
+  /// The speed ball i's motion would end with, from its energy at the motion's start.
+  struct EnergyCheck
+  {
+    const World* world;
+    std::size_t i;
+    double rest;  ///< the part of the step the motion runs for
+    /// |v|^2 at the step's end with the displacement b per unit of x, put on the floor
+    double speedSquaredWith(const Vec3& b) const;
+    /// ... with the motion cut to the fraction s of its chord
+    double speedSquared(double s) const;
+    /// ... where the chord itself ends: a motion kept out of its blocked directions can
+    /// end off the floor, higher than the floor under its end
+    double chordSpeedSquared(const Vec3& b) const;
+  };
+  /// Where on its chord (a fraction in [0, 1]) ball i's speed runs out, a curved floor.
+  double energyRunsOut(const EnergyCheck& energy, double start, double full) const;
+  /// A motion starting above or below the floor where the energy does not reach: the
+  /// ball slides downhill as far as it takes, or is held.
+  void slideDownhill(const EnergyCheck& energy, double start);
   Vec3 onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const;
   /// The closing speed at or below which an impact at restitution e is a resting contact.
   double restingSpeed(const Vec3& floor_normal, double restitution) const;

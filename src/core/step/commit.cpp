@@ -51,34 +51,52 @@ void World::commitToFloor(bool predict_next)
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     prefetchBall(i + settings_.prefetch_ahead, true);
-    Motion& m = motions_[i];
-    Ball& ball = balls_[order_[i]];
-    const Ground::End end = ground_.end(positionAt(i, 1.0), m.radius, guessOf(i));
-    const Vec3& p = end.centre;
-    const Vec3& normal = end.normal;
-    if (!feet_.empty())
-      feet_[order_[i]] = end.foot;
-    if (settle)
-      floor_normals_[i] = normal;
-    const Vec3 moved = p - ball.position;
-    ball.position = p;
-    ball.velocity = states_[i].frozen ? Vec3::Zero() : onFloorVelocity(i, 1.0, p, normal);
+    const Committed done = commitBall(i, settle);
     if (!settle)
     {
+      Ball& ball = balls_[order_[i]];
       ball.quiet_steps = 0;  // it leaned on nothing
       asleep += ball.asleep ? 1 : 0;
-      roll(i, normal, moved);
+      roll(i, done.normal, done.moved);
       if (predict_next)
         predictMotion(i);
     }
     else
-      m.p0 = moved;  // the motion is done with: p0 keeps the step's move for roll()
+      motions_[i].p0 = done.moved;  // the motion is done with: p0 keeps the step's move for roll()
   }
   if (!settle)
   {
     stats_.sleeping_balls = asleep;
     return;
   }
+  settleRestingVelocities();
+  for (std::size_t i = 0; i < balls_.size(); ++i)
+    roll(i, floor_normals_[i], motions_[i].p0);
+  // Groups at rest sleep; where gravity does not pull along the floor, nothing gathers
+  // balls into groups, and none does.
+  if (!ground_.straight())
+    sleepStillGroups();
+  if (predict_next)
+    for (std::size_t i = 0; i < balls_.size(); ++i)
+      predictMotion(i);
+}
+
+World::Committed World::commitBall(std::size_t i, bool settle)
+{
+  Ball& ball = balls_[order_[i]];
+  const Ground::End end = ground_.end(positionAt(i, 1.0), motions_[i].radius, guessOf(i));
+  if (!feet_.empty())
+    feet_[order_[i]] = end.foot;
+  if (settle)
+    floor_normals_[i] = end.normal;
+  const Vec3 moved = end.centre - ball.position;
+  ball.position = end.centre;
+  ball.velocity = states_[i].frozen ? Vec3::Zero() : onFloorVelocity(i, 1.0, end.centre, end.normal);
+  return {moved, end.normal};
+}
+
+void World::settleRestingVelocities()
+{
   // Resting contacts keep no closing speed into the step that follows.
   for (std::size_t i = 0; i < balls_.size(); ++i)
     balls_[order_[i]].velocity = redirected(i, balls_[order_[i]].velocity);
@@ -102,29 +120,19 @@ void World::commitToFloor(bool predict_next)
       b.velocity += (j * inv_b) * contact.dir_other;
     }
   }
+  if (resting_.empty())
+    return;
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
-    const Vec3& normal = floor_normals_[i];
+    // the impulses across the contacts may leave a velocity a part along the floor's
+    // normal, which the floor takes (where speeds are the energy's, it keeps the speed)
     Ball& ball = balls_[order_[i]];
-    if (!resting_.empty())
-    {
-      // the impulses across the contacts may leave it a part along the floor's normal,
-      // which the floor takes (where speeds are the energy's, it keeps the speed)
-      const double speed = ball.velocity.norm();
-      ball.velocity = ground_.along(ball.velocity, normal);
-      const double along = ball.velocity.norm();
-      if (!ground_.straight() && along > 0)
-        ball.velocity *= speed / along;
-    }
-    roll(i, normal, motions_[i].p0);
+    const double speed = ball.velocity.norm();
+    ball.velocity = ground_.along(ball.velocity, floor_normals_[i]);
+    const double along = ball.velocity.norm();
+    if (!ground_.straight() && along > 0)
+      ball.velocity *= speed / along;
   }
-  // Groups at rest sleep; where gravity does not pull along the floor, nothing gathers
-  // balls into groups, and none does.
-  if (!ground_.straight())
-    sleepStillGroups();
-  if (predict_next)
-    for (std::size_t i = 0; i < balls_.size(); ++i)
-      predictMotion(i);
 }
 
 void World::roll(std::size_t i, const Vec3& normal, const Vec3& d)

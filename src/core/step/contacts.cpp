@@ -168,89 +168,103 @@ void World::endOnFloor(std::size_t i)
   }
 }
 
+double World::EnergyCheck::speedSquaredWith(const Vec3& b) const
+{
+  const Motion& m = world->motions_[i];
+  return world->startVelocity(i).squaredNorm() + 2 * world->gravity_.dot(world->onFloor(i, m.p0 + rest * b) - m.p0);
+}
+
+double World::EnergyCheck::speedSquared(double s) const
+{
+  return speedSquaredWith(s * world->motions_[i].b);
+}
+
+double World::EnergyCheck::chordSpeedSquared(const Vec3& b) const
+{
+  return world->startVelocity(i).squaredNorm() + 2 * rest * world->gravity_.dot(b);
+}
+
 void World::keepEnergy(std::size_t i)
 {
   Motion& m = motions_[i];
   const double rest = 1 - m.x0;
   if (ground_.straight() || states_[i].frozen || !(rest > 0))
     return;
-  const Vec3& v0 = startVelocity(i);
-  // |v|^2 at the end of the step with the displacement b per unit of x, put on the floor
-  const auto speedSquaredWith = [&](const Vec3& b) {
-    return v0.squaredNorm() + 2 * gravity_.dot(onFloor(i, m.p0 + rest * b) - m.p0);
-  };
-  // ... with the motion cut to the fraction s of its chord
-  const auto speedSquared = [&](double s) { return speedSquaredWith(s * m.b); };
-  // ... where the chord itself ends: a motion kept out of its blocked directions can end
-  // off the floor, higher than where the floor under its end is
-  const auto chordSpeedSquared = [&](const Vec3& b) { return v0.squaredNorm() + 2 * rest * gravity_.dot(b); };
+  const EnergyCheck energy{this, i, rest};
   // (on a curved floor endOnFloor has put the chord's end on it, or as near as its blocked
   // directions let it: the chord's own end is what counts)
-  const double full = ground_.bends() ? chordSpeedSquared(m.b) : speedSquared(1.0);
+  const double full = ground_.bends() ? energy.chordSpeedSquared(m.b) : energy.speedSquared(1.0);
   if (full >= 0)
     return;
   // The chord ends higher than the ball's energy reaches (a turning point on a curved
   // floor, or a ball in a pile whose constraints turned its motion uphill): it stops
   // where the energy runs out instead, so that no energy is made.
-  const double start = speedSquared(0.0);
+  const double start = energy.speedSquared(0.0);
   double lo = 0.0;
   if (start > 0)
-  {
-    if (!ground_.bends())
-      lo = start / (start - full);  // linear in s
-    else
-    {
-      // the root of the speed on [0, 1], kept bracketed: false position with the
-      // Illinois rule (a stalled end's value halved), bisection where that gains less
-      double hi = 1.0, f_lo = start, f_hi = full;
-      int last = 0;  // the end moved last: +1 lo, -1 hi
-      for (int k = 0; k < settings_.energy_root_iterations && hi - lo > settings_.energy_root_width; ++k)
-      {
-        const double width = hi - lo;
-        double mid = lo + width * (f_lo / (f_lo - f_hi));
-        if (!(mid > lo && mid < hi))
-          mid = 0.5 * (lo + hi);
-        const double f = speedSquared(mid);
-        if (f >= 0)
-        {
-          lo = mid;
-          f_lo = f;
-          if (last > 0)
-            f_hi *= 0.5;
-          last = 1;
-        }
-        else
-        {
-          hi = mid;
-          f_hi = f;
-          if (last < 0)
-            f_lo *= 0.5;
-          last = -1;
-        }
-        if (hi - lo > 0.5 * width && hi - lo > settings_.energy_root_width)
-        {
-          // one end stuck: halve the bracket as well
-          const double half = 0.5 * (lo + hi);
-          const double g = speedSquared(half);
-          (g >= 0 ? lo : hi) = half;
-          (g >= 0 ? f_lo : f_hi) = g;
-          last = 0;
-        }
-      }
-    }
-    // (round-off may leave the end a hair too high; the speed is clamped to zero then)
-  }
+    lo = ground_.bends() ? energyRunsOut(energy, start, full) : start / (start - full);  // (linear in s)
+  // (round-off may leave the end a hair too high; the speed is clamped to zero then)
   m.b *= lo;
   if (!ground_.bends())
     return;
   if (lo > 0)
   {
     const Vec3 b = allowed(i, (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest);
-    m.b = chordSpeedSquared(b) >= 0 ? b : Vec3::Zero();
+    m.b = energy.chordSpeedSquared(b) >= 0 ? b : Vec3::Zero();
     if (m.b == Vec3::Zero())
       hold(i);
     return;
   }
+  slideDownhill(energy, start);
+}
+
+double World::energyRunsOut(const EnergyCheck& energy, double start, double full) const
+{
+  // the root of the speed on [0, 1], kept bracketed: false position with the Illinois
+  // rule (a stalled end's value halved), bisection where that gains less
+  double lo = 0.0, hi = 1.0, f_lo = start, f_hi = full;
+  int last = 0;  // the end moved last: +1 lo, -1 hi
+  for (int k = 0; k < settings_.energy_root_iterations && hi - lo > settings_.energy_root_width; ++k)
+  {
+    const double width = hi - lo;
+    double mid = lo + width * (f_lo / (f_lo - f_hi));
+    if (!(mid > lo && mid < hi))
+      mid = 0.5 * (lo + hi);
+    const double f = energy.speedSquared(mid);
+    if (f >= 0)
+    {
+      lo = mid;
+      f_lo = f;
+      if (last > 0)
+        f_hi *= 0.5;
+      last = 1;
+    }
+    else
+    {
+      hi = mid;
+      f_hi = f;
+      if (last < 0)
+        f_lo *= 0.5;
+      last = -1;
+    }
+    if (hi - lo > 0.5 * width && hi - lo > settings_.energy_root_width)
+    {
+      // one end stuck: halve the bracket as well
+      const double half = 0.5 * (lo + hi);
+      const double g = energy.speedSquared(half);
+      (g >= 0 ? lo : hi) = half;
+      (g >= 0 ? f_lo : f_hi) = g;
+      last = 0;
+    }
+  }
+  return lo;
+}
+
+void World::slideDownhill(const EnergyCheck& energy, double start)
+{
+  const std::size_t i = energy.i;
+  const double rest = energy.rest;
+  Motion& m = motions_[i];
   // A motion that starts at an impact inside the step starts on the chord, below or
   // above the floor; where the floor above it is higher than the energy reaches, the
   // ball slides downhill from there instead, as far as it takes to be low enough.
@@ -273,7 +287,7 @@ void World::keepEnergy(std::size_t i)
   const auto motionTo = [&](int k) {
     return allowed(i, (onFloor(i, foot + (std::ldexp(first, k) / slope) * downhill) - m.p0) / rest);
   };
-  const auto keeps = [&](const Vec3& b) { return speedSquaredWith(b) >= 0 && chordSpeedSquared(b) >= 0; };
+  const auto keeps = [&](const Vec3& b) { return energy.speedSquaredWith(b) >= 0 && energy.chordSpeedSquared(b) >= 0; };
   if (count == 0)
     return hold(i);
   Vec3 found = motionTo(count - 1);

@@ -104,8 +104,6 @@ void World::resolveBallBall(const Event& event)
     if (hit > std::max(restingSpeed(na, scene_.restitution), restingSpeed(nb, scene_.restitution)))
       wakeGroup(states_[j].asleep ? j : i);
   }
-  Motion& ma = motions_[i];
-  Motion& mb = motions_[j];
   // Each ball is pushed along the normal's part tangent to the floor under it, less any
   // part toward what it leans on (that part of the impulse goes into the wall).
   const Vec3 along_a = ground_.along(n, na);
@@ -122,75 +120,12 @@ void World::resolveBallBall(const Event& event)
   va -= (impulse * inv_a) * ta;
   vb += (impulse * inv_b) * tb;
 
-  bool both_still = false;
-  if (resting)
-  {
-    // A ball that cannot give way along the contact blocks the other's approach for the
-    // rest of the step, and two balls that are both all but still (a pile at rest) block
-    // each other, so that piles settle in one event per contact instead of passing
-    // vanishing impulses back and forth.
-    const double still = std::max(stillSpeed(na), stillSpeed(nb));
-    both_still = va.norm() <= still && vb.norm() <= still;
-    // (a held ball gives no way either)
-    const bool a_fixed =
-        both_still || states_[i].held || inv_a * ta.squaredNorm() < settings_.fixed_mobility_ratio * inv_b * tb.squaredNorm();
-    const bool b_fixed =
-        both_still || states_[j].held || inv_b * tb.squaredNorm() < settings_.fixed_mobility_ratio * inv_a * ta.squaredNorm();
-    if (a_fixed && along_b.squaredNorm() > 0)
-      addBlocked(j, -along_b.normalized(), scene_.restitution);
-    if (b_fixed && along_a.squaredNorm() > 0)
-      addBlocked(i, along_a.normalized(), scene_.restitution);
-  }
-  MotionState& sa = states_[i];
-  MotionState& sb = states_[j];
+  const PairContact pair{i, j, n, na, nb, along_a, along_b, ta, tb, inv_a, inv_b};
+  const bool both_still = resting && blockAtRest(pair, va, vb);
   startMotion(i, event.x, pa, va, !resting);
   startMotion(j, event.x, pb, vb, !resting);
   if (resting)
-  {
-    // (a held ball does not give way)
-    const double move_a = sa.held ? 0.0 : inv_a, move_b = sb.held ? 0.0 : inv_b;
-    // No approach left in the motions either (gravity along the floor would press them
-    // together again at once). On a curved floor, putting the ends back on the floor can
-    // bring some back: in turn, a few times.
-    // (until what approach is left is round-off of the positions)
-    const double rest = 1 - event.x;
-    const double roundoff =
-        ground_.bends() ? roundoffAt(pa, ma.radius, settings_) + roundoffAt(pb, mb.radius, settings_) : 0.0;
-    for (int pass = 0; pass < (ground_.bends() ? settings_.correction_passes : 1); ++pass)
-    {
-      const Vec3 ua = ground_.bends() ? n : ta, ub = ground_.bends() ? n : tb;
-      const double into = ma.b.dot(ua) - mb.b.dot(ub);
-      const double k = move_a * ta.dot(ua) + move_b * tb.dot(ub);
-      if (!(into > 0 && k > 0 && rest * into > roundoff))
-        break;
-      const double jb = into / k;
-      ma.b -= (jb * move_a) * ta;
-      mb.b += (jb * move_b) * tb;
-      if (!sa.held)
-        endOnFloor(i);
-      if (!sb.held)
-        endOnFloor(j);
-    }
-    // Two balls all but still whose motions still close in (a pile in a corner of a
-    // curved floor, where the floor, the walls and each other leave no room to settle
-    // into), or that are in a jam: they stay where they are for the rest of the step,
-    // whatever resting contact comes next (else each such contact would start them
-    // again, and one the next, without end). So do two whose motions keepEnergy turned
-    // back into each other (shortened or slid downhill) by more than detection lets
-    // pass: it would find this contact again at once, and again.
-    keepEnergy(i);
-    keepEnergy(j);
-    const bool jammed = sa.events >= settings_.jam_events_per_ball_step || sb.events >= settings_.jam_events_per_ball_step;
-    const double closing_in = rest * (ma.b.dot(n) - mb.b.dot(n));
-    const bool again = closing_in > kClosingSlop * (ma.radius + mb.radius);
-    if (jammed || (both_still && closing_in > 0) || again)
-    {
-      ma.b = mb.b = Vec3::Zero();
-      hold(i);
-      hold(j);
-    }
-    resting_.push_back({i, j, ta, tb});
-  }
+    settleRestingPair(pair, event.x, pa, pb, both_still);
   recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, impulse, closing, resting, event);
   countEvent(i);
   countEvent(j);
@@ -241,5 +176,81 @@ void World::recordEvents(bool record)
   record_events_ = record;
   if (!record)
     std::vector<CollisionEvent>().swap(events_);
+}
+bool World::blockAtRest(const PairContact& c, const Vec3& va, const Vec3& vb)
+{
+  const std::size_t i = c.i, j = c.j;
+  const double inv_a = c.inv_a, inv_b = c.inv_b;
+  const Vec3 &ta = c.ta, &tb = c.tb, &along_a = c.along_a, &along_b = c.along_b;
+  // A ball that cannot give way along the contact blocks the other's approach for the
+  // rest of the step, and two balls that are both all but still (a pile at rest) block
+  // each other, so that piles settle in one event per contact instead of passing
+  // vanishing impulses back and forth.
+  const double still = std::max(stillSpeed(c.na), stillSpeed(c.nb));
+  const bool both_still = va.norm() <= still && vb.norm() <= still;
+  // (a held ball gives no way either)
+  const bool a_fixed =
+      both_still || states_[i].held || inv_a * ta.squaredNorm() < settings_.fixed_mobility_ratio * inv_b * tb.squaredNorm();
+  const bool b_fixed =
+      both_still || states_[j].held || inv_b * tb.squaredNorm() < settings_.fixed_mobility_ratio * inv_a * ta.squaredNorm();
+  if (a_fixed && along_b.squaredNorm() > 0)
+    addBlocked(j, -along_b.normalized(), scene_.restitution);
+  if (b_fixed && along_a.squaredNorm() > 0)
+    addBlocked(i, along_a.normalized(), scene_.restitution);
+  return both_still;
+}
+
+void World::settleRestingPair(const PairContact& c, double x, const Vec3& pa, const Vec3& pb, bool both_still)
+{
+  const std::size_t i = c.i, j = c.j;
+  const Vec3 &n = c.n, &ta = c.ta, &tb = c.tb;
+  const double inv_a = c.inv_a, inv_b = c.inv_b;
+  Motion& ma = motions_[i];
+  Motion& mb = motions_[j];
+  MotionState& sa = states_[i];
+  MotionState& sb = states_[j];
+  // (a held ball does not give way)
+  const double move_a = sa.held ? 0.0 : inv_a, move_b = sb.held ? 0.0 : inv_b;
+  // No approach left in the motions either (gravity along the floor would press them
+  // together again at once). On a curved floor, putting the ends back on the floor can
+  // bring some back: in turn, a few times.
+  // (until what approach is left is round-off of the positions)
+  const double rest = 1 - x;
+  const double roundoff =
+      ground_.bends() ? roundoffAt(pa, ma.radius, settings_) + roundoffAt(pb, mb.radius, settings_) : 0.0;
+  for (int pass = 0; pass < (ground_.bends() ? settings_.correction_passes : 1); ++pass)
+  {
+    const Vec3 ua = ground_.bends() ? n : ta, ub = ground_.bends() ? n : tb;
+    const double into = ma.b.dot(ua) - mb.b.dot(ub);
+    const double k = move_a * ta.dot(ua) + move_b * tb.dot(ub);
+    if (!(into > 0 && k > 0 && rest * into > roundoff))
+      break;
+    const double jb = into / k;
+    ma.b -= (jb * move_a) * ta;
+    mb.b += (jb * move_b) * tb;
+    if (!sa.held)
+      endOnFloor(i);
+    if (!sb.held)
+      endOnFloor(j);
+  }
+  // Two balls all but still whose motions still close in (a pile in a corner of a
+  // curved floor, where the floor, the walls and each other leave no room to settle
+  // into), or that are in a jam: they stay where they are for the rest of the step,
+  // whatever resting contact comes next (else each such contact would start them
+  // again, and one the next, without end). So do two whose motions keepEnergy turned
+  // back into each other (shortened or slid downhill) by more than detection lets
+  // pass: it would find this contact again at once, and again.
+  keepEnergy(i);
+  keepEnergy(j);
+  const bool jammed = sa.events >= settings_.jam_events_per_ball_step || sb.events >= settings_.jam_events_per_ball_step;
+  const double closing_in = rest * (ma.b.dot(n) - mb.b.dot(n));
+  const bool again = closing_in > kClosingSlop * (ma.radius + mb.radius);
+  if (jammed || (both_still && closing_in > 0) || again)
+  {
+    ma.b = mb.b = Vec3::Zero();
+    hold(i);
+    hold(j);
+  }
+  resting_.push_back({i, j, ta, tb});
 }
 }  // namespace ball_collision_sim::core
