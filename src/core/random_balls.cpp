@@ -28,6 +28,25 @@ void tangentBasis(const Vec3& n, Vec3& e1, Vec3& e2)
 
 /// Extra clearance kept between placed balls and from walls [m].
 constexpr double kClearance = 1e-6;
+
+/// The range of the floor's parameters (u, v) that lies under a region of x and y, with a
+/// margin (the floor's parameters need not be linear in x and y).
+void parametersUnder(const Floor& floor, const RandomBallsDef::Region& region, Vec2& uv_min, Vec2& uv_max)
+{
+  const double z = floor.point(Vec2(0.5, 0.5)).z();
+  uv_min = Vec2(1, 1);
+  uv_max = Vec2(0, 0);
+  for (int c = 0; c < 4; ++c)
+  {
+    const Vec3 corner((c & 1) ? region.max.x() : region.min.x(), (c & 2) ? region.max.y() : region.min.y(), z);
+    const Vec2 uv = floor.project(corner, Vec2(0.5, 0.5)).uv;
+    uv_min = uv_min.cwiseMin(uv);
+    uv_max = uv_max.cwiseMax(uv);
+  }
+  const Vec2 margin = 0.05 * (uv_max - uv_min) + Vec2::Constant(0.01);
+  uv_min = (uv_min - margin).cwiseMax(Vec2::Zero());
+  uv_max = (uv_max + margin).cwiseMin(Vec2::Ones());
+}
 }  // namespace
 
 std::vector<BallDef> placeRandomBalls(const Scene& scene)
@@ -60,22 +79,7 @@ std::vector<BallDef> placeRandomBalls(const Scene& scene)
   // Parameters to draw from: the whole floor, or the part under the region.
   Vec2 uv_min(0, 0), uv_max(1, 1);
   if (def.region)
-  {
-    const double z = floor.point(Vec2(0.5, 0.5)).z();
-    uv_min = Vec2(1, 1);
-    uv_max = Vec2(0, 0);
-    for (int c = 0; c < 4; ++c)
-    {
-      const Vec3 corner((c & 1) ? def.region->max.x() : def.region->min.x(),
-                        (c & 2) ? def.region->max.y() : def.region->min.y(), z);
-      const Vec2 uv = floor.project(corner, Vec2(0.5, 0.5)).uv;
-      uv_min = uv_min.cwiseMin(uv);
-      uv_max = uv_max.cwiseMax(uv);
-    }
-    const Vec2 margin = 0.05 * (uv_max - uv_min) + Vec2::Constant(0.01);
-    uv_min = (uv_min - margin).cwiseMax(Vec2::Zero());
-    uv_max = (uv_max + margin).cwiseMin(Vec2::Ones());
-  }
+    parametersUnder(floor, *def.region, uv_min, uv_max);
 
   std::mt19937_64 rng(def.seed);
   const long max_attempts = 100L * def.count + 1000;

@@ -229,6 +229,69 @@ void checkOverlaps(Checker& check, const std::vector<BallDef>& placed, const std
     check.fail(index("balls", b), overlapMessage(index("balls", a), depth));
   }
 }
+
+/// The explicit balls that are sound in themselves (`usable`) put on the floor: off the
+/// floor, overlapping a wall or another ball.
+void checkPlacement(Checker& check, const Scene& scene, std::vector<bool>& usable)
+{
+  const Placement placement(scene);
+  std::vector<BallDef> placed = scene.balls;
+  for (std::size_t i = 0; i < scene.balls.size(); ++i)
+  {
+    if (!usable[i])
+      continue;
+    const std::string why = placement.place(placed[i]);
+    if (!why.empty())
+    {
+      check.fail(index("balls", i) + (why.rfind("overlaps", 0) == 0 ? "" : ".position"), why);
+      usable[i] = false;
+    }
+  }
+  checkOverlaps(check, placed, usable);
+}
+
+/// The random balls' definition, and (when the rest of the scene is fine) whether they
+/// all fit: the balls placed.
+std::vector<BallDef> checkRandomBalls(Checker& check, const Scene& scene, bool fine_so_far)
+{
+  std::vector<BallDef> random;
+  const RandomBallsDef& rb = *scene.random_balls;
+  bool ok = true;
+  if (rb.count < 0 || rb.count > 10'000'000)
+  {
+    check.fail("random_balls.count", "must be in [0, 10000000] (got " + std::to_string(rb.count) + ")");
+    ok = false;
+  }
+  ok = check.range("random_balls.radius", rb.radius, kMinLength, false, kMaxLength) && ok;
+  ok = check.range("random_balls.mass", rb.mass, kMinMass, false, kMaxMass) && ok;
+  ok = check.range("random_balls.speed", rb.speed, 0, false, kMaxSpeed) && ok;
+  if (rb.region)
+  {
+    const bool fin = check.finite("random_balls.region.min", Vec3(rb.region->min.x(), rb.region->min.y(), 0)) &&
+                     check.finite("random_balls.region.max", Vec3(rb.region->max.x(), rb.region->max.y(), 0));
+    if (fin && !(rb.region->min.array() < rb.region->max.array()).all())
+    {
+      check.fail("random_balls.region", "min must be below max in x and y");
+      ok = false;
+    }
+    ok = ok && fin;
+  }
+  if (!scene.floor)
+  {
+    check.fail("random_balls", "needs a floor to place the balls on");
+    ok = false;
+  }
+  if (ok && fine_so_far && rb.count > 0)
+  {
+    random = placeRandomBalls(scene);
+    if (random.size() < static_cast<std::size_t>(rb.count))
+      check.fail("random_balls.count", "room for only " + std::to_string(random.size()) + " of " +
+                                           std::to_string(rb.count) +
+                                           " balls (use fewer or smaller balls, or a larger region)");
+  }
+  return random;
+}
+
 }  // namespace
 
 std::vector<SceneIssue> validateBall(const BallDef& ball, const std::string& prefix)
@@ -311,61 +374,9 @@ SceneCheck check(const Scene& scene)
 
   // Geometry only once the objects themselves are sound, so one mistake gives one issue.
   if (gravity_ok && floor_ok && walls_ok)
-  {
-    const Placement placement(scene);
-    std::vector<BallDef> placed = scene.balls;
-    for (std::size_t i = 0; i < scene.balls.size(); ++i)
-    {
-      if (!usable[i])
-        continue;
-      const std::string why = placement.place(placed[i]);
-      if (!why.empty())
-      {
-        check.fail(index("balls", i) + (why.rfind("overlaps", 0) == 0 ? "" : ".position"), why);
-        usable[i] = false;
-      }
-    }
-    checkOverlaps(check, placed, usable);
-  }
-
-  std::vector<BallDef> random;
-  if (scene.random_balls)
-  {
-    const RandomBallsDef& rb = *scene.random_balls;
-    bool ok = true;
-    if (rb.count < 0 || rb.count > 10'000'000)
-    {
-      check.fail("random_balls.count", "must be in [0, 10000000] (got " + std::to_string(rb.count) + ")");
-      ok = false;
-    }
-    ok = check.range("random_balls.radius", rb.radius, kMinLength, false, kMaxLength) && ok;
-    ok = check.range("random_balls.mass", rb.mass, kMinMass, false, kMaxMass) && ok;
-    ok = check.range("random_balls.speed", rb.speed, 0, false, kMaxSpeed) && ok;
-    if (rb.region)
-    {
-      const bool fin = check.finite("random_balls.region.min", Vec3(rb.region->min.x(), rb.region->min.y(), 0)) &&
-                       check.finite("random_balls.region.max", Vec3(rb.region->max.x(), rb.region->max.y(), 0));
-      if (fin && !(rb.region->min.array() < rb.region->max.array()).all())
-      {
-        check.fail("random_balls.region", "min must be below max in x and y");
-        ok = false;
-      }
-      ok = ok && fin;
-    }
-    if (!scene.floor)
-    {
-      check.fail("random_balls", "needs a floor to place the balls on");
-      ok = false;
-    }
-    if (ok && issues.empty() && rb.count > 0)
-    {
-      random = placeRandomBalls(scene);
-      if (random.size() < static_cast<std::size_t>(rb.count))
-        check.fail("random_balls.count", "room for only " + std::to_string(random.size()) + " of " +
-                                             std::to_string(rb.count) +
-                                             " balls (use fewer or smaller balls, or a larger region)");
-    }
-  }
+    checkPlacement(check, scene, usable);
+  const std::vector<BallDef> random =
+      scene.random_balls ? checkRandomBalls(check, scene, issues.empty()) : std::vector<BallDef>();
   if (issues.empty())
     out.balls = land(scene, random);
   return out;
