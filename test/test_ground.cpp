@@ -1,0 +1,91 @@
+// What balls move on, asked as the step asks it: on a plane and on the bowl (a curved
+// floor), against closed forms.
+#include "fixtures.hpp"
+
+#include "ball_collision_sim/core/ground.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace ball_collision_sim::core;
+using namespace ball_collision_sim::test;
+
+TEST(Ground, OnASlopedPlane)
+{
+  FloorDef f;
+  f.point = Vec3(-2, -2, 0);
+  f.u = Vec3(4, 0, -1);  // falls 1 m in 4 m along +x
+  f.v = Vec3(0, 4, 0);
+  const Vec3 g(0, 0, -9.81);
+  const Ground ground(f, g, StepSettings());
+  const Vec3 n = f.u.cross(f.v).normalized();
+  EXPECT_FALSE(ground.straight());
+  EXPECT_FALSE(ground.bends());
+  EXPECT_EQ(ground.up(), Vec3(0, 0, 1));  // against gravity; the normals face that way
+  EXPECT_GT(n.dot(ground.up()), 0);
+  const Vec2 guess(0.5, 0.5);
+  // a centre put back on the plane: r above it along the normal, moved along the normal
+  const Vec3 q(0.3, -0.7, 2.0);
+  const Vec3 c = ground.land(q, 0.25, guess);
+  EXPECT_NEAR((c - f.point).dot(n), 0.25, 1e-15);
+  EXPECT_LT((c - q).cross(n).norm(), 1e-15);
+  EXPECT_EQ(ground.normalAt(q, guess), n);
+  // along the floor; gravity along it is g sin(atan(1/4))
+  const Vec3 w(1, 2, 3);
+  EXPECT_NEAR(ground.along(w, n).dot(n), 0, 1e-15);
+  EXPECT_NEAR(ground.gravityAlong(n), 9.81 * std::sin(std::atan(0.25)), 1e-14);
+  // a step's end is put on the plane; the foot parameters of a centre outside it
+  const Ground::End end = ground.end(q, 0.25, guess);
+  EXPECT_EQ(end.centre, c);
+  EXPECT_EQ(end.normal, n);
+  const Vec2 uv = ground.footParameters(Vec3(2.5, 0, 0), guess);
+  EXPECT_GT(uv.x(), 1.0);
+  // a plane square to gravity: straight lines
+  f.u = Vec3(4, 0, 0);
+  EXPECT_TRUE(Ground(f, g, StepSettings()).straight());
+}
+
+TEST(Ground, OnTheBowl)
+{
+  // z = a (x^2 + y^2), a = 4 h / L^2
+  const double a = 4 * 0.5 / 16;
+  const Vec3 g(0, 0, -9.81);
+  const Ground ground(bowl(4, 0.5), g, StepSettings());
+  EXPECT_TRUE(ground.bends());
+  EXPECT_FALSE(ground.straight());
+  Vec2 guess(0.5, 0.5);
+  const Vec3 q(0.8, -0.6, 0.5);
+  const Vec3 c = ground.landKeepingFoot(q, 0.1, guess);
+  // the foot point kept is on the paraboloid, and the centre one radius above it along
+  // the normal there, which is (-2 a x, -2 a y, 1) normalised
+  const Floor& floor = *ground.floor();
+  const Vec3 foot = floor.point(guess);
+  EXPECT_NEAR(foot.z(), a * (foot.x() * foot.x() + foot.y() * foot.y()), 1e-12);
+  const Vec3 n = Vec3(-2 * a * foot.x(), -2 * a * foot.y(), 1).normalized();
+  EXPECT_LT((c - (foot + 0.1 * n)).norm(), 1e-12);
+  EXPECT_LT((ground.normalAt(c, guess) - n).norm(), 1e-12);
+  EXPECT_LT((ground.normalUnder(guess) - n).norm(), 1e-12);
+  // gravity along the floor there: g sin(slope), tan(slope) = 2 a rho
+  const double rho = std::hypot(foot.x(), foot.y());
+  EXPECT_NEAR(ground.gravityAlong(n), 9.81 * std::sin(std::atan(2 * a * rho)), 1e-12);
+  // a step's end on a curved floor stays where its chord ends; its foot and normal found
+  const Ground::End end = ground.end(c, 0.1, guess);
+  EXPECT_EQ(end.centre, c);
+  EXPECT_LT((end.normal - n).norm(), 1e-12);
+  EXPECT_LT((end.foot - guess).norm(), 1e-12);
+  EXPECT_EQ(ground.footParameters(c, guess), guess);
+}
+
+TEST(Ground, WithoutAFloor)
+{
+  const Ground ground(std::nullopt, Vec3(0, 0, -2), StepSettings());
+  EXPECT_FALSE(ground.floor().has_value());
+  EXPECT_EQ(ground.up(), Vec3(0, 0, 1));
+  const Vec3 q(1, 2, 3);
+  EXPECT_EQ(ground.land(q, 0.5, Vec2(0.5, 0.5)), q);
+  EXPECT_EQ(ground.along(q, ground.up()), q);
+  EXPECT_EQ(ground.gravityAlong(ground.up()), 2.0);
+  EXPECT_FALSE(ground.straight());
+  EXPECT_TRUE(Ground(std::nullopt, Vec3::Zero(), StepSettings()).straight());
+}
