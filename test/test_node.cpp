@@ -186,9 +186,13 @@ TEST(Node, PauseThenStepAdvancesExactlyNSteps)
   const auto r = step(7);
   EXPECT_TRUE(r.success) << r.message;
   EXPECT_NEAR(r.time, 7 * kDt, 1e-12);
-  ASSERT_TRUE(clock.waitFor([](const auto& all) { return all.size() >= 7; }));
+  // (a new subscriber is first sent the present, t = 0: the step's ticks follow it)
+  ASSERT_TRUE(clock.waitFor(
+      [](const auto& all) { return !all.empty() && std::abs(all.back().clock.toSec() - 7 * kDt) < 1e-9; }));
   const auto ticks = clock.take();
-  EXPECT_NEAR(ticks.back().clock.toSec(), 7 * kDt, 1e-9);
+  EXPECT_GE(ticks.size(), 7u);
+  for (std::size_t k = 1; k < ticks.size(); ++k)
+    EXPECT_LT(ticks[k - 1].clock.toSec(), ticks[k].clock.toSec()) << "the clock goes forward, tick " << k;
   // paused: the clock does not move by itself
   ros::WallDuration(0.3).sleep();
   EXPECT_TRUE(clock.take().empty());

@@ -127,7 +127,7 @@ void UniformGrid::insert(std::uint32_t item, const Aabb& box)
       }
 }
 
-void StepGrid::start(std::size_t n, const Vec3& up)
+void StepGrid::start(std::size_t n, const Vec3& up, const StepSettings& settings)
 {
   // Grid axes: drop the one most nearly along "up", where balls on a floor barely spread.
   int drop = 0;
@@ -135,6 +135,9 @@ void StepGrid::start(std::size_t n, const Vec3& up)
   ax_ = drop == 0 ? 1 : 0;
   ay_ = drop == 2 ? 1 : 2;
   items_.resize(n);
+  outlier_ratio_ = settings.grid_outlier_ratio;
+  dense_cells_per_item_ = settings.grid_dense_cells_per_item;
+  dense_extra_cells_ = settings.grid_dense_extra_cells;
 }
 
 void StepGrid::build()
@@ -149,58 +152,8 @@ void StepGrid::build()
     shift_ = 63;
     return;
   }
-
-  // Cells a little wider than the widest box, leaving out boxes far wider than the
-  // mean (a rare fast or large ball): they are listed as moved instead of making
-  // every cell huge.
-  const auto extent = [&](const Box32& box) {
-    return std::max(static_cast<double>(box.max[ax_]) - box.min[ax_], static_cast<double>(box.max[ay_]) - box.min[ay_]);
-  };
-  double sum = 0, widest = 0;
-  for (const Item& item : items_)
-  {
-    const double e = extent(item.box);
-    sum += e;
-    widest = std::max(widest, e);
-  }
-  const double outlier = 4 * sum / static_cast<double>(n);
-  const bool outliers = widest > outlier;
-  if (outliers)
-  {
-    widest = 0;
-    for (const Item& item : items_)
-      if (const double e = extent(item.box); e <= outlier)
-        widest = std::max(widest, e);
-  }
-  cell_ = widest * (1 + 1e-9) + 1e-12;
-  inv_cell_ = 1.0 / cell_;
-
-  std::int64_t max_x = 0, max_y = 0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const std::int64_t x = index(std::floor(0.5 * (static_cast<double>(items_[i].box.min[ax_]) + items_[i].box.max[ax_]) * inv_cell_));
-    const std::int64_t y = index(std::floor(0.5 * (static_cast<double>(items_[i].box.min[ay_]) + items_[i].box.max[ay_]) * inv_cell_));
-    items_[i].cx = static_cast<std::int32_t>(x);
-    items_[i].cy = static_cast<std::int32_t>(y);
-    min_x_ = i == 0 ? x : std::min(min_x_, x);
-    min_y_ = i == 0 ? y : std::min(min_y_, y);
-    max_x = i == 0 ? x : std::max(max_x, x);
-    max_y = i == 0 ? y : std::max(max_y, y);
-  }
-  // A dense array of cells when the items are not spread too thin, else hashed buckets.
-  width_ = max_x - min_x_ + 3;
-  height_ = max_y - min_y_ + 3;
-  dense_ = static_cast<double>(width_) * static_cast<double>(height_) <= 4.0 * static_cast<double>(n) + 1024;
-  std::size_t slots = 16;
-  shift_ = 60;
-  if (dense_)
-    slots = static_cast<std::size_t>(width_ * height_);
-  else
-    while (slots < 2 * n)
-    {
-      slots *= 2;
-      --shift_;
-    }
+  const double widest = chooseCell();
+  const std::size_t slots = assignCells();
   // Counting sort by slot: starts_[b] counts slot b, then (summed) is where slot b ends,
   // then (each item put in front of its slot's, last item first) where it starts.
   starts_.assign(slots + 1, 0);
@@ -210,10 +163,75 @@ void StepGrid::build()
     starts_[b + 1] += starts_[b];
   for (std::size_t i = n; i-- > 0;)
     entries_[--starts_[slotOf(items_[i].cx, items_[i].cy)]] = static_cast<std::uint32_t>(i);
-  if (outliers)
-    for (std::size_t i = 0; i < n; ++i)
-      if (extent(items_[i].box) > widest && !fits(static_cast<std::uint32_t>(i), items_[i].box))
-        moveOut(static_cast<std::uint32_t>(i));
+  // the boxes left out of the cell's width are listed as moved
+  for (std::size_t i = 0; i < n; ++i)
+    if (extent(items_[i].box) > widest && !fits(static_cast<std::uint32_t>(i), items_[i].box))
+      moveOut(static_cast<std::uint32_t>(i));
+}
+
+double StepGrid::extent(const Box32& box) const
+{
+  return std::max(static_cast<double>(box.max[ax_]) - box.min[ax_], static_cast<double>(box.max[ay_]) - box.min[ay_]);
+}
+
+double StepGrid::chooseCell()
+{
+  // Cells a little wider than the widest box, leaving out boxes far wider than the
+  // mean (a rare fast or large ball): they are listed as moved instead of making
+  // every cell huge.
+  double sum = 0, widest = 0;
+  for (const Item& item : items_)
+  {
+    const double e = extent(item.box);
+    sum += e;
+    widest = std::max(widest, e);
+  }
+  const double outlier = outlier_ratio_ * sum / static_cast<double>(items_.size());
+  if (widest > outlier)
+  {
+    widest = 0;
+    for (const Item& item : items_)
+      if (const double e = extent(item.box); e <= outlier)
+        widest = std::max(widest, e);
+  }
+  // (wider by round-off of the boxes' bounds, and not zero where every box is a point)
+  cell_ = widest * (1 + 1e-9) + 1e-12;
+  inv_cell_ = 1.0 / cell_;
+  return widest;
+}
+
+std::size_t StepGrid::assignCells()
+{
+  const std::size_t n = items_.size();
+  std::int64_t max_x = 0, max_y = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Box32& box = items_[i].box;
+    const std::int64_t x = index(std::floor(0.5 * (static_cast<double>(box.min[ax_]) + box.max[ax_]) * inv_cell_));
+    const std::int64_t y = index(std::floor(0.5 * (static_cast<double>(box.min[ay_]) + box.max[ay_]) * inv_cell_));
+    items_[i].cx = static_cast<std::int32_t>(x);
+    items_[i].cy = static_cast<std::int32_t>(y);
+    min_x_ = i == 0 ? x : std::min(min_x_, x);
+    min_y_ = i == 0 ? y : std::min(min_y_, y);
+    max_x = i == 0 ? x : std::max(max_x, x);
+    max_y = i == 0 ? y : std::max(max_y, y);
+  }
+  // A dense array of cells (with a border of one) when the items are not spread too
+  // thin, else hashed buckets, at least twice as many as items.
+  width_ = max_x - min_x_ + 3;
+  height_ = max_y - min_y_ + 3;
+  dense_ = static_cast<double>(width_) * static_cast<double>(height_) <=
+           dense_cells_per_item_ * static_cast<double>(n) + dense_extra_cells_;
+  if (dense_)
+    return static_cast<std::size_t>(width_ * height_);
+  std::size_t slots = 16;
+  shift_ = 60;
+  while (slots < 2 * n)
+  {
+    slots *= 2;
+    --shift_;
+  }
+  return slots;
 }
 
 void StepGrid::reorder(std::vector<std::uint32_t>& values)

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
+#include <utility>
 
 namespace ball_collision_sim::core
 {
@@ -47,6 +49,84 @@ void parametersUnder(const Floor& floor, const RandomBallsDef::Region& region, V
   uv_min = (uv_min - margin).cwiseMax(Vec2::Zero());
   uv_max = (uv_max + margin).cwiseMin(Vec2::Ones());
 }
+
+
+/// The balls placed so far (the scene's own first), each listed in the one cell of its
+/// centre: a new ball looks in the cells within reach of any centre that could be too close.
+class Obstacles
+{
+public:
+  Obstacles(const Placement& placement, const Scene& scene, std::size_t asked) : placement_(placement)
+  {
+    // The explicit balls, placed, are obstacles too; the balls placed here follow them.
+    max_radius_ = scene.random_balls->radius.max;
+    for (BallDef ball : scene.balls)
+      if (placement.place(ball).empty())
+      {
+        balls_.push_back(ball);
+        max_radius_ = std::max(max_radius_, ball.radius);
+      }
+    listed_ = balls_.size();
+    // (sized for the balls asked for up to a point: the grid grows as it fills, and a count
+    // far beyond the room is refused without its table)
+    grid_.reset(2 * max_radius_, balls_.size() + std::min<std::size_t>(asked, 1 << 16));
+    for (std::size_t k = 0; k < balls_.size(); ++k)
+      grid_.insert(static_cast<std::uint32_t>(k), sweptBox(balls_[k].position, balls_[k].position, 0));
+  }
+  /// Whether `ball` keeps its clearance from every wall and every ball placed so far.
+  bool clear(const BallDef& ball) const
+  {
+    const auto& walls = placement_.walls();
+    if (std::any_of(walls.begin(), walls.end(),
+                    [&](const Wall& w) { return w.distance(ball.position) < ball.radius + kClearance; }))
+      return false;
+    bool clear = true;
+    const Aabb box = sweptBox(ball.position, ball.position, ball.radius + max_radius_ + kClearance);
+    grid_.query(box, [&](std::uint32_t k) {
+      const BallDef& o = balls_[k];
+      if ((o.position - ball.position).norm() < o.radius + ball.radius + kClearance)
+        clear = false;
+    });
+    return clear;
+  }
+  void add(const BallDef& ball)
+  {
+    balls_.push_back(ball);
+    grid_.insert(static_cast<std::uint32_t>(balls_.size() - 1), sweptBox(ball.position, ball.position, 0));
+  }
+  long placed() const { return static_cast<long>(balls_.size() - listed_); }
+  /// The balls placed here, without the scene's own.
+  std::vector<BallDef> take()
+  {
+    balls_.erase(balls_.begin(), balls_.begin() + static_cast<std::ptrdiff_t>(listed_));
+    return std::move(balls_);
+  }
+
+private:
+  const Placement& placement_;
+  std::vector<BallDef> balls_;
+  std::size_t listed_ = 0;
+  double max_radius_ = 0.0;
+  UniformGrid grid_;
+};
+
+/// One ball drawn at random on the part of the floor the definition asks for: its size,
+/// mass and foot point; no velocity yet (drawn only for a ball that fits, so that the
+/// draws stay as they are). Empty where the ball's centre falls outside the region.
+std::optional<BallDef> drawBall(std::mt19937_64& rng, const RandomBallsDef& def, const Floor& floor,
+                                const Vec2& uv_min, const Vec2& uv_max, Vec3& normal)
+{
+  BallDef ball;
+  ball.radius = uniform(rng, def.radius.min, def.radius.max);
+  ball.mass = uniform(rng, def.mass.min, def.mass.max);
+  const Vec2 uv(uniform(rng, uv_min.x(), uv_max.x()), uniform(rng, uv_min.y(), uv_max.y()));
+  normal = floor.normal(uv);
+  ball.position = floor.point(uv) + ball.radius * normal;
+  if (def.region && ((ball.position.head<2>().array() < def.region->min.array()).any() ||
+                     (ball.position.head<2>().array() > def.region->max.array()).any()))
+    return std::nullopt;
+  return ball;
+}
 }  // namespace
 
 std::vector<BallDef> placeRandomBalls(const Scene& scene)
@@ -56,25 +136,7 @@ std::vector<BallDef> placeRandomBalls(const Scene& scene)
   const RandomBallsDef& def = *scene.random_balls;
   const Placement placement(scene);
   const Floor& floor = *placement.floor();
-
-  // The explicit balls, placed, are obstacles too; the balls placed here follow them.
-  std::vector<BallDef> obstacles;
-  double max_radius = def.radius.max;
-  for (BallDef ball : scene.balls)
-    if (placement.place(ball).empty())
-    {
-      obstacles.push_back(ball);
-      max_radius = std::max(max_radius, ball.radius);
-    }
-  const std::size_t listed = obstacles.size();
-  // Each obstacle is listed in the one cell of its centre; a new ball looks in the cells
-  // within reach of any centre that could be too close.
-  UniformGrid grid;
-  // (sized for the balls asked for up to a point: the grid grows as it fills, and a count
-  // far beyond the room is refused without its table)
-  grid.reset(2 * max_radius, obstacles.size() + std::min<std::size_t>(static_cast<std::size_t>(def.count), 1 << 16));
-  for (std::size_t k = 0; k < obstacles.size(); ++k)
-    grid.insert(static_cast<std::uint32_t>(k), sweptBox(obstacles[k].position, obstacles[k].position, 0));
+  Obstacles obstacles(placement, scene, static_cast<std::size_t>(def.count));
 
   // Parameters to draw from: the whole floor, or the part under the region.
   Vec2 uv_min(0, 0), uv_max(1, 1);
@@ -87,44 +149,22 @@ std::vector<BallDef> placeRandomBalls(const Scene& scene)
   // far beyond the room (up to 10^7) takes 100 attempts a ball, minutes, to be refused.
   constexpr long kMaxMissesInARow = 100000;
   long misses = 0;
-  const auto placed = [&] { return static_cast<long>(obstacles.size() - listed); };
-  for (long attempt = 0; attempt < max_attempts && placed() < def.count && misses < kMaxMissesInARow; ++attempt)
+  for (long attempt = 0; attempt < max_attempts && obstacles.placed() < def.count && misses < kMaxMissesInARow;
+       ++attempt)
   {
     ++misses;  // until this attempt places its ball
-    BallDef ball;
-    ball.radius = uniform(rng, def.radius.min, def.radius.max);
-    ball.mass = uniform(rng, def.mass.min, def.mass.max);
-    const Vec2 uv(uniform(rng, uv_min.x(), uv_max.x()), uniform(rng, uv_min.y(), uv_max.y()));
-    const Vec3 foot = floor.point(uv);
-    const Vec3 n = floor.normal(uv);
-    ball.position = foot + ball.radius * n;
-    if (def.region && ((ball.position.head<2>().array() < def.region->min.array()).any() ||
-                       (ball.position.head<2>().array() > def.region->max.array()).any()))
-      continue;
-    const auto near_wall = std::any_of(placement.walls().begin(), placement.walls().end(), [&](const Wall& w) {
-      return w.distance(ball.position) < ball.radius + kClearance;
-    });
-    if (near_wall)
-      continue;
-    bool clear = true;
-    const Aabb box = sweptBox(ball.position, ball.position, ball.radius + max_radius + kClearance);
-    grid.query(box, [&](std::uint32_t k) {
-      const BallDef& o = obstacles[k];
-      if ((o.position - ball.position).norm() < o.radius + ball.radius + kClearance)
-        clear = false;
-    });
-    if (!clear)
+    Vec3 n;
+    std::optional<BallDef> ball = drawBall(rng, def, floor, uv_min, uv_max, n);
+    if (!ball || !obstacles.clear(*ball))
       continue;
     const double speed = uniform(rng, def.speed.min, def.speed.max);
     const double angle = uniform(rng, 0.0, 2 * M_PI);
     Vec3 e1, e2;
     tangentBasis(n, e1, e2);
-    ball.velocity = speed * (std::cos(angle) * e1 + std::sin(angle) * e2);
-    obstacles.push_back(ball);
-    grid.insert(static_cast<std::uint32_t>(obstacles.size() - 1), sweptBox(ball.position, ball.position, 0));
+    ball->velocity = speed * (std::cos(angle) * e1 + std::sin(angle) * e2);
+    obstacles.add(*ball);
     misses = 0;
   }
-  obstacles.erase(obstacles.begin(), obstacles.begin() + static_cast<std::ptrdiff_t>(listed));
-  return obstacles;
+  return obstacles.take();
 }
 }  // namespace ball_collision_sim::core

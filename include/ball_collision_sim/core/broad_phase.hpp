@@ -1,5 +1,6 @@
 #pragma once
 
+#include "ball_collision_sim/core/step_settings.hpp"
 #include "ball_collision_sim/core/types.hpp"
 
 #include <algorithm>
@@ -147,7 +148,7 @@ class StepGrid
 public:
   /// Starts a step of n items; `up` picks the grid's two axes. Then setBox() for each
   /// item, then build().
-  void start(std::size_t n, const Vec3& up);
+  void start(std::size_t n, const Vec3& up, const StepSettings& settings = StepSettings{});
   void setBox(std::uint32_t i, const Aabb& box) { items_[i].box = Box32::around(box); }
   /// Bins the boxes.
   void build();
@@ -186,6 +187,12 @@ private:
   /// most one, and clamping keeps that).
   static std::int64_t index(double cells) { return static_cast<std::int64_t>(std::clamp(cells, -1e9, 1e9)); }
   bool fits(std::uint32_t i, const Box32& box) const;
+  /// The larger of a box's widths across the grid's axes [m].
+  double extent(const Box32& box) const;
+  /// Sets the cell's width from the boxes; returns the widest box binned.
+  double chooseCell();
+  /// Each item's cell, and whether the cells are a dense array; returns the slots needed.
+  std::size_t assignCells();
   /// Lists item i (with its current box) among the moved items instead of in its cell.
   void moveOut(std::uint32_t i);
   /// Calls f(item) for the binned items of the cells [x0, x1] x [y0, y1] whose boxes
@@ -211,6 +218,9 @@ private:
   double cell_ = 1.0;
   double inv_cell_ = 1.0;
   int shift_ = 60;
+  double outlier_ratio_ = 4.0;          ///< StepSettings::grid_outlier_ratio
+  double dense_cells_per_item_ = 4.0;   ///< StepSettings::grid_dense_cells_per_item
+  double dense_extra_cells_ = 1024.0;   ///< StepSettings::grid_dense_extra_cells
   /// What the grid keeps of an item, in half a cache line.
   struct alignas(32) Item
   {

@@ -80,6 +80,17 @@ struct StepSettings
   /// in straight lines between impacts there [ratio].
   double straight_gravity_ratio = 1e-12;
 
+  // ---- broad phase --------------------------------------------------------------------
+  /// A swept box wider than this many times the mean is left out of the cell's width
+  /// and listed apart: one fast or large ball must not make every cell huge [ratio].
+  double grid_outlier_ratio = 4.0;
+  /// The grid's cells are one dense array while there are at most this many per item
+  /// plus grid_dense_extra_cells (then the scan reads the items in cell order), else
+  /// hashed buckets: balls spread thin over a large floor must not cost a table of empty
+  /// cells [cells per item], [cells].
+  double grid_dense_cells_per_item = 4.0;
+  double grid_dense_extra_cells = 1024.0;
+
   // ---- memory order -------------------------------------------------------------------
   /// A ball's record is fetched this many balls ahead of its use in the visiting order
   /// [balls].

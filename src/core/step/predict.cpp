@@ -30,7 +30,7 @@ void World::prefetchBall(std::size_t k, bool write) const
 void World::predictMotions()
 {
   static_assert(sizeof(Motion) == 64, "a Motion fills one cache line");
-  grid_.start(balls_.size(), ground_.up());
+  grid_.start(balls_.size(), ground_.up(), settings_);
   // (taken back at once, so that a step cut short by an exception leaves none ready)
   if (std::exchange(motions_ready_, false))
     return;  // the last step's commit predicted them
