@@ -89,3 +89,39 @@ TEST(Ground, WithoutAFloor)
   EXPECT_FALSE(ground.straight());
   EXPECT_TRUE(Ground(std::nullopt, Vec3::Zero(), StepSettings()).straight());
 }
+
+TEST(Ground, VelocityAlongTheWayAndTurnsThatKeepTheSpeed)
+{
+  FloorDef f;
+  f.point = Vec3(-2, -2, 0);
+  f.u = Vec3(4, 0, -1);
+  f.v = Vec3(0, 4, 0);
+  const Vec3 g(0, 0, -9.81);
+  const Ground slope(f, g, StepSettings());
+  const Vec3 n = f.u.cross(f.v).normalized();
+  const Vec3 gt = g - g.dot(n) * n;
+  // on the exact path p0 + v0 t + g_t t^2 / 2 the velocity is v0 + g_t t, whose speed
+  // is also the one the energy gives there
+  const Vec3 p0 = slope.land(Vec3(0, 0, 1), 0.1, Vec2(0.5, 0.5));
+  const Vec3 v0 = Vec3(0.3, 1.2, 0) - Vec3(0.3, 1.2, 0).dot(n) * n;
+  const double t = 0.37;
+  const Vec3 p = p0 + t * v0 + (0.5 * t * t) * gt;
+  const Vec3 v = slope.velocityAt(v0, t, p0, p, n);
+  EXPECT_LT((v - (v0 + t * gt)).norm(), 1e-14);
+  // where the chord was cut short of that point, the speed is the one its energy gives there
+  const Vec3 short_of = p0 + 0.5 * (p - p0);
+  const double energy_speed = std::sqrt(v0.squaredNorm() + 2 * g.dot(short_of - p0));
+  EXPECT_NEAR(slope.velocityAt(v0, t, p0, short_of, n).norm(), energy_speed, 1e-14);
+  // a turn keeps the speed where gravity pulls along the floor ...
+  const Vec3 before(1, 2, 0), after(0.5, -0.25, 0);
+  EXPECT_NEAR(slope.turned(before, after).norm(), before.norm(), 1e-15);
+  EXPECT_LT(slope.turned(before, after).normalized().cross(after.normalized()).norm(), 1e-15);
+  EXPECT_EQ(slope.turned(before, Vec3::Zero()), Vec3::Zero());
+  // ... and on a level plane a ball keeps its velocity along the floor, wherever the
+  // chord took it, and a turn is what it is
+  f.u = Vec3(4, 0, 0);
+  const Ground level(f, g, StepSettings());
+  const Vec3 up(0, 0, 1);
+  EXPECT_EQ(level.velocityAt(Vec3(1, 2, 0), t, p0, p0 + Vec3(5, 0, 0), up), Vec3(1, 2, 0));
+  EXPECT_EQ(level.turned(before, after), after);
+}

@@ -2,6 +2,8 @@
 
 #include "ball_collision_sim/core/response.hpp"
 
+#include <cmath>
+
 namespace ball_collision_sim::core
 {
 Ground::Ground(const std::optional<FloorDef>& floor, const Vec3& gravity, const StepSettings& settings)
@@ -66,6 +68,31 @@ Vec3 Ground::along(const Vec3& w, const Vec3& n) const
 double Ground::gravityAlong(const Vec3& n) const
 {
   return plane_ ? plane_gravity_along_ : along(gravity_, n).norm();
+}
+
+Vec3 Ground::velocityAt(const Vec3& v0, double elapsed, const Vec3& p0, const Vec3& p, const Vec3& n) const
+{
+  const Vec3 v = along(v0 + elapsed * gravity_, n);
+  if (straight_)
+    return v;  // no force along the floor: the motion is the chord itself
+  // Under a force along the floor the ball's path is a curve and its motion in the step
+  // the chord across it, which runs off the curve; so where an impact stops the chord,
+  // the velocity the force gave by then does not go with the height the chord reached.
+  // Keep the frictionless ball's |v|^2 = |v0|^2 + 2 <g, p - p0> (the course code's
+  // correction on its curved floor).
+  const double target = v0.squaredNorm() + 2 * gravity_.dot(p - p0);
+  const double norm = v.norm();
+  if (target <= 0 || norm == 0)
+    return Vec3::Zero();
+  return v * (std::sqrt(target) / norm);
+}
+
+Vec3 Ground::turned(const Vec3& before, const Vec3& after) const
+{
+  const double speed = after.norm();
+  if (straight_ || !(speed > 0))
+    return after;
+  return after * (before.norm() / speed);
 }
 
 Ground::End Ground::end(const Vec3& p, double radius, const Vec2& guess) const

@@ -43,6 +43,15 @@ public:
   /// |gravity along the floor| where its normal is n [m/s^2].
   double gravityAlong(const Vec3& n) const;
 
+  /// A ball's velocity at p, on the floor with normal n there, `elapsed` seconds into a
+  /// motion that started at p0 with velocity v0: gravity's along the floor added, and
+  /// where gravity pulls along the floor, the speed its energy gives at p.
+  Vec3 velocityAt(const Vec3& v0, double elapsed, const Vec3& p0, const Vec3& p, const Vec3& n) const;
+  /// A velocity `before` turned to the direction of `after` by something frictionless
+  /// (a resting contact, the floor): where gravity pulls along the floor a ball's speed
+  /// is its energy's, and the turn keeps it; elsewhere `after` as it is.
+  Vec3 turned(const Vec3& before, const Vec3& after) const;
+
   /// Where a ball's motion ends the step: its centre (on a plane put on it; on a curved
   /// floor its chord already ends there), the normal there, and the foot point.
   struct End

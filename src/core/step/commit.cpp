@@ -127,11 +127,7 @@ void World::settleRestingVelocities()
     // the impulses across the contacts may leave a velocity a part along the floor's
     // normal, which the floor takes (where speeds are the energy's, it keeps the speed)
     Ball& ball = balls_[order_[i]];
-    const double speed = ball.velocity.norm();
-    ball.velocity = ground_.along(ball.velocity, floor_normals_[i]);
-    const double along = ball.velocity.norm();
-    if (!ground_.straight() && along > 0)
-      ball.velocity *= speed / along;
+    ball.velocity = ground_.turned(ball.velocity, ground_.along(ball.velocity, floor_normals_[i]));
   }
 }
 

@@ -26,10 +26,9 @@ Vec3 World::redirected(std::size_t i, const Vec3& v) const
   // energy's (onFloorVelocity), and the turn keeps it.
   const std::int32_t blocked = states_[i].blocked;
   const Vec3 free = allowed(i, v);
-  const double speed = free.norm();
-  if (ground_.straight() || blocked < 0 || !blocked_sets_[static_cast<std::size_t>(blocked)].elastic || !(speed > 0))
+  if (blocked < 0 || !blocked_sets_[static_cast<std::size_t>(blocked)].elastic)
     return free;
-  return free * (v.norm() / speed);
+  return ground_.turned(v, free);
 }
 
 void World::addBlocked(std::size_t i, const Vec3& direction, double restitution)

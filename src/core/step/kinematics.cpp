@@ -26,20 +26,7 @@ Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
 Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
   const Motion& m = motions_[i];
-  const Vec3& v0 = startVelocity(i);
-  const Vec3 v = ground_.along(v0 + ((x - m.x0) * dt_) * gravity_, normal);
-  if (ground_.straight())
-    return v;  // no force along the floor: the motion is the chord itself
-  // Under a force along the floor the ball's path is a curve and its motion in the step
-  // the chord across it, which runs off the curve; so where an impact stops the chord,
-  // the velocity the force gave by then does not go with the height the chord reached.
-  // Keep the frictionless ball's |v|^2 = |v0|^2 + 2 <g, p - p0> (the course code's
-  // correction on its curved floor).
-  const double target = v0.squaredNorm() + 2 * gravity_.dot(position - m.p0);
-  const double norm = v.norm();
-  if (target <= 0 || norm == 0)
-    return Vec3::Zero();
-  return v * (std::sqrt(target) / norm);
+  return ground_.velocityAt(startVelocity(i), (x - m.x0) * dt_, m.p0, position, normal);
 }
 
 double World::stillSpeed(const Vec3& floor_normal) const
