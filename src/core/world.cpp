@@ -100,15 +100,6 @@ void World::step()
   events_.clear();
   resting_.clear();
   blocked_sets_.clear();
-  if (order_.size() != balls_.size())
-  {
-    order_.resize(balls_.size());
-    for (std::size_t k = 0; k < order_.size(); ++k)
-      order_[k] = static_cast<std::uint32_t>(k);
-  }
-  wall_boxes_.resize(walls_.size());
-  for (std::size_t w = 0; w < walls_.size(); ++w)
-    wall_boxes_[w] = Box32::around(Aabb{walls_[w].box_min, walls_[w].box_max});
   predictMotions();            // each ball's free motion over the step, on the floor, and its swept box
   buildBroadPhase();           // the swept boxes into a uniform grid
   findFirstImpacts();          // exact times of impact of nearby pairs and walls
@@ -214,22 +205,12 @@ AddResult World::addBall(const BallDef& def, Landing landing)
   if (!result.error.empty())
     return result;
   result.ok = true;
-  const Ball ball = makeBall(next_ball_id_, placed);
+  // (room first, so that the two lists stay in step: the last push cannot throw)
+  if (balls_.size() == balls_.capacity())
+    balls_.reserve(2 * balls_.size() + 1);
   if (ground_.bends())
-  {
     feet_.push_back(foot);
-    try
-    {
-      balls_.push_back(ball);
-    }
-    catch (...)
-    {
-      feet_.pop_back();  // the two lists stay in step
-      throw;
-    }
-  }
-  else
-    balls_.push_back(ball);
+  balls_.push_back(makeBall(next_ball_id_, placed));
   result.id = next_ball_id_++;
   forgetOrder();
   return result;

@@ -1,6 +1,6 @@
 // Stages 2 and 3, broad phase and detection: the swept boxes into the grid, then the
 // exact first time of impact of each nearby pair and wall, into the event queue.
-// Reads motions_, states_, walls_, the grid; writes queue_.
+// Reads motions_, states_, walls_, the grid; writes wall_boxes_, queue_.
 #include "step_types.hpp"
 
 #include "ball_collision_sim/core/time_of_impact.hpp"
@@ -15,6 +15,9 @@ void World::buildBroadPhase()
 {
   queue_.start(&order_);
   grid_.build();  // on the swept boxes of the predicted motions
+  wall_boxes_.resize(walls_.size());
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    wall_boxes_[w] = Box32::around(Aabb{walls_[w].box_min, walls_[w].box_max});
   grid_.markObstacles(wall_boxes_);
 }
 

@@ -1,6 +1,7 @@
 // Stage 1, predict: each ball's free motion over the step, from its record (position,
 // velocity) and the floor, and its swept box in the grid.
-// Reads balls_, order_, feet_; writes motions_, states_, floor_uv_ and the grid's boxes.
+// Reads balls_, feet_; writes order_ (after an edit), motions_, states_, floor_uv_ and
+// the grid's boxes.
 #include "step_types.hpp"
 
 #include <utility>
@@ -30,6 +31,13 @@ void World::prefetchBall(std::size_t k, bool write) const
 void World::predictMotions()
 {
   static_assert(sizeof(Motion) == 64, "a Motion fills one cache line");
+  if (order_.size() != balls_.size())
+  {
+    // (balls added or removed since the last step: visited in id order)
+    order_.resize(balls_.size());
+    for (std::size_t k = 0; k < order_.size(); ++k)
+      order_[k] = static_cast<std::uint32_t>(k);
+  }
   grid_.start(balls_.size(), ground_.up(), settings_);
   // (taken back at once, so that a step cut short by an exception leaves none ready)
   if (std::exchange(motions_ready_, false))
