@@ -1,4 +1,5 @@
 #include "ball_collision_sim/core/broad_phase.hpp"
+#include "ball_collision_sim/core/step_settings.hpp"
 #include "ball_collision_sim/core/time_of_impact.hpp"
 
 #include <gtest/gtest.h>
@@ -14,29 +15,31 @@
 #include <vector>
 
 using namespace ball_collision_sim::core;
+/// The step's own slop for touching objects (StepSettings::closing_slop).
+const double kSlop = StepSettings().closing_slop;
 
 TEST(SphereSweep, HeadOnMeetsAtGapOverClosingSpeed)
 {
   // centres 1 m apart, radii sum 0.3, closing at 0.5 m per unit t: t = 0.7 / 0.5
-  const auto t = sphereSweep(Vec3(-1, 0, 0), Vec3(0.5, 0, 0), 0.3, 10);
+  const auto t = sphereSweep(Vec3(-1, 0, 0), Vec3(0.5, 0, 0), 0.3, 10, kSlop);
   ASSERT_TRUE(t);
   EXPECT_NEAR(*t, 1.4, 1e-15);
 }
 
 TEST(SphereSweep, NoImpactWhenSeparatingPassingByOrTooLate)
 {
-  EXPECT_FALSE(sphereSweep(Vec3(-1, 0, 0), Vec3(-0.5, 0, 0), 0.3, 10));  // separating
-  EXPECT_FALSE(sphereSweep(Vec3(-1, 0.31, 0), Vec3(1, 0, 0), 0.3, 10));  // passes by
-  EXPECT_FALSE(sphereSweep(Vec3(-1, 0, 0), Vec3(0.5, 0, 0), 0.3, 1.39));  // after t_max
-  EXPECT_FALSE(sphereSweep(Vec3(-1, 0, 0), Vec3(0, 0, 0), 0.3, 10));     // no relative motion
+  EXPECT_FALSE(sphereSweep(Vec3(-1, 0, 0), Vec3(-0.5, 0, 0), 0.3, 10, kSlop));  // separating
+  EXPECT_FALSE(sphereSweep(Vec3(-1, 0.31, 0), Vec3(1, 0, 0), 0.3, 10, kSlop));  // passes by
+  EXPECT_FALSE(sphereSweep(Vec3(-1, 0, 0), Vec3(0.5, 0, 0), 0.3, 1.39, kSlop));  // after t_max
+  EXPECT_FALSE(sphereSweep(Vec3(-1, 0, 0), Vec3(0, 0, 0), 0.3, 10, kSlop));     // no relative motion
 }
 
 TEST(SphereSweep, TouchingAndClosingIsAnImpactNow)
 {
-  EXPECT_EQ(*sphereSweep(Vec3(-0.3, 0, 0), Vec3(1, 0, 0), 0.3, 1), 0.0);
-  EXPECT_FALSE(sphereSweep(Vec3(-0.3, 0, 0), Vec3(-1, 0, 0), 0.3, 1));
+  EXPECT_EQ(*sphereSweep(Vec3(-0.3, 0, 0), Vec3(1, 0, 0), 0.3, 1, kSlop), 0.0);
+  EXPECT_FALSE(sphereSweep(Vec3(-0.3, 0, 0), Vec3(-1, 0, 0), 0.3, 1, kSlop));
   // sliding past each other while touching is not an impact
-  EXPECT_FALSE(sphereSweep(Vec3(-0.3, 0, 0), Vec3(0, 1, 0), 0.3, 1));
+  EXPECT_FALSE(sphereSweep(Vec3(-0.3, 0, 0), Vec3(0, 1, 0), 0.3, 1, kSlop));
 }
 
 TEST(SphereSweep, GrazingImpactsTouchAtTheContactDistance)
@@ -47,7 +50,7 @@ TEST(SphereSweep, GrazingImpactsTouchAtTheContactDistance)
   for (int k = 1; k <= 14; ++k)
   {
     const double h = R * (1 - std::pow(10.0, -k));
-    const auto t = sphereSweep(Vec3(-1, h, 0), Vec3(1.3, 0, 0), R, 10);
+    const auto t = sphereSweep(Vec3(-1, h, 0), Vec3(1.3, 0, 0), R, 10, kSlop);
     ASSERT_TRUE(t) << k;
     EXPECT_NEAR((Vec3(-1, h, 0) + *t * Vec3(1.3, 0, 0)).norm(), R, 1e-15) << k;
     // the time itself is as well conditioned as the graze allows: the distance changes
@@ -66,7 +69,7 @@ TEST(SphereSweep, RandomCasesTouchAtTheRootAndNeverBefore)
   {
     const Vec3 d(u(rng), u(rng), u(rng)), e(u(rng), u(rng), u(rng));
     const double reach = 0.5 * std::abs(u(rng));
-    const auto t = sphereSweep(d, e, reach, 1.0);
+    const auto t = sphereSweep(d, e, reach, 1.0, kSlop);
     // the closed form: the earliest t in [0, 1] with |d + t e| <= reach
     double first = -1;
     if (d.norm() <= reach && e.dot(d) < 0)
@@ -109,12 +112,12 @@ Wall unitWall()
 TEST(SweepWall, FaceFromEitherSide)
 {
   const Wall w = unitWall();
-  auto hit = sweepWall(w, Vec3(0.5, 0.5, 2), Vec3(0, 0, -1), 0.25, 10);
+  auto hit = sweepWall(w, Vec3(0.5, 0.5, 2), Vec3(0, 0, -1), 0.25, 10, kSlop);
   ASSERT_TRUE(hit);
   EXPECT_EQ(hit->feature, WallFeature::kFace);
   EXPECT_NEAR(hit->t, 1.75, 1e-15);
   EXPECT_TRUE(hit->normal.isApprox(Vec3(0, 0, 1)));
-  hit = sweepWall(w, Vec3(0.5, 0.5, -2), Vec3(0, 0, 1), 0.25, 10);
+  hit = sweepWall(w, Vec3(0.5, 0.5, -2), Vec3(0, 0, 1), 0.25, 10, kSlop);
   ASSERT_TRUE(hit);
   EXPECT_NEAR(hit->t, 1.75, 1e-15);
   EXPECT_TRUE(hit->normal.isApprox(Vec3(0, 0, -1)));
@@ -125,7 +128,7 @@ TEST(SweepWall, EdgeWhenPassingBesideTheFace)
   const Wall w = unitWall();
   // moving down at x = 1.1: misses the face, touches the edge x = 1 (a cylinder of
   // radius 0.25): contact when the centre is at height sqrt(0.25^2 - 0.1^2)
-  const auto hit = sweepWall(w, Vec3(1.1, 0.5, 2), Vec3(0, 0, -1), 0.25, 10);
+  const auto hit = sweepWall(w, Vec3(1.1, 0.5, 2), Vec3(0, 0, -1), 0.25, 10, kSlop);
   ASSERT_TRUE(hit);
   EXPECT_EQ(hit->feature, WallFeature::kEdge);
   const double z = std::sqrt(0.25 * 0.25 - 0.1 * 0.1);
@@ -136,19 +139,19 @@ TEST(SweepWall, EdgeWhenPassingBesideTheFace)
 TEST(SweepWall, CornerWhenPassingBesideTwoEdges)
 {
   const Wall w = unitWall();
-  const auto hit = sweepWall(w, Vec3(1.1, 1.1, 2), Vec3(0, 0, -1), 0.25, 10);
+  const auto hit = sweepWall(w, Vec3(1.1, 1.1, 2), Vec3(0, 0, -1), 0.25, 10, kSlop);
   ASSERT_TRUE(hit);
   EXPECT_EQ(hit->feature, WallFeature::kCorner);
   const double z = std::sqrt(0.25 * 0.25 - 0.02);
   EXPECT_NEAR(hit->t, 2 - z, 1e-14);
-  EXPECT_FALSE(sweepWall(w, Vec3(1.2, 1.2, 2), Vec3(0, 0, -1), 0.25, 10));  // sqrt(0.08) > 0.25
+  EXPECT_FALSE(sweepWall(w, Vec3(1.2, 1.2, 2), Vec3(0, 0, -1), 0.25, 10, kSlop));  // sqrt(0.08) > 0.25
 }
 
 TEST(SweepWall, NoTunnellingAtAnySpeed)
 {
   const Wall w = unitWall();
   // 1e6 m per unit t through a wall of zero thickness
-  const auto hit = sweepWall(w, Vec3(0.5, 0.5, 3), Vec3(0, 0, -1e6), 0.01, 1);
+  const auto hit = sweepWall(w, Vec3(0.5, 0.5, 3), Vec3(0, 0, -1e6), 0.01, 1, kSlop);
   ASSERT_TRUE(hit);
   EXPECT_NEAR(hit->t, (3 - 0.01) / 1e6, 1e-20);
 }

@@ -52,6 +52,11 @@ struct StepSettings
   /// parallel to the floor: a ball meets it in space, not along the floor [1].
   double wall_along_floor_squared = 1e-12;
 
+  /// Two touching objects are closing only when the motion left in the step would take
+  /// them deeper than this part of the contact distance; less is round-off (of a resting
+  /// contact's removed approach), not an impact [ratio].
+  double closing_slop = 1e-12;
+
   // ---- sleeping ----------------------------------------------------------------------
   /// A ball slower than this while it leans on something is all but still: a millimetre
   /// a second, well below what a viewer sees move, and what piles settle to in seconds

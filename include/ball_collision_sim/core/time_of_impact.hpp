@@ -8,24 +8,19 @@
 
 namespace ball_collision_sim::core
 {
-/// Two touching objects are closing only when the motion left in the step would take
-/// them deeper than this fraction of the contact distance; less is round-off (from a
-/// resting contact), not an impact.
-constexpr double kClosingSlop = 1e-12;
-
 /// Earliest t in [0, t_max] at which |d + t e| = reach while the distance shrinks:
 /// the smaller root of <e,e> t^2 + 2 <e,d> t + <d,d> - reach^2 = 0, in the stable form
 /// t = c / (-h + sqrt(h^2 - a c)), h = <e, d>. Already touching and closing by more
-/// than kClosingSlop * reach over [0, t_max]: t = 0.
+/// than slop * reach over [0, t_max]: t = 0 (StepSettings::closing_slop).
 /// Ball-ball: d = p1 - p2, e = ds1 - ds2, reach = r1 + r2.
-inline std::optional<double> sphereSweep(const Vec3& d, const Vec3& e, double reach, double t_max)
+inline std::optional<double> sphereSweep(const Vec3& d, const Vec3& e, double reach, double t_max, double slop)
 {
   const double c = d.squaredNorm() - reach * reach;
   const double h = e.dot(d);  // half the linear coefficient: one convention throughout
   if (c <= 0)
   {
     // Touching (or overlapping by round-off): an impact now, if closing at all.
-    if (-h * t_max > kClosingSlop * reach * d.norm())
+    if (-h * t_max > slop * reach * d.norm())
       return 0.0;
     return std::nullopt;
   }
@@ -51,7 +46,8 @@ struct WallHit
 };
 
 /// Earliest t in [0, t_max] at which a ball of radius r at p moving by e per unit t
-/// touches the wall's face, one of its four edges or one of its four corners.
-std::optional<WallHit> sweepWall(const Wall& wall, const Vec3& p, const Vec3& e, double r,
-                                 double t_max);
+/// touches the wall's face, one of its four edges or one of its four corners (already
+/// touching: as sphereSweep() with `slop`).
+std::optional<WallHit> sweepWall(const Wall& wall, const Vec3& p, const Vec3& e, double r, double t_max,
+                                 double slop);
 }  // namespace ball_collision_sim::core

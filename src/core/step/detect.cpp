@@ -44,7 +44,7 @@ void World::detectWalls(std::size_t i)
     if (!box.overlaps(wall_boxes_[w]))
       continue;
     const Wall& wall = walls_[w];
-    const auto hit = sweepWall(wall, m.p0, m.b, m.radius, 1 - m.x0);
+    const auto hit = sweepWall(wall, m.p0, m.b, m.radius, 1 - m.x0, settings_.closing_slop);
     if (hit)
       queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), states_[i].epoch, 0,
                       true, hit->feature, hit->normal});
@@ -61,7 +61,7 @@ void World::detectBall(std::size_t i, std::size_t j)
   const Motion& mb = motions_[b];
   const double xs = std::max(ma.x0, mb.x0);
   const Vec3 d = (ma.p0 + (xs - ma.x0) * ma.b) - (mb.p0 + (xs - mb.x0) * mb.b);
-  const auto t = sphereSweep(d, ma.b - mb.b, ma.radius + mb.radius, 1 - xs);
+  const auto t = sphereSweep(d, ma.b - mb.b, ma.radius + mb.radius, 1 - xs, settings_.closing_slop);
   if (t)
     queue_.push(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), states_[a].epoch, states_[b].epoch,
                     false, WallFeature::kFace, Vec3::Zero()});

@@ -244,7 +244,7 @@ void World::settleRestingPair(const PairContact& c, double x, const Vec3& pa, co
   keepEnergy(j);
   const bool jammed = sa.events >= settings_.jam_events_per_ball_step || sb.events >= settings_.jam_events_per_ball_step;
   const double closing_in = rest * (ma.b.dot(n) - mb.b.dot(n));
-  const bool again = closing_in > kClosingSlop * (ma.radius + mb.radius);
+  const bool again = closing_in > settings_.closing_slop * (ma.radius + mb.radius);
   if (jammed || (both_still && closing_in > 0) || again)
   {
     ma.b = mb.b = Vec3::Zero();
