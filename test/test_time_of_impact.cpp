@@ -156,6 +156,111 @@ TEST(SweepWall, NoTunnellingAtAnySpeed)
   EXPECT_NEAR(hit->t, (3 - 0.01) / 1e6, 1e-20);
 }
 
+TEST(FirstRoot, FindsTheEarliestRootOfAQuarticToTheLastBit)
+{
+  // -(t - 0.3)(t - 0.5)(t - 2)(t + 1) = -t^4 + 1.8 t^3 + 1.05 t^2 - 1.45 t + 0.3
+  const std::array<double, 5> f{0.3, -1.45, 1.05, 1.8, -1.0};
+  const auto t = firstRoot(f, 10.0);
+  ASSERT_TRUE(t);
+  EXPECT_NEAR(*t, 0.3, 1e-15);
+  EXPECT_FALSE(firstRoot(f, 0.29));  // before it
+  // none: t^2 + 1; a double root (a graze) is found, as well as it is conditioned
+  EXPECT_FALSE(firstRoot({1.0, 0.0, 1.0, 0.0, 0.0}, 10.0));
+  const auto graze = firstRoot({0.16, -0.8, 1.0, 0.0, 0.0}, 10.0);  // (t - 0.4)^2
+  ASSERT_TRUE(graze);
+  EXPECT_NEAR(*graze, 0.4, 1e-7);
+  // the earliest of four roots in the interval, whatever the others
+  const auto four = firstRoot({0.0105, -0.176, 0.86, -1.6, 1.0}, 1.0);  // roots 0.1, 0.3, 0.5, 0.7
+  ASSERT_TRUE(four);
+  EXPECT_NEAR(four.value(), 0.1, 1e-12);
+}
+
+TEST(SphereSweepAccelerated, MeetsAtTheClosedFormTimeUnderConstantAcceleration)
+{
+  // from rest 1 m apart, closing at 1 m/s^2 (c = a / 2): 1 - t^2 / 2 = 0.3
+  const auto t = sphereSweepAccelerated(Vec3(-1, 0, 0), Vec3::Zero(), Vec3(0.5, 0, 0), 0.3, 10, kSlop);
+  ASSERT_TRUE(t);
+  EXPECT_NEAR(*t, std::sqrt(1.4), 1e-15);
+  // 0.5 apart, moving apart at 1, pulled back at 2 (c = -1): 0.5 + t - t^2 = 0.3
+  const auto back = sphereSweepAccelerated(Vec3(0.5, 0, 0), Vec3(1, 0, 0), Vec3(-1, 0, 0), 0.3, 10, kSlop);
+  ASSERT_TRUE(back);
+  EXPECT_NEAR(*back, (1 + std::sqrt(1.8)) / 2, 1e-15);
+  // touching and pulled in: an impact now; touching, thrown off and pulled back: later
+  EXPECT_EQ(*sphereSweepAccelerated(Vec3(0.3, 0, 0), Vec3::Zero(), Vec3(-1, 0, 0), 0.3, 1, kSlop), 0.0);
+  const auto returns = sphereSweepAccelerated(Vec3(0.3, 0, 0), Vec3(1, 0, 0), Vec3(-1, 0, 0), 0.3, 10, kSlop);
+  ASSERT_TRUE(returns);
+  EXPECT_NEAR(*returns, 1.0, 1e-15);
+  // without acceleration it is sphereSweep, to the bit
+  EXPECT_EQ(*sphereSweepAccelerated(Vec3(-1, 0.1, 0), Vec3(0.7, 0, 0), Vec3::Zero(), 0.3, 10, kSlop),
+            *sphereSweep(Vec3(-1, 0.1, 0), Vec3(0.7, 0, 0), 0.3, 10, kSlop));
+}
+
+TEST(SphereSweepAccelerated, RandomCasesTouchAtTheRootAndNeverBefore)
+{
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int found = 0;
+  for (int k = 0; k < 10000; ++k)
+  {
+    const Vec3 d(u(rng), u(rng), u(rng)), e(2 * u(rng), 2 * u(rng), 2 * u(rng)), c(2 * u(rng), 2 * u(rng), 2 * u(rng));
+    const double reach = 0.5 * std::abs(u(rng));
+    if (d.norm() <= reach)
+      continue;
+    const auto at = [&](double t) { return (d + t * e + (t * t) * c).norm(); };
+    const auto t = sphereSweepAccelerated(d, e, c, reach, 1.0, kSlop);
+    // sampled: the distance stays above reach before the root, and reaches it there
+    double first = -1;
+    for (int s = 0; s <= 4000 && first < 0; ++s)
+      if (at(s / 4000.0) < reach)
+        first = s / 4000.0;
+    if (!t)
+    {
+      EXPECT_LT(first, 0) << k;  // (a graze between samples may be missed by the samples)
+      continue;
+    }
+    ++found;
+    EXPECT_NEAR(at(*t), reach, 1e-12) << k;
+    EXPECT_LE(*t, 1.0);
+    if (first >= 0)
+    {
+      EXPECT_LE(*t, first) << k;
+    }
+    for (int s = 0; s < 200; ++s)
+      EXPECT_GE(at(*t * s / 200.0), reach - 1e-12) << k;
+  }
+  EXPECT_GT(found, 200);  // (most random motions pass wide)
+}
+
+TEST(SweepWall, UnderConstantAccelerationAtTheClosedFormTimes)
+{
+  const Wall w = unitWall();
+  const Vec3 down(0, 0, -1);  // c: falling from rest at 2 m/s^2
+  // the face: 2 - t^2 = 0.25
+  auto hit = sweepWall(w, Vec3(0.5, 0.5, 2), Vec3::Zero(), down, 0.25, 10, kSlop);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->feature, WallFeature::kFace);
+  EXPECT_NEAR(hit->t, std::sqrt(1.75), 1e-15);
+  // an edge: 2 - t^2 = sqrt(0.25^2 - 0.1^2)
+  hit = sweepWall(w, Vec3(1.1, 0.5, 2), Vec3::Zero(), down, 0.25, 10, kSlop);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->feature, WallFeature::kEdge);
+  EXPECT_NEAR(hit->t, std::sqrt(2 - std::sqrt(0.0525)), 1e-14);
+  // a corner: 2 - t^2 = sqrt(0.25^2 - 0.02)
+  hit = sweepWall(w, Vec3(1.1, 1.1, 2), Vec3::Zero(), down, 0.25, 10, kSlop);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->feature, WallFeature::kCorner);
+  EXPECT_NEAR(hit->t, std::sqrt(2 - std::sqrt(0.0425)), 1e-14);
+  // thrown up beside the wall: a parabola that clears its edge and comes down on its
+  // face, where 0.5 + t - t^2 / 2 = 0.1
+  hit = sweepWall(w, Vec3(-0.5, 0.5, 0.5), Vec3(0.3, 0, 1), Vec3(0, 0, -0.5), 0.1, 10, kSlop);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->t, 1 + std::sqrt(1.8), 1e-14);
+  EXPECT_EQ(hit->feature, WallFeature::kFace);
+  // without acceleration it is the straight sweep, to the bit
+  EXPECT_EQ(sweepWall(w, Vec3(1.1, 0.5, 2), Vec3(0, 0, -1), Vec3::Zero(), 0.25, 10, kSlop)->t,
+            sweepWall(w, Vec3(1.1, 0.5, 2), Vec3(0, 0, -1), 0.25, 10, kSlop)->t);
+}
+
 TEST(Box32, HoldsTheBoxItIsRoundedFromAndIsTheTightestFloatBoxThatDoes)
 {
   // The broad phase keeps its boxes in floats: a box that lost a sliver of the double box

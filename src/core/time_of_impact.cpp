@@ -61,6 +61,104 @@ std::optional<WallHit> sweepEdge(const Wall& wall, int k, const Vec3& p, const V
 }
 }  // namespace
 
+namespace
+{
+/// p(t) for the coefficients a[0..n], by Horner's rule.
+double evaluate(const std::array<double, 5>& a, int n, double t)
+{
+  double v = a[static_cast<std::size_t>(n)];
+  for (int k = n - 1; k >= 0; --k)
+    v = v * t + a[static_cast<std::size_t>(k)];
+  return v;
+}
+
+/// The point of [lo, hi] where p (degree n) changes sign, p(lo) and p(hi) of opposite
+/// signs (p(lo) != 0): the last double at which p keeps the sign it has at lo.
+double bisect(const std::array<double, 5>& a, int n, double lo, double hi)
+{
+  const bool positive = evaluate(a, n, lo) > 0;
+  for (;;)
+  {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi))
+      return lo;
+    const double v = evaluate(a, n, mid);
+    if (v == 0)
+      return mid;
+    ((v > 0) == positive ? lo : hi) = mid;
+  }
+}
+
+/// The roots of p (degree at most n) in the open interval (lo, hi), in order, at most n:
+/// between the derivative's roots p is monotone, so each piece holds at most one.
+int rootsIn(const std::array<double, 5>& a, int n, double lo, double hi, std::array<double, 4>& out)
+{
+  while (n > 0 && a[static_cast<std::size_t>(n)] == 0)
+    --n;
+  if (n == 0)
+    return 0;
+  if (n == 1)
+  {
+    const double t = -a[0] / a[1];
+    if (!(t > lo && t < hi))
+      return 0;
+    out[0] = t;
+    return 1;
+  }
+  std::array<double, 5> da{};
+  for (int k = 1; k <= n; ++k)
+    da[static_cast<std::size_t>(k - 1)] = k * a[static_cast<std::size_t>(k)];
+  std::array<double, 4> critical{};
+  const int m = rootsIn(da, n - 1, lo, hi, critical);
+  int found = 0;
+  double from = lo;
+  for (int k = 0; k <= m; ++k)
+  {
+    const double to = k < m ? critical[static_cast<std::size_t>(k)] : hi;
+    const double f_from = evaluate(a, n, from), f_to = evaluate(a, n, to);
+    if (f_to == 0 && to < hi)
+      out[static_cast<std::size_t>(found++)] = to;
+    else if (f_from != 0 && (f_from > 0) != (f_to > 0) && f_to != 0)
+      out[static_cast<std::size_t>(found++)] = bisect(a, n, from, to);
+    from = to;
+  }
+  return found;
+}
+}  // namespace
+
+std::optional<double> firstRoot(const std::array<double, 5>& a, double t_max)
+{
+  if (!(a[0] > 0) || !(t_max > 0))
+    return std::nullopt;
+  std::array<double, 4> roots{};
+  if (rootsIn(a, 4, 0.0, t_max, roots) > 0)
+    return roots[0];
+  if (evaluate(a, 4, t_max) <= 0)
+    return bisect(a, 4, 0.0, t_max);
+  return std::nullopt;
+}
+
+std::optional<double> sphereSweepAccelerated(const Vec3& d, const Vec3& e, const Vec3& c, double reach, double t_max,
+                                             double slop)
+{
+  if (c == Vec3::Zero())
+    return sphereSweep(d, e, reach, t_max, slop);
+  // |d + t e + t^2 c|^2 - reach^2, by powers of t
+  const std::array<double, 5> f{d.squaredNorm() - reach * reach, 2 * d.dot(e), e.squaredNorm() + 2 * d.dot(c),
+                                2 * e.dot(c), c.squaredNorm()};
+  if (f[0] > 0)
+    return firstRoot(f, t_max);
+  // Touching (or overlapping by round-off) and moving apart: an impact later, where the
+  // acceleration brings it back (the distance squared less its value now is
+  // t (f1 + f2 t + f3 t^2 + f4 t^3)) ...
+  if (f[1] > 0)
+    return firstRoot({f[1], f[2], f[3], f[4], 0.0}, t_max);
+  // ... else an impact now if the motion closes in by more than round-off.
+  if (-(d.dot(e) * t_max + d.dot(c) * t_max * t_max) > slop * reach * d.norm())
+    return 0.0;
+  return std::nullopt;
+}
+
 std::optional<WallHit> sweepWall(const Wall& wall, const Vec3& p, const Vec3& e, double r, double t_max,
                                  double slop)
 {
@@ -79,6 +177,62 @@ std::optional<WallHit> sweepWall(const Wall& wall, const Vec3& p, const Vec3& e,
     const auto t = sphereSweep(d, e, r, best ? best->t : t_max, slop);
     if (t && (!best || *t < best->t))
       best = WallHit{*t, WallFeature::kCorner, (d + *t * e).normalized()};
+  }
+  return best;
+}
+
+std::optional<WallHit> sweepWall(const Wall& wall, const Vec3& p, const Vec3& e, const Vec3& c, double r,
+                                 double t_max, double slop)
+{
+  if (c == Vec3::Zero())
+    return sweepWall(wall, p, e, r, t_max, slop);
+  const auto at = [&](double t) { return p + t * e + (t * t) * c; };
+  // The face: the signed distance from the wall's plane is quadratic in t.
+  std::optional<WallHit> best;
+  {
+    const double s0 = (p - wall.def.point).dot(wall.normal);
+    const double en = e.dot(wall.normal), cn = c.dot(wall.normal);
+    double side = s0 > 0 ? 1.0 : -1.0;
+    if (s0 == 0)
+      side = en > 0 || (en == 0 && cn > 0) ? -1.0 : 1.0;
+    const double d0 = side * s0, rate = side * en, acc = side * cn;
+    std::optional<double> t;
+    if (d0 > r)
+      t = firstRoot({d0 - r, rate, acc, 0.0, 0.0}, t_max);
+    else if (rate > 0)
+      t = firstRoot({rate, acc, 0.0, 0.0, 0.0}, t_max);  // touching, moves off, and back
+    else if (-(rate * t_max + acc * t_max * t_max) > slop * r)
+      t = 0.0;
+    if (t)
+    {
+      const Vec3 q = at(*t) - wall.def.point;
+      const double u = q.dot(wall.dual_u), v = q.dot(wall.dual_v);
+      if (u >= 0 && u <= 1 && v >= 0 && v <= 1)
+        best = WallHit{*t, WallFeature::kFace, side * wall.normal};
+    }
+  }
+  // The edges: the distance from each edge's line, then the contact within the segment.
+  for (int k = 0; k < 4; ++k)
+  {
+    const Vec3& a = wall.corners[k];
+    const Vec3 edge = wall.corners[(k + 1) % 4] - a;
+    const double len2 = edge.squaredNorm();
+    const auto across = [&](const Vec3& w) { return Vec3(w - (w.dot(edge) / len2) * edge); };
+    const Vec3 d = p - a;
+    const auto t = sphereSweepAccelerated(across(d), across(e), across(c), r, best ? best->t : t_max, slop);
+    if (!t || (best && !(*t < best->t)))
+      continue;
+    const double along = (at(*t) - a).dot(edge) / len2;
+    if (along >= 0 && along <= 1)
+      best = WallHit{*t, WallFeature::kEdge, across(at(*t) - a).normalized()};
+  }
+  // The corners.
+  for (int k = 0; k < 4; ++k)
+  {
+    const Vec3 d = p - wall.corners[k];
+    const auto t = sphereSweepAccelerated(d, e, c, r, best ? best->t : t_max, slop);
+    if (t && (!best || *t < best->t))
+      best = WallHit{*t, WallFeature::kCorner, (at(*t) - wall.corners[k]).normalized()};
   }
   return best;
 }
