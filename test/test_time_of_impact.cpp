@@ -190,6 +190,8 @@ TEST(SphereSweepAccelerated, MeetsAtTheClosedFormTimeUnderConstantAcceleration)
   const auto returns = sphereSweepAccelerated(Vec3(0.3, 0, 0), Vec3(1, 0, 0), Vec3(-1, 0, 0), 0.3, 10, kSlop);
   ASSERT_TRUE(returns);
   EXPECT_NEAR(*returns, 1.0, 1e-15);
+  // touching, closing in at first and pulled apart before the end: an impact now
+  EXPECT_EQ(*sphereSweepAccelerated(Vec3(0.3, 0, 0), Vec3(-1, 0, 0), Vec3(1.2, 0, 0), 0.3, 1, kSlop), 0.0);
   // without acceleration it is sphereSweep, to the bit
   EXPECT_EQ(*sphereSweepAccelerated(Vec3(-1, 0.1, 0), Vec3(0.7, 0, 0), Vec3::Zero(), 0.3, 10, kSlop),
             *sphereSweep(Vec3(-1, 0.1, 0), Vec3(0.7, 0, 0), 0.3, 10, kSlop));
@@ -256,6 +258,10 @@ TEST(SweepWall, UnderConstantAccelerationAtTheClosedFormTimes)
   ASSERT_TRUE(hit);
   EXPECT_NEAR(hit->t, 1 + std::sqrt(1.8), 1e-14);
   EXPECT_EQ(hit->feature, WallFeature::kFace);
+  // touching the face, moving in and pulled out again before the end: an impact now
+  hit = sweepWall(w, Vec3(0.5, 0.5, 0.25), Vec3(0, 0, -1), Vec3(0, 0, 1.2), 0.25, 1, kSlop);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->t, 0.0);
   // without acceleration it is the straight sweep, to the bit
   EXPECT_EQ(sweepWall(w, Vec3(1.1, 0.5, 2), Vec3(0, 0, -1), Vec3::Zero(), 0.25, 10, kSlop)->t,
             sweepWall(w, Vec3(1.1, 0.5, 2), Vec3(0, 0, -1), 0.25, 10, kSlop)->t);

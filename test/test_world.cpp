@@ -169,6 +169,60 @@ Scene slopeWithWall(double theta, double restitution)
 }
 }  // namespace
 
+// Free balls on a sloped plane follow their parabolas exactly, within a step too: a ball
+// sliding down from rest meets a wall across the fall line at t = sqrt(2 (D - r) / g_t),
+// at the speed g_t t (a chord across each step would be off by about g_t dt^2 / 8 in
+// place, 1e-5 s in time).
+TEST(Slope, ABallSlidingDownMeetsTheWallAtTheClosedFormTime)
+{
+  const double theta = 0.3, r = 0.1, distance = 1.0;
+  Scene scene = slopeWithWall(theta, 1.0);
+  const Vec3 down = scene.floor->u.normalized();
+  const Vec3 n = scene.floor->u.cross(scene.floor->v).normalized();
+  BallDef b;
+  b.radius = r;
+  b.position = scene.walls[0].point + Vec3(0, 1, 0) - distance * down + r * n;
+  scene.balls.push_back(b);
+  World world(scene);
+  const double g_t = 9.81 * std::sin(theta);
+  const double t_hit = std::sqrt(2 * (distance - r) / g_t);
+  std::vector<CollisionEvent> hits;
+  for (int k = 0; k < 200 && hits.empty(); ++k)
+  {
+    world.step();
+    hits = world.lastEvents();
+  }
+  ASSERT_FALSE(hits.empty());
+  EXPECT_EQ(hits[0].kind, CollisionEvent::Kind::kBallWall);
+  EXPECT_NEAR(hits[0].time, t_hit, 1e-13);
+  EXPECT_NEAR(hits[0].approach_speed, g_t * t_hit, 1e-12);
+}
+
+// Without a floor a ball flies on its parabola, and meets a wall where the parabola does.
+TEST(NoFloor, AThrownBallMeetsAWallWhereItsParabolaDoes)
+{
+  Scene scene;
+  scene.walls = {{Vec3(-5, -5, 0), Vec3(10, 0, 0), Vec3(0, 10, 0), {}}};
+  BallDef b;
+  b.radius = 0.1;
+  b.position = Vec3(0, 0, 1);
+  b.velocity = Vec3(1, 0, 2);
+  scene.balls.push_back(b);
+  World world(scene);
+  // 1 + 2 t - g t^2 / 2 = r
+  const double g = 9.81, t_hit = (2 + std::sqrt(4 + 2 * g * (1 - 0.1))) / g;
+  std::vector<CollisionEvent> hits;
+  for (int k = 0; k < 200 && hits.empty(); ++k)
+  {
+    world.step();
+    hits = world.lastEvents();
+  }
+  ASSERT_FALSE(hits.empty());
+  EXPECT_NEAR(hits[0].time, t_hit, 1e-13);
+  EXPECT_NEAR(hits[0].point.x(), t_hit, 1e-12);  // x = t
+  EXPECT_NEAR(hits[0].approach_speed, g * t_hit - 2, 1e-12);
+}
+
 // A ball leaning on a wall on a slope stays put: no jitter and at most one contact a step.
 TEST(RestingContact, BallAgainstWallOnSlopeDoesNotJitter)
 {

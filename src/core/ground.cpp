@@ -70,6 +70,13 @@ double Ground::gravityAlong(const Vec3& n) const
   return plane_ ? plane_gravity_along_ : along(gravity_, n).norm();
 }
 
+Vec3 Ground::pathAcceleration() const
+{
+  if (straight_ || bends())
+    return Vec3::Zero();
+  return plane_ ? tangentPart(gravity_, plane_normal_) : gravity_;
+}
+
 Vec3 Ground::velocityAt(const Vec3& v0, double elapsed, const Vec3& p0, const Vec3& p, const Vec3& n) const
 {
   const Vec3 v = along(v0 + elapsed * gravity_, n);

@@ -1,5 +1,6 @@
 #include "ball_collision_sim/core/time_of_impact.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ball_collision_sim::core
@@ -126,6 +127,18 @@ int rootsIn(const std::array<double, 5>& a, int n, double lo, double hi, std::ar
 }
 }  // namespace
 
+namespace
+{
+/// Whether a motion whose distance changes by rate t + acc t^2 (rate <= 0) comes closer
+/// than `slop` at some t in [0, t_max]: its deepest approach, at t_max or, where the
+/// acceleration turns it back, at -rate / (2 acc).
+bool closesIn(double rate, double acc, double t_max, double slop)
+{
+  const double t = acc > 0 ? std::min(t_max, -rate / (2 * acc)) : t_max;
+  return -(rate * t + acc * t * t) > slop;
+}
+}  // namespace
+
 std::optional<double> firstRoot(const std::array<double, 5>& a, double t_max)
 {
   if (!(a[0] > 0) || !(t_max > 0))
@@ -154,9 +167,7 @@ std::optional<double> sphereSweepAccelerated(const Vec3& d, const Vec3& e, const
   if (f[1] > 0)
     return firstRoot({f[1], f[2], f[3], f[4], 0.0}, t_max);
   // ... else an impact now if the motion closes in by more than round-off.
-  if (-(d.dot(e) * t_max + d.dot(c) * t_max * t_max) > slop * reach * d.norm())
-    return 0.0;
-  return std::nullopt;
+  return closesIn(d.dot(e), d.dot(c), t_max, slop * reach * d.norm()) ? std::optional<double>(0.0) : std::nullopt;
 }
 
 std::optional<WallHit> sweepWall(const Wall& wall, const Vec3& p, const Vec3& e, double r, double t_max,
@@ -201,7 +212,7 @@ std::optional<WallHit> sweepWall(const Wall& wall, const Vec3& p, const Vec3& e,
       t = firstRoot({d0 - r, rate, acc, 0.0, 0.0}, t_max);
     else if (rate > 0)
       t = firstRoot({rate, acc, 0.0, 0.0, 0.0}, t_max);  // touching, moves off, and back
-    else if (-(rate * t_max + acc * t_max * t_max) > slop * r)
+    else if (closesIn(rate, acc, t_max, slop * r))
       t = 0.0;
     if (t)
     {

@@ -30,6 +30,8 @@ World::World(const Scene& scene, SceneCheck checked, const StepSettings& setting
     , dt_(scene.dt)
     , gravity_(scene.gravity)
     , ground_(scene.floor, scene.gravity, settings)
+    , path_c_((0.5 * scene.dt * scene.dt) * ground_.pathAcceleration())
+    , parabolas_(path_c_ != Vec3::Zero())
 {
   if (!checked.issues.empty())
     throw std::invalid_argument(joinIssues(checked.issues));

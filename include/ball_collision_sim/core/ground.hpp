@@ -43,6 +43,12 @@ public:
   /// |gravity along the floor| where its normal is n [m/s^2].
   double gravityAlong(const Vec3& n) const;
 
+  /// The acceleration of a free ball's path between events where that path is a parabola
+  /// that the step follows exactly: gravity along a sloped plane, or gravity itself
+  /// without a floor. Zero where balls move in straight lines (straight()) and on a curved
+  /// floor, where a ball's motion in a step is the chord across its path [m/s^2].
+  Vec3 pathAcceleration() const;
+
   /// A ball's velocity at p, on the floor with normal n there, `elapsed` seconds into a
   /// motion that started at p0 with velocity v0: gravity's along the floor added, and
   /// where gravity pulls along the floor, the speed its energy gives at p.

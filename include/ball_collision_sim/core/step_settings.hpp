@@ -18,7 +18,8 @@ struct StepSettings
   /// never end: no resting contact [steps].
   double resting_steps = 4.0;
   /// ... and a closing speed below this always: round-off of speeds, where an impact
-  /// would be found again at once [m/s].
+  /// would be found again at once [m/s]. (Plus sqrt(2 a d): what a ball pulled along the
+  /// floor at a reaches falling through a gap d of roundoff_epsilons of the positions.)
   double resting_speed_floor = 1e-9;
   /// A ball with more events than this in one step is stopped for the rest of the step
   /// and acts as immovable: a guard against endless chatter in jammed piles [events].

@@ -248,6 +248,12 @@ private:
   void recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,
                    double impulse, double closing, bool resting, const Event& event);
   Vec3 positionAt(std::size_t i, double x) const;
+  /// Ball i's motion's rate of change at x, per unit of x [m], and its parabola term (zero for a chord).
+  Vec3 rateAt(std::size_t i, double x) const;
+  Vec3 parabolaOf(std::size_t i) const;
+  /// A parabola motion of ball i becomes its chord (the same end): the resting-contact
+  /// corrections work on chords.
+  void toChord(std::size_t i);
   /// `w` less its parts along the directions the ball may not move this step.
   Vec3 allowed(std::size_t i, const Vec3& w) const;
   /// Velocity `v` of ball i turned out of its blocked directions, keeping its speed where
@@ -286,7 +292,8 @@ private:
   void slideDownhill(const EnergyCheck& energy, double start);
   Vec3 onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const;
   /// The closing speed at or below which an impact at restitution e is a resting contact.
-  double restingSpeed(const Vec3& floor_normal, double restitution) const;
+  /// (At a ball of this radius centred at `position`: the round-off of positions there.)
+  double restingSpeed(const Vec3& floor_normal, double restitution, const Vec3& position, double radius) const;
   /// A ball slower than this is all but still: gravity along the floor gives it as much
   /// in resting_steps steps [m/s].
   double stillSpeed(const Vec3& floor_normal) const;
@@ -298,6 +305,10 @@ private:
   std::uint16_t sleep_steps_ = 1;
   Vec3 gravity_;
   Ground ground_;
+  /// The parabola term of free balls' motions, a dt^2 / 2 with the ground's path
+  /// acceleration a [m]; parabolas_ where it is not zero.
+  Vec3 path_c_ = Vec3::Zero();
+  bool parabolas_ = false;
   std::vector<Wall> walls_;
   std::vector<Ball> balls_;
   /// Curved floors: each ball's foot point (u, v), beside balls_ (empty otherwise).

@@ -44,7 +44,8 @@ void World::detectWalls(std::size_t i)
     if (!box.overlaps(wall_boxes_[w]))
       continue;
     const Wall& wall = walls_[w];
-    const auto hit = sweepWall(wall, m.p0, m.b, m.radius, 1 - m.x0, settings_.closing_slop);
+    const auto hit = parabolas_ ? sweepWall(wall, m.p0, m.b, parabolaOf(i), m.radius, 1 - m.x0, settings_.closing_slop)
+                                : sweepWall(wall, m.p0, m.b, m.radius, 1 - m.x0, settings_.closing_slop);
     if (hit)
       queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), states_[i].epoch, 0,
                       true, hit->feature, hit->normal});
@@ -60,8 +61,20 @@ void World::detectBall(std::size_t i, std::size_t j)
   const Motion& ma = motions_[a];
   const Motion& mb = motions_[b];
   const double xs = std::max(ma.x0, mb.x0);
-  const Vec3 d = (ma.p0 + (xs - ma.x0) * ma.b) - (mb.p0 + (xs - mb.x0) * mb.b);
-  const auto t = sphereSweep(d, ma.b - mb.b, ma.radius + mb.radius, 1 - xs, settings_.closing_slop);
+  std::optional<double> t;
+  if (!parabolas_)
+  {
+    const Vec3 d = (ma.p0 + (xs - ma.x0) * ma.b) - (mb.p0 + (xs - mb.x0) * mb.b);
+    t = sphereSweep(d, ma.b - mb.b, ma.radius + mb.radius, 1 - xs, settings_.closing_slop);
+  }
+  else
+  {
+    // two parabolas: their difference is a straight motion (the same c); a parabola and
+    // a chord: a quartic
+    const Vec3 d = positionAt(a, xs) - positionAt(b, xs);
+    t = sphereSweepAccelerated(d, rateAt(a, xs) - rateAt(b, xs), parabolaOf(a) - parabolaOf(b), ma.radius + mb.radius,
+                               1 - xs, settings_.closing_slop);
+  }
   if (t)
     queue_.push(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), states_[a].epoch, states_[b].epoch,
                     false, WallFeature::kFace, Vec3::Zero()});

@@ -15,7 +15,31 @@ using namespace step;
 Vec3 World::positionAt(std::size_t i, double x) const
 {
   const Motion& m = motions_[i];
-  return m.p0 + (x - m.x0) * m.b;
+  const Vec3 p = m.p0 + (x - m.x0) * m.b;
+  if (!parabolas_ || !states_[i].accelerates)
+    return p;
+  const double s = x - m.x0;
+  return p + (s * s) * path_c_;
+}
+
+Vec3 World::rateAt(std::size_t i, double x) const
+{
+  const Motion& m = motions_[i];
+  return parabolas_ && states_[i].accelerates ? Vec3(m.b + (2 * (x - m.x0)) * path_c_) : m.b;
+}
+
+Vec3 World::parabolaOf(std::size_t i) const
+{
+  return parabolas_ && states_[i].accelerates ? path_c_ : Vec3::Zero();
+}
+
+void World::toChord(std::size_t i)
+{
+  if (!states_[i].accelerates)
+    return;
+  Motion& m = motions_[i];
+  m.b += (1 - m.x0) * path_c_;
+  states_[i].accelerates = false;
 }
 
 Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
@@ -34,19 +58,23 @@ double World::stillSpeed(const Vec3& floor_normal) const
   return settings_.resting_steps * dt_ * ground_.gravityAlong(floor_normal) + settings_.resting_speed_floor;
 }
 
-double World::restingSpeed(const Vec3& floor_normal, double restitution) const
+double World::restingSpeed(const Vec3& floor_normal, double restitution, const Vec3& position, double radius) const
 {
-  // After an impact at closing speed v, gravity along the floor (a) brings the ball back
-  // for bounces e times as fast each, which last 2 e v / (a (1 - e)) in all. Where that
-  // is within resting_steps steps, their sum, rest against what was hit, is taken at
-  // once: a resting contact. At e = 1 they never end (nor lose energy): no resting
-  // contact but at round-off speeds.
+  // Closing speeds of round-off: the floor's, and what a ball pulled along the floor at
+  // a reaches falling through a gap of the positions' round-off, sqrt(2 a gap) (two
+  // balls at rest in a pile have such gaps; a parabola closes them at that speed).
   const double a = ground_.gravityAlong(floor_normal);
+  const double roundoff = settings_.resting_speed_floor + std::sqrt(2 * a * roundoffAt(position, radius, settings_));
+  // After an impact at closing speed v, gravity along the floor brings the ball back for
+  // bounces e times as fast each, which last 2 e v / (a (1 - e)) in all. Where that is
+  // within resting_steps steps, their sum, rest against what was hit, is taken at once:
+  // a resting contact. At e = 1 they never end (nor lose energy): no resting contact
+  // but at round-off speeds.
   if (!(restitution < 1))
-    return settings_.resting_speed_floor;
+    return roundoff;
   if (!(restitution > 0))
     return std::numeric_limits<double>::infinity();  // no bounce at all
-  return settings_.resting_steps * dt_ * a * (1 - restitution) / (2 * restitution) + settings_.resting_speed_floor;
+  return settings_.resting_steps * dt_ * a * (1 - restitution) / (2 * restitution) + roundoff;
 }
 
 void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact)
@@ -55,6 +83,7 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   Vec3& v0 = startVelocity(i);
   if (impact)
     states_[i].held = false;
+  states_[i].accelerates = false;
   m.x0 = x;
   m.p0 = position;
   if (states_[i].frozen)
@@ -66,6 +95,13 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   if (states_[i].held)
   {
     m.b = Vec3::Zero();  // still held (no impact let it go): it keeps no motion
+    return;
+  }
+  if (parabolas_ && states_[i].blocked < 0)
+  {
+    // free: the parabola the ground gives it, exactly
+    m.b = dt_ * v0;
+    states_[i].accelerates = true;
     return;
   }
   const double rest = 1 - x;

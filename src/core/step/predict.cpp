@@ -68,10 +68,17 @@ void World::predictMotion(std::size_t i)
     grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, m.p0, ball.radius));
     return;
   }
+  if (parabolas_)
+  {
+    m.b = dt_ * ball.velocity;  // the parabola the ground gives a free ball
+    states_[i].accelerates = true;
+    grid_.setBox(static_cast<std::uint32_t>(i), currentBox(i));
+    return;
+  }
   const Vec3 end = predictedEnd(i, m.p0, ball.velocity, dt_);
   m.b = end - m.p0;
   if (ground_.bends())
-    keepEnergy(i);  // on a plane the first chord ends where the exact path does
+    keepEnergy(i);  // (a chord across the path, kept within the energy)
   const Vec3 reach = m.p0 + m.b;
   grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, reach, ball.radius));
 }
@@ -86,6 +93,14 @@ Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double spa
 Aabb World::currentBox(std::size_t i) const
 {
   const Motion& m = motions_[i];
-  return sweptBox(m.p0, m.p0 + (1 - m.x0) * m.b, m.radius);
+  const double rest = 1 - m.x0;
+  if (!parabolas_ || !states_[i].accelerates)
+    return sweptBox(m.p0, m.p0 + rest * m.b, m.radius);
+  // the parabola lies within (rest^2 / 4) |c| of its chord, along each axis
+  Aabb box = sweptBox(m.p0, positionAt(i, 1.0), m.radius);
+  const Vec3 sag = (0.25 * rest * rest) * path_c_.cwiseAbs();
+  box.min -= sag;
+  box.max += sag;
+  return box;
 }
 }  // namespace ball_collision_sim::core

@@ -57,7 +57,7 @@ void World::resolveBallWall(const Event& event)
     dir = n;  // a wall parallel to the floor: answer in space
   dir.normalize();
   const double closing = v.dot(dir);
-  const bool resting = closing <= restingSpeed(floor_normal, wall.restitution);
+  const bool resting = closing <= restingSpeed(floor_normal, wall.restitution, p, ball.radius);
   const double inv_mass = states_[i].frozen ? 0.0 : 1.0 / ball.mass;
   const double impulse =
       collisionImpulse(std::max(closing, 0.0), inv_mass, dir, 0.0, dir, resting ? 0.0 : wall.restitution);
@@ -101,7 +101,7 @@ void World::resolveBallBall(const Event& event)
   if (states_[i].asleep != states_[j].asleep)
   {
     const double hit = states_[j].asleep ? va.dot(n) : -vb.dot(n);
-    if (hit > std::max(restingSpeed(na, scene_.restitution), restingSpeed(nb, scene_.restitution)))
+    if (hit > std::max(restingSpeed(na, scene_.restitution, pa, a.radius), restingSpeed(nb, scene_.restitution, pb, b.radius)))
       wakeGroup(states_[j].asleep ? j : i);
   }
   // Each ball is pushed along the normal's part tangent to the floor under it, less any
@@ -114,7 +114,7 @@ void World::resolveBallBall(const Event& event)
   const double inv_b = states_[j].frozen ? 0.0 : 1.0 / b.mass;
   const double closing = va.dot(ta) - vb.dot(tb);
   const bool resting =
-      closing <= std::max(restingSpeed(na, scene_.restitution), restingSpeed(nb, scene_.restitution));
+      closing <= std::max(restingSpeed(na, scene_.restitution, pa, a.radius), restingSpeed(nb, scene_.restitution, pb, b.radius));
   const double impulse =
       collisionImpulse(std::max(closing, 0.0), inv_a, ta, inv_b, tb, resting ? 0.0 : scene_.restitution);
   va -= (impulse * inv_a) * ta;
@@ -143,6 +143,7 @@ void World::countEvent(std::size_t i)
     m.frozen = true;
     startVelocity(i) = Vec3::Zero();
     motions_[i].b = Vec3::Zero();
+    m.accelerates = false;
     ++stats_.frozen_balls;
   }
   // its new motion may reach beyond where the grid has it
@@ -209,6 +210,8 @@ void World::settleRestingPair(const PairContact& c, double x, const Vec3& pa, co
   Motion& mb = motions_[j];
   MotionState& sa = states_[i];
   MotionState& sb = states_[j];
+  toChord(i);
+  toChord(j);
   // (a held ball does not give way)
   const double move_a = sa.held ? 0.0 : inv_a, move_b = sb.held ? 0.0 : inv_b;
   // No approach left in the motions either (gravity along the floor would press them

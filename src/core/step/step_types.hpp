@@ -22,8 +22,11 @@ inline double roundoffAt(const Vec3& p, double r, const StepSettings& settings)
 }
 }  // namespace step
 
-/// A ball's straight motion inside the current step, in the step fraction x shared by all
-/// balls: centre c(x) = p0 + (x - x0) b for x in [x0, 1]. A new one starts at every event.
+/// A ball's motion inside the current step, in the step fraction x shared by all balls:
+/// centre c(x) = p0 + (x - x0) b for x in [x0, 1], a chord; or, for a free ball where
+/// the ground gives its path an acceleration (a sloped plane, no floor), the parabola
+/// c(x) = p0 + (x - x0) b + (x - x0)^2 c with the world's common c = a dt^2 / 2
+/// (MotionState::accelerates). A new one starts at every event.
 /// It holds what detection reads, in one cache line; the ball's velocity at x0 is kept in
 /// the ball itself while the step runs (startVelocity()), its counters in a MotionState.
 struct alignas(64) World::Motion
@@ -43,6 +46,8 @@ struct World::MotionState
   /// cap, or asleep
   bool frozen = false;
   bool asleep = false;           ///< frozen because the ball sleeps: an impact wakes it
+  /// its motion is the parabola of a free ball (World::path_c_), not a chord
+  bool accelerates = false;
   /// Held (see hold()): in a jam at a resting contact, or left no motion its energy allows;
   /// it stays where it is through resting contacts for the rest of the step (an impact
   /// lets it go).
