@@ -152,7 +152,8 @@ void StepGrid::build()
     shift_ = 63;
     return;
   }
-  const double widest = chooseCell();
+  bool outliers = false;
+  const double widest = chooseCell(outliers);
   const std::size_t slots = assignCells();
   // Counting sort by slot: starts_[b] counts slot b, then (summed) is where slot b ends,
   // then (each item put in front of its slot's, last item first) where it starts.
@@ -164,17 +165,13 @@ void StepGrid::build()
   for (std::size_t i = n; i-- > 0;)
     entries_[--starts_[slotOf(items_[i].cx, items_[i].cy)]] = static_cast<std::uint32_t>(i);
   // the boxes left out of the cell's width are listed as moved
-  for (std::size_t i = 0; i < n; ++i)
-    if (extent(items_[i].box) > widest && !fits(static_cast<std::uint32_t>(i), items_[i].box))
-      moveOut(static_cast<std::uint32_t>(i));
+  if (outliers)
+    for (std::size_t i = 0; i < n; ++i)
+      if (extent(items_[i].box) > widest && !fits(static_cast<std::uint32_t>(i), items_[i].box))
+        moveOut(static_cast<std::uint32_t>(i));
 }
 
-double StepGrid::extent(const Box32& box) const
-{
-  return std::max(static_cast<double>(box.max[ax_]) - box.min[ax_], static_cast<double>(box.max[ay_]) - box.min[ay_]);
-}
-
-double StepGrid::chooseCell()
+double StepGrid::chooseCell(bool& outliers)
 {
   // Cells a little wider than the widest box, leaving out boxes far wider than the
   // mean (a rare fast or large ball): they are listed as moved instead of making
@@ -187,7 +184,8 @@ double StepGrid::chooseCell()
     widest = std::max(widest, e);
   }
   const double outlier = outlier_ratio_ * sum / static_cast<double>(items_.size());
-  if (widest > outlier)
+  outliers = widest > outlier;
+  if (outliers)
   {
     widest = 0;
     for (const Item& item : items_)

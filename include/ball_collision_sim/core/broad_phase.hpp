@@ -188,9 +188,13 @@ private:
   static std::int64_t index(double cells) { return static_cast<std::int64_t>(std::clamp(cells, -1e9, 1e9)); }
   bool fits(std::uint32_t i, const Box32& box) const;
   /// The larger of a box's widths across the grid's axes [m].
-  double extent(const Box32& box) const;
-  /// Sets the cell's width from the boxes; returns the widest box binned.
-  double chooseCell();
+  double extent(const Box32& box) const
+  {
+    return std::max(static_cast<double>(box.max[ax_]) - box.min[ax_], static_cast<double>(box.max[ay_]) - box.min[ay_]);
+  }
+  /// Sets the cell's width from the boxes; returns the widest box binned, and whether
+  /// some are left out as far wider than the rest.
+  double chooseCell(bool& outliers);
   /// Each item's cell, and whether the cells are a dense array; returns the slots needed.
   std::size_t assignCells();
   /// Lists item i (with its current box) among the moved items instead of in its cell.
