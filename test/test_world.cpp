@@ -198,6 +198,40 @@ TEST(Slope, ABallSlidingDownMeetsTheWallAtTheClosedFormTime)
   EXPECT_NEAR(hits[0].approach_speed, g_t * t_hit, 1e-12);
 }
 
+// A free ball on a slope (a parabola) meets a ball resting against the wall (held there:
+// a chord) at the closed-form time: the quartic's case.
+TEST(Slope, AFreeBallMeetsABallRestingOnTheWallAtTheClosedFormTime)
+{
+  const double theta = 0.3, r = 0.1, distance = 1.0;
+  Scene scene = slopeWithWall(theta, 0.5);
+  const Vec3 down = scene.floor->u.normalized();
+  const Vec3 n = scene.floor->u.cross(scene.floor->v).normalized();
+  BallDef resting, free;
+  resting.radius = free.radius = r;
+  resting.position = scene.walls[0].point + Vec3(0, 1, 0) - r * down + r * n;  // against the wall
+  free.position = resting.position - distance * down;  // its centre 1 m uphill
+  scene.balls = {resting, free};
+  World world(scene);
+  const double g_t = 9.81 * std::sin(theta);
+  const double t_hit = std::sqrt(2 * (distance - 2 * r) / g_t);
+  const CollisionEvent* hit = nullptr;
+  std::vector<CollisionEvent> events;
+  for (int k = 0; k < 200 && !hit; ++k)
+  {
+    world.step();
+    events = world.lastEvents();
+    for (const CollisionEvent& e : events)
+      if (e.kind == CollisionEvent::Kind::kBallBall && !e.resting)
+      {
+        hit = &e;
+        break;
+      }
+  }
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->time, t_hit, 1e-13);
+  EXPECT_NEAR(hit->approach_speed, g_t * t_hit, 1e-12);
+}
+
 // Without a floor a ball flies on its parabola, and meets a wall where the parabola does.
 TEST(NoFloor, AThrownBallMeetsAWallWhereItsParabolaDoes)
 {
