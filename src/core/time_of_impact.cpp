@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace ball_collision_sim::core
 {
@@ -74,25 +75,83 @@ double evaluate(const std::array<double, 5>& a, int n, double t)
 }
 
 /// The point of [lo, hi] where p (degree n) changes sign, p(lo) and p(hi) of opposite
-/// signs (p(lo) != 0): the last double at which p keeps the sign it has at lo.
+/// signs (p(lo) != 0): the last double at which p keeps the sign it has at lo. False
+/// position with the Illinois rule (a stalled end's value halved), and a halving besides
+/// wherever a pass gains less than that, until the ends are neighbouring doubles.
 double bisect(const std::array<double, 5>& a, int n, double lo, double hi)
 {
-  const bool positive = evaluate(a, n, lo) > 0;
+  double f_lo = evaluate(a, n, lo), f_hi = evaluate(a, n, hi);
+  const bool positive = f_lo > 0;
+  int last = 0;  // the end moved last: +1 lo, -1 hi
+  const auto take = [&](double t, double v) {
+    if ((v > 0) == positive)
+    {
+      lo = t;
+      f_lo = v;
+      if (last > 0)
+        f_hi *= 0.5;
+      last = 1;
+    }
+    else
+    {
+      hi = t;
+      f_hi = v;
+      if (last < 0)
+        f_lo *= 0.5;
+      last = -1;
+    }
+  };
   for (;;)
   {
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi))
+    const double width = hi - lo;
+    double t = lo + width * (f_lo / (f_lo - f_hi));
+    if (!(t > lo && t < hi))
+      t = 0.5 * (lo + hi);
+    if (!(t > lo && t < hi))
       return lo;
-    const double v = evaluate(a, n, mid);
+    const double v = evaluate(a, n, t);
     if (v == 0)
-      return mid;
-    ((v > 0) == positive ? lo : hi) = mid;
+      return t;
+    take(t, v);
+    if (hi - lo > 0.5 * width)
+    {
+      const double half = 0.5 * (lo + hi);
+      if (!(half > lo && half < hi))
+        return lo;
+      const double w = evaluate(a, n, half);
+      if (w == 0)
+        return half;
+      take(half, w);
+      last = 0;
+    }
   }
 }
 
-/// The roots of p (degree at most n) in the open interval (lo, hi), in order, at most n:
-/// between the derivative's roots p is monotone, so each piece holds at most one.
-int rootsIn(const std::array<double, 5>& a, int n, double lo, double hi, std::array<double, 4>& out)
+/// The roots of a quadratic a[0] + a[1] t + a[2] t^2 (a[2] != 0) in (lo, hi), in order,
+/// by the formula that keeps the smaller one free of cancellation: close enough to split
+/// a polynomial into its monotone pieces (the roots themselves are bisected).
+int quadraticRootsIn(const std::array<double, 5>& a, double lo, double hi, std::array<double, 4>& out)
+{
+  const double disc = a[1] * a[1] - 4 * a[2] * a[0];
+  if (disc < 0)
+    return 0;
+  const double q = -0.5 * (a[1] + std::copysign(std::sqrt(disc), a[1]));
+  double r1 = q / a[2], r2 = q != 0 ? a[0] / q : r1;
+  if (r2 < r1)
+    std::swap(r1, r2);
+  int found = 0;
+  for (const double r : {r1, r2})
+    if (r > lo && r < hi && (found == 0 || r > out[0]))
+      out[static_cast<std::size_t>(found++)] = r;
+  return found;
+}
+
+/// The roots of p (degree at most n) in the open interval (lo, hi), in order, the first
+/// `most` of them: between the derivative's roots p is monotone, so each piece holds at
+/// most one. Where `split` (the derivative of the polynomial asked about), a quadratic's
+/// roots come from the formula.
+int rootsIn(const std::array<double, 5>& a, int n, double lo, double hi, std::array<double, 4>& out, int most,
+            bool split)
 {
   while (n > 0 && a[static_cast<std::size_t>(n)] == 0)
     --n;
@@ -106,14 +165,16 @@ int rootsIn(const std::array<double, 5>& a, int n, double lo, double hi, std::ar
     out[0] = t;
     return 1;
   }
+  if (n == 2 && split)
+    return quadraticRootsIn(a, lo, hi, out);
   std::array<double, 5> da{};
   for (int k = 1; k <= n; ++k)
     da[static_cast<std::size_t>(k - 1)] = k * a[static_cast<std::size_t>(k)];
   std::array<double, 4> critical{};
-  const int m = rootsIn(da, n - 1, lo, hi, critical);
+  const int m = rootsIn(da, n - 1, lo, hi, critical, 4, true);
   int found = 0;
   double from = lo;
-  for (int k = 0; k <= m; ++k)
+  for (int k = 0; k <= m && found < most; ++k)
   {
     const double to = k < m ? critical[static_cast<std::size_t>(k)] : hi;
     const double f_from = evaluate(a, n, from), f_to = evaluate(a, n, to);
@@ -144,7 +205,7 @@ std::optional<double> firstRoot(const std::array<double, 5>& a, double t_max)
   if (!(a[0] > 0) || !(t_max > 0))
     return std::nullopt;
   std::array<double, 4> roots{};
-  if (rootsIn(a, 4, 0.0, t_max, roots) > 0)
+  if (rootsIn(a, 4, 0.0, t_max, roots, 1, false) > 0)
     return roots[0];
   if (evaluate(a, 4, t_max) <= 0)
     return bisect(a, 4, 0.0, t_max);
@@ -160,7 +221,12 @@ std::optional<double> sphereSweepAccelerated(const Vec3& d, const Vec3& e, const
   const std::array<double, 5> f{d.squaredNorm() - reach * reach, 2 * d.dot(e), e.squaredNorm() + 2 * d.dot(c),
                                 2 * e.dot(c), c.squaredNorm()};
   if (f[0] > 0)
+  {
+    // (|d + t e + t^2 c| >= |d| - t |e| - t^2 |c|: most pairs cannot meet at all)
+    if (std::sqrt(f[0] + reach * reach) - t_max * (e.norm() + t_max * c.norm()) > (1 + 1e-9) * reach)
+      return std::nullopt;
     return firstRoot(f, t_max);
+  }
   // Touching (or overlapping by round-off) and moving apart: an impact later, where the
   // acceleration brings it back (the distance squared less its value now is
   // t (f1 + f2 t + f3 t^2 + f4 t^3)) ...
