@@ -1,5 +1,7 @@
 #include "ball_collision_sim/core/time_of_impact.hpp"
 
+#include "bracketed_root.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -75,61 +77,20 @@ double evaluate(const std::array<double, 5>& a, int n, double t)
 }
 
 /// The point of [lo, hi] where p (degree n) changes sign, p(lo) and p(hi) of opposite
-/// signs (p(lo) != 0): the last double at which p keeps the sign it has at lo. False
-/// position with the Illinois rule (a stalled end's value halved), and a halving besides
-/// wherever a pass gains less than that, until the ends are neighbouring doubles.
-double bisect(const std::array<double, 5>& a, int n, double lo, double hi)
+/// signs (p(lo) != 0): the last double at which p keeps the sign it has at lo, or a
+/// point where it is zero.
+double refineRoot(const std::array<double, 5>& a, int n, double lo, double hi)
 {
-  double f_lo = evaluate(a, n, lo), f_hi = evaluate(a, n, hi);
+  const double f_lo = evaluate(a, n, lo);
   const bool positive = f_lo > 0;
-  int last = 0;  // the end moved last: +1 lo, -1 hi
-  const auto take = [&](double t, double v) {
-    if ((v > 0) == positive)
-    {
-      lo = t;
-      f_lo = v;
-      if (last > 0)
-        f_hi *= 0.5;
-      last = 1;
-    }
-    else
-    {
-      hi = t;
-      f_hi = v;
-      if (last < 0)
-        f_lo *= 0.5;
-      last = -1;
-    }
-  };
-  for (;;)
-  {
-    const double width = hi - lo;
-    double t = lo + width * (f_lo / (f_lo - f_hi));
-    if (!(t > lo && t < hi))
-      t = 0.5 * (lo + hi);
-    if (!(t > lo && t < hi))
-      return lo;
-    const double v = evaluate(a, n, t);
-    if (v == 0)
-      return t;
-    take(t, v);
-    if (hi - lo > 0.5 * width)
-    {
-      const double half = 0.5 * (lo + hi);
-      if (!(half > lo && half < hi))
-        return lo;
-      const double w = evaluate(a, n, half);
-      if (w == 0)
-        return half;
-      take(half, w);
-      last = 0;
-    }
-  }
+  return bracketedRoot([&](double t) { return evaluate(a, n, t); },
+                       [&](double v) { return v == 0 ? 0 : (v > 0) == positive ? 1 : -1; }, lo, hi, f_lo,
+                       evaluate(a, n, hi));
 }
 
 /// The roots of a quadratic a[0] + a[1] t + a[2] t^2 (a[2] != 0) in (lo, hi), in order,
 /// by the formula that keeps the smaller one free of cancellation: close enough to split
-/// a polynomial into its monotone pieces (the roots themselves are bisected).
+/// a polynomial into its monotone pieces (the roots themselves are refined).
 int quadraticRootsIn(const std::array<double, 5>& a, double lo, double hi, std::array<double, 4>& out)
 {
   const double disc = a[1] * a[1] - 4 * a[2] * a[0];
@@ -181,7 +142,7 @@ int rootsIn(const std::array<double, 5>& a, int n, double lo, double hi, std::ar
     if (f_to == 0 && to < hi)
       out[static_cast<std::size_t>(found++)] = to;
     else if (f_from != 0 && (f_from > 0) != (f_to > 0) && f_to != 0)
-      out[static_cast<std::size_t>(found++)] = bisect(a, n, from, to);
+      out[static_cast<std::size_t>(found++)] = refineRoot(a, n, from, to);
     from = to;
   }
   return found;
@@ -208,7 +169,7 @@ std::optional<double> firstRoot(const std::array<double, 5>& a, double t_max)
   if (rootsIn(a, 4, 0.0, t_max, roots, 1, false) > 0)
     return roots[0];
   if (evaluate(a, 4, t_max) <= 0)
-    return bisect(a, 4, 0.0, t_max);
+    return refineRoot(a, 4, 0.0, t_max);
   return std::nullopt;
 }
 

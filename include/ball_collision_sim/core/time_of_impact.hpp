@@ -41,15 +41,15 @@ inline std::optional<double> sphereSweep(const Vec3& d, const Vec3& e, double re
 /// The earliest t in [0, t_max] at which the polynomial a[0] + a[1] t + ... + a[4] t^4
 /// (a[0] > 0) reaches zero, or none where it stays above. The polynomial is monotone
 /// between the roots of its derivative, found the same way, so the first piece whose
-/// ends differ in sign holds the root, which bisection finds to the last bit: the t
-/// returned is the last double at which the polynomial is still positive (or the
+/// ends differ in sign holds the root, which false position finds to the last bit: the
+/// t returned is the last double at which the polynomial is still positive (or the
 /// root itself where it is exactly zero there).
 std::optional<double> firstRoot(const std::array<double, 5>& a, double t_max);
 
 /// As sphereSweep(), for a relative motion under constant acceleration,
 /// |d + t e + t^2 c| = reach: the distance squared less reach^2 is a quartic in t.
-/// Touching already: an impact now where the motion over [0, t_max] closes in by more
-/// than slop * reach, or later where it first moves apart and comes back. With c = 0
+/// Touching already: an impact now where the motion's deepest approach over [0, t_max]
+/// passes slop * reach, or later where it first moves apart and comes back. With c = 0
 /// it is sphereSweep() itself.
 std::optional<double> sphereSweepAccelerated(const Vec3& d, const Vec3& e, const Vec3& c, double reach, double t_max,
                                              double slop);

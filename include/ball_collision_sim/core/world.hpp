@@ -294,6 +294,9 @@ private:
   /// The closing speed at or below which an impact at restitution e is a resting contact.
   /// (At a ball of this radius centred at `position`: the round-off of positions there.)
   double restingSpeed(const Vec3& floor_normal, double restitution, const Vec3& position, double radius) const;
+  /// The resting speed of a contact between two balls at the scene's restitution: the
+  /// larger of the two balls' (whichever floor is which).
+  double pairRestingSpeed(const Vec3& na, const Vec3& pa, double ra, const Vec3& nb, const Vec3& pb, double rb) const;
   /// A ball slower than this is all but still: gravity along the floor gives it as much
   /// in resting_steps steps [m/s].
   double stillSpeed(const Vec3& floor_normal) const;

@@ -113,8 +113,7 @@ void World::settleRestingVelocities()
       // would be, or summed to rest (both balls' floors alike, whichever is which)
       const Vec3& na = floor_normals_[contact.ball];
       const Vec3& nb = floor_normals_[contact.other];
-      const double rest = std::max(restingSpeed(na, scene_.restitution, a.position, a.radius),
-                                   restingSpeed(nb, scene_.restitution, b.position, b.radius));
+      const double rest = pairRestingSpeed(na, a.position, a.radius, nb, b.position, b.radius);
       const double e = closing <= rest ? 0.0 : scene_.restitution;
       const double j = collisionImpulse(closing, inv_a, contact.dir_ball, inv_b, contact.dir_other, e);
       a.velocity -= (j * inv_a) * contact.dir_ball;

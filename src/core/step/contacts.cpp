@@ -3,6 +3,8 @@
 // Reads and writes motions_, states_, blocked_sets_.
 #include "step_types.hpp"
 
+#include "../bracketed_root.hpp"
+
 #include "ball_collision_sim/core/response.hpp"
 
 #include <algorithm>
@@ -219,44 +221,9 @@ void World::keepEnergy(std::size_t i)
 
 double World::energyRunsOut(const EnergyCheck& energy, double start, double full) const
 {
-  // the root of the speed on [0, 1], kept bracketed: false position with the Illinois
-  // rule (a stalled end's value halved), bisection where that gains less
-  double lo = 0.0, hi = 1.0, f_lo = start, f_hi = full;
-  int last = 0;  // the end moved last: +1 lo, -1 hi
-  for (int k = 0; k < settings_.energy_root_iterations && hi - lo > settings_.energy_root_width; ++k)
-  {
-    const double width = hi - lo;
-    double mid = lo + width * (f_lo / (f_lo - f_hi));
-    if (!(mid > lo && mid < hi))
-      mid = 0.5 * (lo + hi);
-    const double f = energy.speedSquared(mid);
-    if (f >= 0)
-    {
-      lo = mid;
-      f_lo = f;
-      if (last > 0)
-        f_hi *= 0.5;
-      last = 1;
-    }
-    else
-    {
-      hi = mid;
-      f_hi = f;
-      if (last < 0)
-        f_lo *= 0.5;
-      last = -1;
-    }
-    if (hi - lo > 0.5 * width && hi - lo > settings_.energy_root_width)
-    {
-      // one end stuck: halve the bracket as well
-      const double half = 0.5 * (lo + hi);
-      const double g = energy.speedSquared(half);
-      (g >= 0 ? lo : hi) = half;
-      (g >= 0 ? f_lo : f_hi) = g;
-      last = 0;
-    }
-  }
-  return lo;
+  // the root of the speed on [0, 1], where it is still >= 0
+  return bracketedRoot([&](double s) { return energy.speedSquared(s); }, [](double v) { return v >= 0 ? 1 : -1; },
+                       0.0, 1.0, start, full, settings_.energy_root_iterations, settings_.energy_root_width);
 }
 
 void World::slideDownhill(const EnergyCheck& energy, double start)

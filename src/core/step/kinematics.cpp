@@ -5,6 +5,7 @@
 
 #include "ball_collision_sim/core/response.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -75,6 +76,12 @@ double World::restingSpeed(const Vec3& floor_normal, double restitution, const V
   if (!(restitution > 0))
     return std::numeric_limits<double>::infinity();  // no bounce at all
   return settings_.resting_steps * dt_ * a * (1 - restitution) / (2 * restitution) + roundoff;
+}
+
+double World::pairRestingSpeed(const Vec3& na, const Vec3& pa, double ra, const Vec3& nb, const Vec3& pb,
+                               double rb) const
+{
+  return std::max(restingSpeed(na, scene_.restitution, pa, ra), restingSpeed(nb, scene_.restitution, pb, rb));
 }
 
 void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact)

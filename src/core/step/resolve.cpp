@@ -97,11 +97,12 @@ void World::resolveBallBall(const Event& event)
   Vec3 n = pb - pa;
   const double dist = n.norm();
   n = dist > 0 ? Vec3(n / dist) : Vec3(Vec3::UnitX());
+  const double rest_speed = pairRestingSpeed(na, pa, a.radius, nb, pb, b.radius);
   // An impact on a sleeping ball (not one that would rest on it) wakes its group.
   if (states_[i].asleep != states_[j].asleep)
   {
     const double hit = states_[j].asleep ? va.dot(n) : -vb.dot(n);
-    if (hit > std::max(restingSpeed(na, scene_.restitution, pa, a.radius), restingSpeed(nb, scene_.restitution, pb, b.radius)))
+    if (hit > rest_speed)
       wakeGroup(states_[j].asleep ? j : i);
   }
   // Each ball is pushed along the normal's part tangent to the floor under it, less any
@@ -113,8 +114,7 @@ void World::resolveBallBall(const Event& event)
   const double inv_a = states_[i].frozen ? 0.0 : 1.0 / a.mass;
   const double inv_b = states_[j].frozen ? 0.0 : 1.0 / b.mass;
   const double closing = va.dot(ta) - vb.dot(tb);
-  const bool resting =
-      closing <= std::max(restingSpeed(na, scene_.restitution, pa, a.radius), restingSpeed(nb, scene_.restitution, pb, b.radius));
+  const bool resting = closing <= rest_speed;
   const double impulse =
       collisionImpulse(std::max(closing, 0.0), inv_a, ta, inv_b, tb, resting ? 0.0 : scene_.restitution);
   va -= (impulse * inv_a) * ta;
