@@ -76,16 +76,14 @@ double evaluate(const std::array<double, 5>& a, int n, double t)
   return v;
 }
 
-/// The point of [lo, hi] where p (degree n) changes sign, p(lo) and p(hi) of opposite
-/// signs (p(lo) != 0): the last double at which p keeps the sign it has at lo, or a
-/// point where it is zero.
-double refineRoot(const std::array<double, 5>& a, int n, double lo, double hi)
+/// The point of [lo, hi] where p (degree n) changes sign, f_lo = p(lo) and f_hi = p(hi)
+/// of opposite signs (f_lo != 0): the last double at which p keeps the sign it has at
+/// lo, or a point where it is zero.
+double refineRoot(const std::array<double, 5>& a, int n, double lo, double hi, double f_lo, double f_hi)
 {
-  const double f_lo = evaluate(a, n, lo);
   const bool positive = f_lo > 0;
   return bracketedRoot([&](double t) { return evaluate(a, n, t); },
-                       [&](double v) { return v == 0 ? 0 : (v > 0) == positive ? 1 : -1; }, lo, hi, f_lo,
-                       evaluate(a, n, hi));
+                       [&](double v) { return v == 0 ? 0 : (v > 0) == positive ? 1 : -1; }, lo, hi, f_lo, f_hi);
 }
 
 /// The roots of a quadratic a[0] + a[1] t + a[2] t^2 (a[2] != 0) in (lo, hi), in order,
@@ -134,16 +132,17 @@ int rootsIn(const std::array<double, 5>& a, int n, double lo, double hi, std::ar
   std::array<double, 4> critical{};
   const int m = rootsIn(da, n - 1, lo, hi, critical, 4, true);
   int found = 0;
-  double from = lo;
+  double from = lo, f_from = evaluate(a, n, lo);
   for (int k = 0; k <= m && found < most; ++k)
   {
     const double to = k < m ? critical[static_cast<std::size_t>(k)] : hi;
-    const double f_from = evaluate(a, n, from), f_to = evaluate(a, n, to);
+    const double f_to = evaluate(a, n, to);
     if (f_to == 0 && to < hi)
       out[static_cast<std::size_t>(found++)] = to;
     else if (f_from != 0 && (f_from > 0) != (f_to > 0) && f_to != 0)
-      out[static_cast<std::size_t>(found++)] = refineRoot(a, n, from, to);
+      out[static_cast<std::size_t>(found++)] = refineRoot(a, n, from, to, f_from, f_to);
     from = to;
+    f_from = f_to;
   }
   return found;
 }
@@ -168,8 +167,8 @@ std::optional<double> firstRoot(const std::array<double, 5>& a, double t_max)
   std::array<double, 4> roots{};
   if (rootsIn(a, 4, 0.0, t_max, roots, 1, false) > 0)
     return roots[0];
-  if (evaluate(a, 4, t_max) <= 0)
-    return refineRoot(a, 4, 0.0, t_max);
+  if (const double f_end = evaluate(a, 4, t_max); f_end <= 0)
+    return refineRoot(a, 4, 0.0, t_max, a[0], f_end);
   return std::nullopt;
 }
 
