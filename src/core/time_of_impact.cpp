@@ -8,62 +8,6 @@
 
 namespace ball_collision_sim::core
 {
-namespace
-{
-/// The face: the plane at distance r on the ball's side, then the contact point must
-/// project inside the parallelogram.
-std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e, double r, double t_max,
-                                 double slop)
-{
-  const double s0 = (p - wall.def.point).dot(wall.normal);
-  const double en = e.dot(wall.normal);
-  double side = s0 > 0 ? 1.0 : -1.0;
-  if (s0 == 0)
-    side = en > 0 ? -1.0 : 1.0;
-  const double d0 = side * s0;
-  const double rate = side * en;
-  double t = 0;
-  if (d0 <= r)
-  {
-    if (!(-rate * t_max > slop * r))
-      return std::nullopt;
-  }
-  else
-  {
-    if (rate >= 0)
-      return std::nullopt;
-    t = (d0 - r) / -rate;
-    if (!(t <= t_max))
-      return std::nullopt;
-  }
-  const Vec3 q = p + t * e - wall.def.point;
-  const double s = q.dot(wall.dual_u);
-  const double w = q.dot(wall.dual_v);
-  if (s < 0 || s > 1 || w < 0 || w > 1)
-    return std::nullopt;
-  return WallHit{t, WallFeature::kFace, side * wall.normal};
-}
-
-/// Edge k: the cylinder of radius r around the segment, then the contact must lie
-/// within the segment.
-std::optional<WallHit> sweepEdge(const Wall& wall, int k, const Vec3& p, const Vec3& e, double r, double t_max,
-                                 double slop)
-{
-  const Vec3& a = wall.corners[k];
-  const Vec3 edge = wall.corners[(k + 1) % 4] - a;
-  const double len2 = edge.squaredNorm();
-  const Vec3 d = p - a;
-  const Vec3 d_perp = d - (d.dot(edge) / len2) * edge;
-  const Vec3 e_perp = e - (e.dot(edge) / len2) * edge;
-  const auto t = sphereSweep(d_perp, e_perp, r, t_max, slop);
-  if (!t)
-    return std::nullopt;
-  const double along = (d + *t * e).dot(edge) / len2;
-  if (along < 0 || along > 1)
-    return std::nullopt;
-  return WallHit{*t, WallFeature::kEdge, (d_perp + *t * e_perp).normalized()};
-}
-}  // namespace
 
 namespace
 {
@@ -196,81 +140,92 @@ std::optional<double> sphereSweepAccelerated(const Vec3& d, const Vec3& e, const
   return closesIn(d.dot(e), d.dot(c), t_max, slop * reach * d.norm()) ? std::optional<double>(0.0) : std::nullopt;
 }
 
-std::optional<WallHit> sweepWall(const Wall& wall, const Vec3& p, const Vec3& e, double r, double t_max,
-                                 double slop)
+namespace
+{
+/// d + t e + t^2 c; with c zero, d + t e itself (the same bits as a straight motion's).
+Vec3 pointAt(const Vec3& d, const Vec3& e, const Vec3& c, double t)
+{
+  return c == Vec3::Zero() ? Vec3(d + t * e) : Vec3(d + t * e + (t * t) * c);
+}
+
+/// The face: the plane at distance r on the ball's side (the signed distance from it is
+/// linear in t, or quadratic under acceleration), then the contact point must project
+/// inside the parallelogram.
+std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e, const Vec3& c, double r,
+                                 double t_max, double slop)
+{
+  const double s0 = (p - wall.def.point).dot(wall.normal);
+  const double en = e.dot(wall.normal), cn = c.dot(wall.normal);
+  double side = s0 > 0 ? 1.0 : -1.0;
+  if (s0 == 0)
+    side = en > 0 || (en == 0 && cn > 0) ? -1.0 : 1.0;
+  const double d0 = side * s0, rate = side * en, acc = side * cn;
+  std::optional<double> t;
+  if (d0 > r && acc == 0)
+  {
+    if (rate < 0 && (d0 - r) / -rate <= t_max)
+      t = (d0 - r) / -rate;
+  }
+  else if (d0 > r)
+    t = firstRoot({d0 - r, rate, acc, 0.0, 0.0}, t_max);
+  else if (rate > 0)
+    t = firstRoot({rate, acc, 0.0, 0.0, 0.0}, t_max);  // touching, moves off, and back
+  else if (closesIn(rate, acc, t_max, slop * r))
+    t = 0.0;
+  if (!t)
+    return std::nullopt;
+  const Vec3 q = pointAt(p, e, c, *t) - wall.def.point;
+  const double u = q.dot(wall.dual_u), v = q.dot(wall.dual_v);
+  if (u < 0 || u > 1 || v < 0 || v > 1)
+    return std::nullopt;
+  return WallHit{*t, WallFeature::kFace, side * wall.normal};
+}
+
+/// Edge k: the cylinder of radius r around the segment, then the contact must lie
+/// within the segment.
+std::optional<WallHit> sweepEdge(const Wall& wall, int k, const Vec3& p, const Vec3& e, const Vec3& c, double r,
+                                 double t_max, double slop)
+{
+  const Vec3& a = wall.corners[k];
+  const Vec3 edge = wall.corners[(k + 1) % 4] - a;
+  const double len2 = edge.squaredNorm();
+  const auto across = [&](const Vec3& w) { return Vec3(w - (w.dot(edge) / len2) * edge); };
+  const Vec3 d = p - a;
+  const Vec3 d_perp = across(d), e_perp = across(e), c_perp = across(c);
+  const auto t = sphereSweepAccelerated(d_perp, e_perp, c_perp, r, t_max, slop);
+  if (!t)
+    return std::nullopt;
+  const double along = pointAt(d, e, c, *t).dot(edge) / len2;
+  if (along < 0 || along > 1)
+    return std::nullopt;
+  return WallHit{*t, WallFeature::kEdge, pointAt(d_perp, e_perp, c_perp, *t).normalized()};
+}
+}  // namespace
+
+std::optional<WallHit> sweepWall(const Wall& wall, const Vec3& p, const Vec3& e, const Vec3& c, double r,
+                                 double t_max, double slop)
 {
   // The first time the distance to the (convex) parallelogram reaches r is the earliest
   // valid contact over its features; ties go to the face, then edges, then corners.
-  std::optional<WallHit> best = sweepFace(wall, p, e, r, t_max, slop);
+  std::optional<WallHit> best = sweepFace(wall, p, e, c, r, t_max, slop);
   for (int k = 0; k < 4; ++k)
   {
-    const auto hit = sweepEdge(wall, k, p, e, r, best ? best->t : t_max, slop);
+    const auto hit = sweepEdge(wall, k, p, e, c, r, best ? best->t : t_max, slop);
     if (hit && (!best || hit->t < best->t))
       best = hit;
   }
   for (int k = 0; k < 4; ++k)
   {
     const Vec3 d = p - wall.corners[k];
-    const auto t = sphereSweep(d, e, r, best ? best->t : t_max, slop);
+    const auto t = sphereSweepAccelerated(d, e, c, r, best ? best->t : t_max, slop);
     if (t && (!best || *t < best->t))
-      best = WallHit{*t, WallFeature::kCorner, (d + *t * e).normalized()};
+      best = WallHit{*t, WallFeature::kCorner, pointAt(d, e, c, *t).normalized()};
   }
   return best;
 }
 
-std::optional<WallHit> sweepWall(const Wall& wall, const Vec3& p, const Vec3& e, const Vec3& c, double r,
-                                 double t_max, double slop)
+std::optional<WallHit> sweepWall(const Wall& wall, const Vec3& p, const Vec3& e, double r, double t_max, double slop)
 {
-  if (c == Vec3::Zero())
-    return sweepWall(wall, p, e, r, t_max, slop);
-  const auto at = [&](double t) { return p + t * e + (t * t) * c; };
-  // The face: the signed distance from the wall's plane is quadratic in t.
-  std::optional<WallHit> best;
-  {
-    const double s0 = (p - wall.def.point).dot(wall.normal);
-    const double en = e.dot(wall.normal), cn = c.dot(wall.normal);
-    double side = s0 > 0 ? 1.0 : -1.0;
-    if (s0 == 0)
-      side = en > 0 || (en == 0 && cn > 0) ? -1.0 : 1.0;
-    const double d0 = side * s0, rate = side * en, acc = side * cn;
-    std::optional<double> t;
-    if (d0 > r)
-      t = firstRoot({d0 - r, rate, acc, 0.0, 0.0}, t_max);
-    else if (rate > 0)
-      t = firstRoot({rate, acc, 0.0, 0.0, 0.0}, t_max);  // touching, moves off, and back
-    else if (closesIn(rate, acc, t_max, slop * r))
-      t = 0.0;
-    if (t)
-    {
-      const Vec3 q = at(*t) - wall.def.point;
-      const double u = q.dot(wall.dual_u), v = q.dot(wall.dual_v);
-      if (u >= 0 && u <= 1 && v >= 0 && v <= 1)
-        best = WallHit{*t, WallFeature::kFace, side * wall.normal};
-    }
-  }
-  // The edges: the distance from each edge's line, then the contact within the segment.
-  for (int k = 0; k < 4; ++k)
-  {
-    const Vec3& a = wall.corners[k];
-    const Vec3 edge = wall.corners[(k + 1) % 4] - a;
-    const double len2 = edge.squaredNorm();
-    const auto across = [&](const Vec3& w) { return Vec3(w - (w.dot(edge) / len2) * edge); };
-    const Vec3 d = p - a;
-    const auto t = sphereSweepAccelerated(across(d), across(e), across(c), r, best ? best->t : t_max, slop);
-    if (!t || (best && !(*t < best->t)))
-      continue;
-    const double along = (at(*t) - a).dot(edge) / len2;
-    if (along >= 0 && along <= 1)
-      best = WallHit{*t, WallFeature::kEdge, across(at(*t) - a).normalized()};
-  }
-  // The corners.
-  for (int k = 0; k < 4; ++k)
-  {
-    const Vec3 d = p - wall.corners[k];
-    const auto t = sphereSweepAccelerated(d, e, c, r, best ? best->t : t_max, slop);
-    if (t && (!best || *t < best->t))
-      best = WallHit{*t, WallFeature::kCorner, (at(*t) - wall.corners[k]).normalized()};
-  }
-  return best;
+  return sweepWall(wall, p, e, Vec3::Zero(), r, t_max, slop);
 }
 }  // namespace ball_collision_sim::core
