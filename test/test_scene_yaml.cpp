@@ -306,8 +306,8 @@ TEST(SceneYaml, EachMistakeGivesOneLineNamingTheKeyAndTheReason)
     // unknown keys
     {"balls:\n  - {position: [0, 0, 0], radius: 1}\n  - {position: [1, 0, 0], radius: 1}\n"
      "  - {position: [2, 0, 0], radius: 1}\n  - {position: [3, 0, 0], radus: 1}\n",
-     "t.yaml: balls[3].radus: unknown key (expected one of: position, velocity, radius, mass)"},
-    {"dtt: 0.1", "t.yaml: dtt: unknown key (expected one of: frame_id, dt, gravity, restitution, floor, walls, "
+     "t.yaml: balls[3].radus: unknown key (expected one of: position, velocity, radius, mass, angular_velocity, inertia)"},
+    {"dtt: 0.1", "t.yaml: dtt: unknown key (expected one of: frame_id, dt, gravity, restitution, floor, friction, walls, "
                  "balls, random_balls, real_time_factor, marker_rate, tf_rate, tf_max_balls, state_rate, "
                  "publish_collisions, start_paused, click_radius, click_mass, status_period, max_balls, "
                  "marker_list_threshold, ball_color, speed_color_max, collision_flashes, publish_clock, frame_prefix)"},
@@ -437,7 +437,7 @@ TEST(SceneYamlFile, ParseErrorsComeBeforeValidation)
 {
   const std::string path = kDataDir + "/bad_unknown_key.yaml";
   EXPECT_EQ(errorOfLoad(loadValidScene, path),
-            path + ": balls[0].radus: unknown key (expected one of: position, velocity, radius, mass)");
+            path + ": balls[0].radus: unknown key (expected one of: position, velocity, radius, mass, angular_velocity, inertia)");
   const std::string wrong_type = kDataDir + "/bad_wrong_type.yaml";
   EXPECT_EQ(errorOfLoad(loadValidScene, wrong_type), wrong_type + ": walls[0].u: expected a list of 3 numbers, got 2");
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 
 namespace ball_collision_sim::core
 {
@@ -23,6 +24,8 @@ bool EventQueue::later(const Entry& qa, const Entry& qb) const
     const std::uint32_t i = (*order_)[e.i];
     const std::uint32_t j = e.wall ? e.j : (*order_)[e.j];
     using Key = std::array<std::uint32_t, 3>;
+    if (e.transition)
+      return Key{i, 0, std::numeric_limits<std::uint32_t>::max()};  // after the ball's wall events
     return e.wall ? Key{i, 0, j} : Key{std::min(i, j), 1, std::max(i, j)};
   };
   return key(a) > key(b);

@@ -67,6 +67,8 @@ std::vector<LostBall> World::removeLostBalls()
       balls_[kept] = balls_[k];
       if (!feet_.empty())
         feet_[kept] = feet_[k];
+      if (!spins_.empty())
+        spins_[kept] = spins_[k];
     }
     ++kept;
   }
@@ -75,6 +77,8 @@ std::vector<LostBall> World::removeLostBalls()
   balls_.resize(kept);
   if (!feet_.empty())
     feet_.resize(kept);
+  if (!spins_.empty())
+    spins_.resize(kept);
   forgetOrder();
   return lost;
 }

@@ -162,6 +162,7 @@ std::vector<BallDef> placeRandomBalls(const Scene& scene)
     Vec3 e1, e2;
     tangentBasis(n, e1, e2);
     ball->velocity = speed * (std::cos(angle) * e1 + std::sin(angle) * e2);
+    ball->inertia = def.inertia;
     obstacles.add(*ball);
     misses = 0;
   }

@@ -73,6 +73,26 @@ public:
     }
     return true;
   }
+  /// k in I = k m r^2: in (0, 1]
+  bool inertia(const std::string& key, double value)
+  {
+    if (!finite(key, value))
+      return false;
+    if (value > 0 && value <= 1)
+      return true;
+    fail(key, "must be solid, hollow or a number k in (0, 1] (got " + formatNumber(value) + ")");
+    return false;
+  }
+  /// finite and in [0, limit]
+  bool nonNegative(const std::string& key, double value, double limit)
+  {
+    if (!finite(key, value))
+      return false;
+    if (value >= 0 && value <= limit)
+      return true;
+    fail(key, "must be in [0, " + formatNumber(limit) + "] (got " + formatNumber(value) + ")");
+    return false;
+  }
   bool unitInterval(const std::string& key, double value)
   {
     if (!finite(key, value))
@@ -181,6 +201,9 @@ bool checkBall(Checker& check, const std::string& prefix, const BallDef& ball)
   ok = check.bounded(prefix + "velocity", ball.velocity, kMaxSpeed, "m/s") && ok;
   ok = check.positive(prefix + "radius", ball.radius, kMinLength, kMaxLength, "m") && ok;
   ok = check.positive(prefix + "mass", ball.mass, kMinMass, kMaxMass, "kg") && ok;
+  if (ball.angular_velocity)
+    ok = check.bounded(prefix + "angular_velocity", *ball.angular_velocity, kMaxSpin, "rad/s") && ok;
+  ok = check.inertia(prefix + "inertia", ball.inertia) && ok;
   return ok;
 }
 
@@ -265,6 +288,7 @@ std::vector<BallDef> checkRandomBalls(Checker& check, const Scene& scene, bool f
   ok = check.range("random_balls.radius", rb.radius, kMinLength, false, kMaxLength) && ok;
   ok = check.range("random_balls.mass", rb.mass, kMinMass, false, kMaxMass) && ok;
   ok = check.range("random_balls.speed", rb.speed, 0, false, kMaxSpeed) && ok;
+  ok = check.inertia("random_balls.inertia", rb.inertia) && ok;
   if (rb.region)
   {
     const bool fin = check.finite("random_balls.region.min", Vec3(rb.region->min.x(), rb.region->min.y(), 0)) &&
@@ -363,6 +387,18 @@ SceneCheck check(const Scene& scene)
   check.unitInterval("restitution", scene.restitution);
 
   const bool floor_ok = !scene.floor || checkFloor(check, *scene.floor);
+  if (scene.friction)
+  {
+    const FrictionDef& f = *scene.friction;
+    for (const auto& [key, value] : {std::pair{"friction.sliding", f.sliding}, std::pair{"friction.rolling", f.rolling},
+                                     std::pair{"friction.spinning", f.spinning},
+                                     std::pair{"friction.ball_ball", f.ball_ball}, std::pair{"friction.wall", f.wall}})
+      check.nonNegative(key, value, kMaxFriction);
+    if (!scene.floor)
+      check.fail("friction", "needs a floor (friction acts between the balls and the floor)");
+    else if (scene.floor->type != FloorDef::Type::kPlane)
+      check.fail("friction", "acts on a plane floor only so far (the floor is biquadratic)");
+  }
 
   bool walls_ok = true;
   for (std::size_t i = 0; i < scene.walls.size(); ++i)

@@ -31,10 +31,15 @@ World::World(const Scene& scene, SceneCheck checked, const StepSettings& setting
     , gravity_(scene.gravity)
     , ground_(scene.floor, scene.gravity, settings)
     , path_c_((0.5 * scene.dt * scene.dt) * ground_.pathAcceleration())
-    , parabolas_(path_c_ != Vec3::Zero())
+    , free_parabolas_(path_c_ != Vec3::Zero())
+    , parabolas_(free_parabolas_ || scene.friction.has_value())
 {
   if (!checked.issues.empty())
     throw std::invalid_argument(joinIssues(checked.issues));
+  // (check() allows friction on a plane floor only)
+  if (scene.friction)
+    friction_.emplace(*scene.friction, ground_.floor()->planeNormal(), scene.gravity, ground_.pathAcceleration(),
+                      settings_.slip_tolerance);
   // (a ball's event count is kept in 16 bits, up to one past the cap)
   if (settings_.max_events_per_ball_step >= 0xffff)
     throw std::invalid_argument("max_events_per_ball_step: must be below 65535");
@@ -56,8 +61,11 @@ void World::load(const std::vector<PlacedBall>& balls)
     walls_.emplace_back(next_wall_id_++, def, scene_.restitution);
   balls_.clear();
   feet_.clear();
+  spins_.clear();
   next_ball_id_ = kFirstId;
   balls_.reserve(balls.size());
+  if (friction_)
+    spins_.reserve(balls.size());
   if (ground_.bends())
     feet_.reserve(balls.size());
   for (const PlacedBall& ball : balls)
@@ -65,9 +73,12 @@ void World::load(const std::vector<PlacedBall>& balls)
     balls_.push_back(makeBall(next_ball_id_++, ball.def));
     if (ground_.bends())
       feet_.push_back(ball.foot);
+    if (friction_)
+      spins_.push_back(makeSpin(ball.def));
   }
   stats_ = WorldStats{};
   events_.clear();
+  transitions_.clear();
   forgetOrder();
 }
 
@@ -95,11 +106,21 @@ Ball World::makeBall(int id, const BallDef& placed)
   return ball;
 }
 
+BallSpin World::makeSpin(const BallDef& placed) const
+{
+  BallSpin spin;
+  spin.angular_velocity = spinOf(placed, friction_->normal());
+  spin.inertia = placed.inertia;
+  spin.kind = friction_->kindOf(placed.inertia, placed.radius, placed.velocity, spin.angular_velocity);
+  return spin;
+}
+
 // ---- the step ------------------------------------------------------------------------
 
 void World::step()
 {
   events_.clear();
+  transitions_.clear();
   resting_.clear();
   blocked_sets_.clear();
   predictMotions();            // each ball's free motion over the step, on the floor, and its swept box
@@ -129,6 +150,11 @@ Energy World::energy() const
     e.kinetic += 0.5 * ball.mass * ball.velocity.squaredNorm();
     e.potential -= ball.mass * gravity_.dot(ball.position);
   }
+  for (std::size_t k = 0; k < spins_.size(); ++k)
+  {
+    const Ball& ball = balls_[k];
+    e.rotational += 0.5 * spins_[k].inertia * ball.mass * ball.radius * ball.radius * spins_[k].angular_velocity.squaredNorm();
+  }
   return e;
 }
 
@@ -154,6 +180,12 @@ std::uint64_t World::stateHash() const
     h.add(ball.velocity.data(), 3 * sizeof(double));
     h.add(ball.orientation.coeffs().data(), 4 * sizeof(double));
   }
+  for (const BallSpin& spin : spins_)
+  {
+    h.add(spin.angular_velocity.data(), 3 * sizeof(double));
+    h.add(spin.inertia);
+    h.add(spin.kind);
+  }
   return h.value();
 }
 
@@ -172,9 +204,23 @@ const Ball* World::findBall(int id) const
 
 Vec3 World::angularVelocity(std::size_t k) const
 {
+  if (friction_)
+    return spins_.at(k).angular_velocity;
   const Ball& ball = balls_.at(k);
   const Vec3 normal = ground_.normalUnder(footOf(k));
   return normal.cross(ball.velocity) / ball.radius;
+}
+
+MotionKind World::motionKind(std::size_t k) const
+{
+  if (friction_)
+    return spins_.at(k).kind;
+  return balls_.at(k).velocity == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling;
+}
+
+double World::inertia(std::size_t k) const
+{
+  return friction_ ? spins_.at(k).inertia : kSolidInertia;
 }
 
 // ---- editing -------------------------------------------------------------------------
@@ -210,8 +256,12 @@ AddResult World::addBall(const BallDef& def, Landing landing)
   // (room first, so that the two lists stay in step: the last push cannot throw)
   if (balls_.size() == balls_.capacity())
     balls_.reserve(2 * balls_.size() + 1);
+  if (friction_ && spins_.size() == spins_.capacity())
+    spins_.reserve(2 * spins_.size() + 1);
   if (ground_.bends())
     feet_.push_back(foot);
+  if (friction_)
+    spins_.push_back(makeSpin(placed));
   balls_.push_back(makeBall(next_ball_id_, placed));
   result.id = next_ball_id_++;
   forgetOrder();
@@ -229,7 +279,8 @@ AddResult refused(int id, std::string error)
 }
 }  // namespace
 
-AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing)
+AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing,
+                               const std::optional<Vec3>& angular_velocity)
 {
   const std::size_t k = indexOf(id);
   if (k == balls_.size())
@@ -241,12 +292,16 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
   def.velocity = velocity;
   def.radius = balls_[k].radius;
   def.mass = balls_[k].mass;
+  def.angular_velocity = angular_velocity;
+  def.inertia = inertia(k);
   Vec2 foot(0.5, 0.5);
   result.error = place(def, landing, id, foot);
   if (!result.error.empty())
     return result;
   balls_[k].position = def.position;
   balls_[k].velocity = def.velocity;
+  if (friction_)
+    spins_[k] = makeSpin(def);
   if (ground_.bends())
     feet_[k] = foot;
   forgetOrder();
@@ -256,11 +311,22 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
 
 AddResult World::applyImpulse(int id, const Vec3& impulse)
 {
+  return strike(id, impulse, Vec3::Zero());
+}
+
+AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
+{
   const std::size_t k = indexOf(id);
   if (k == balls_.size())
     return refused(id, "id: no ball has id " + std::to_string(id));
   if (!impulse.allFinite())
     return refused(id, "impulse: must be finite");
+  if (!offset.allFinite())
+    return refused(id, "offset: must be finite");
+  // (within kContactTolerance of the surface is on it)
+  if (offset.norm() > balls_[k].radius + kContactTolerance)
+    return refused(id, "offset: must be at most the ball's radius " + formatNumber(balls_[k].radius) + " m from its centre (got " +
+                           formatNumber(offset.norm()) + " m)");
   AddResult result;
   result.id = id;
   Ball& ball = balls_[k];
@@ -271,6 +337,19 @@ AddResult World::applyImpulse(int id, const Vec3& impulse)
     result.error = "impulse: would give ball " + std::to_string(id) + " a speed of " +
                    formatNumber(velocity.stableNorm()) + " m/s, past the limit of " + formatNumber(kMaxSpeed) + " m/s";
     return result;
+  }
+  if (friction_)
+  {
+    BallSpin& spin = spins_[k];
+    const Vec3 w = spin.angular_velocity + offset.cross(impulse) / (spin.inertia * ball.mass * ball.radius * ball.radius);
+    if (!(w.stableNorm() <= kMaxSpin))
+    {
+      result.error = "impulse: would give ball " + std::to_string(id) + " a spin of " + formatNumber(w.stableNorm()) +
+                     " rad/s, past the limit of " + formatNumber(kMaxSpin) + " rad/s";
+      return result;
+    }
+    spin.angular_velocity = w;
+    spin.kind = friction_->kindOf(spin.inertia, ball.radius, velocity, w);
   }
   ball.velocity = velocity;
   forgetOrder();
@@ -309,6 +388,8 @@ bool World::removeBall(int id)
     return false;
   if (!feet_.empty())
     feet_.erase(feet_.begin() + static_cast<std::ptrdiff_t>(k));
+  if (!spins_.empty())
+    spins_.erase(spins_.begin() + static_cast<std::ptrdiff_t>(k));
   balls_.erase(balls_.begin() + static_cast<std::ptrdiff_t>(k));
   forgetOrder();
   return true;

@@ -76,6 +76,8 @@ void writeRandomBalls(std::ostream& out, const core::RandomBallsDef& random)
 {
   out << "random_balls:\n  count: " << random.count << "\n  seed: " << random.seed << "\n  radius: " << range(random.radius)
       << "\n  mass: " << range(random.mass) << "\n  speed: " << range(random.speed) << "\n";
+  if (random.inertia != core::kSolidInertia)
+    out << "  inertia: " << real(random.inertia) << "\n";
   if (random.region)
     out << "  region: {min: " << vec(random.region->min) << ", max: " << vec(random.region->max) << "}\n";
 }
@@ -106,6 +108,13 @@ std::string writeScene(const core::Scene& scene, const NodeSettings& node)
       << "\nrestitution: " << real(scene.restitution) << "\n";
   if (scene.floor)
     writeFloor(out, *scene.floor);
+  if (scene.friction)
+  {
+    const core::FrictionDef& f = *scene.friction;
+    out << "friction: {sliding: " << real(f.sliding) << ", rolling: " << real(f.rolling)
+        << ", spinning: " << real(f.spinning) << ", ball_ball: " << real(f.ball_ball) << ", wall: " << real(f.wall)
+        << "}\n";
+  }
   out << "walls:" << (scene.walls.empty() ? " []" : "") << "\n";
   for (const core::WallDef& wall : scene.walls)
   {
@@ -116,8 +125,15 @@ std::string writeScene(const core::Scene& scene, const NodeSettings& node)
   }
   out << "balls:" << (scene.balls.empty() ? " []" : "") << "\n";
   for (const core::BallDef& ball : scene.balls)
+  {
     out << "  - {position: " << vec(ball.position) << ", velocity: " << vec(ball.velocity)
-        << ", radius: " << real(ball.radius) << ", mass: " << real(ball.mass) << "}\n";
+        << ", radius: " << real(ball.radius) << ", mass: " << real(ball.mass);
+    if (ball.angular_velocity)
+      out << ", angular_velocity: " << vec(*ball.angular_velocity);
+    if (ball.inertia != core::kSolidInertia)
+      out << ", inertia: " << real(ball.inertia);
+    out << "}\n";
+  }
   if (scene.random_balls)
     writeRandomBalls(out, *scene.random_balls);
   writeNodeSettings(out, node);

@@ -504,9 +504,39 @@ core::WallDef readWall(const YAML::Node& node, const std::string& key)
   return wall;
 }
 
+/// `solid` (k = 2/5), `hollow` (k = 2/3) or a number k (checked to be in (0, 1] with the scene).
+double readInertia(const YAML::Node& node, const std::string& key)
+{
+  if (node.IsScalar() && node.Scalar() == "solid")
+    return core::kSolidInertia;
+  if (node.IsScalar() && node.Scalar() == "hollow")
+    return core::kHollowInertia;
+  try
+  {
+    return readNumber(node, key);
+  }
+  catch (const KeyError&)
+  {
+    fail(key, "expected solid, hollow or a number k in (0, 1], got " + describe(node));
+  }
+}
+
+core::FrictionDef readFriction(const YAML::Node& node, const std::string& key)
+{
+  const MapFields fields(node, key, {"sliding", "rolling", "spinning", "ball_ball", "wall"});
+  core::FrictionDef friction;
+  for (const auto& [name, value] :
+       {std::pair{"sliding", &friction.sliding}, std::pair{"rolling", &friction.rolling},
+        std::pair{"spinning", &friction.spinning}, std::pair{"ball_ball", &friction.ball_ball},
+        std::pair{"wall", &friction.wall}})
+    if (const YAML::Node* found = fields.find(name))
+      *value = readNumber(*found, fields.keyOf(name));
+  return friction;
+}
+
 core::BallDef readBall(const YAML::Node& node, const std::string& key)
 {
-  const MapFields fields(node, key, {"position", "velocity", "radius", "mass"});
+  const MapFields fields(node, key, {"position", "velocity", "radius", "mass", "angular_velocity", "inertia"});
   core::BallDef ball;
   ball.position = readVec3(fields.require("position"), fields.keyOf("position"));
   ball.velocity = Vec3::Zero();
@@ -520,12 +550,20 @@ core::BallDef readBall(const YAML::Node& node, const std::string& key)
   {
     ball.mass = readNumber(*mass, fields.keyOf("mass"));
   }
+  if (const YAML::Node* spin = fields.find("angular_velocity"))
+  {
+    ball.angular_velocity = readVec3(*spin, fields.keyOf("angular_velocity"));
+  }
+  if (const YAML::Node* inertia = fields.find("inertia"))
+  {
+    ball.inertia = readInertia(*inertia, fields.keyOf("inertia"));
+  }
   return ball;
 }
 
 core::RandomBallsDef readRandomBalls(const YAML::Node& node, const std::string& key)
 {
-  const MapFields fields(node, key, {"count", "seed", "radius", "mass", "speed", "region"});
+  const MapFields fields(node, key, {"count", "seed", "radius", "mass", "speed", "region", "inertia"});
   core::RandomBallsDef random;
   random.count = readInt(fields.require("count"), fields.keyOf("count"));
   if (const YAML::Node* seed = fields.find("seed"))
@@ -543,6 +581,10 @@ core::RandomBallsDef readRandomBalls(const YAML::Node& node, const std::string& 
   if (const YAML::Node* speed = fields.find("speed"))
   {
     random.speed = readRange(*speed, fields.keyOf("speed"));
+  }
+  if (const YAML::Node* inertia = fields.find("inertia"))
+  {
+    random.inertia = readInertia(*inertia, fields.keyOf("inertia"));
   }
   if (const YAML::Node* region_node = fields.findSection("region"))
   {
@@ -628,8 +670,8 @@ SceneFile readSceneFile(const YAML::Node& root)
   {
     fail("", "the scene must be a YAML map, got " + (root.IsNull() ? std::string("an empty document") : describe(root)));
   }
-  std::vector<std::string_view> allowed{"frame_id", "dt",    "gravity", "restitution",
-                                        "floor",    "walls", "balls",   "random_balls"};
+  std::vector<std::string_view> allowed{"frame_id", "dt",    "gravity", "restitution", "floor",
+                                        "friction", "walls", "balls",   "random_balls"};
   allowed.insert(allowed.end(), kNodeOnlyKeys.begin(), kNodeOnlyKeys.end());
   const MapFields fields(root, "", allowed);
 
@@ -654,6 +696,10 @@ SceneFile readSceneFile(const YAML::Node& root)
   if (const YAML::Node* floor = fields.findSection("floor"))
   {
     scene.floor = readFloor(*floor, "floor");
+  }
+  if (const YAML::Node* friction = fields.findSection("friction"))
+  {
+    scene.friction = readFriction(*friction, "friction");
   }
   const std::vector<YAML::Node> walls = readList(fields.find("walls"), "walls");
   for (std::size_t i = 0; i < walls.size(); ++i)

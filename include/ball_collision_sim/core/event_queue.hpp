@@ -19,6 +19,8 @@ struct StepEvent
   std::uint32_t epoch_j;
   bool wall;
   WallFeature feature;
+  /// Not an impact: ball i's friction phase ends (j = i, `wall` false).
+  bool transition;
   Vec3 normal;               ///< ball-wall: unit, from the wall toward the ball
 };
 

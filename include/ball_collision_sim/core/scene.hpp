@@ -41,12 +41,30 @@ struct WallDef
   std::optional<double> restitution;
 };
 
+/// A ball's moment of inertia is k m r^2: a solid ball k = 2/5, a hollow one 2/3.
+constexpr double kSolidInertia = 2.0 / 5;
+constexpr double kHollowInertia = 2.0 / 3;
+
 struct BallDef
 {
   Vec3 position = Vec3::Zero();  ///< centre [m]; put on the floor when there is one
   Vec3 velocity = Vec3::Zero();  ///< [m/s]; its part normal to the floor is dropped
   double radius = 0.1;           ///< [m]
   double mass = 1.0;             ///< [kg]
+  /// [rad/s]; unset: rolling without slip on the floor under it, n x v / r (the part
+  /// about the floor's normal 0). Only a world with friction keeps a ball's own spin.
+  std::optional<Vec3> angular_velocity;
+  double inertia = kSolidInertia;  ///< k in I = k m r^2, in (0, 1]
+};
+
+/// Friction coefficients (Lakså and Bang 2005; pooltool's motion states). All >= 0.
+struct FrictionDef
+{
+  double sliding = 0.0;    ///< mu_s, Coulomb ball-floor
+  double rolling = 0.0;    ///< mu_r, rolling resistance
+  double spinning = 0.0;   ///< mu_sp, spin about the floor's normal
+  double ball_ball = 0.0;  ///< Coulomb at ball-ball impacts
+  double wall = 0.0;       ///< Coulomb at ball-wall impacts
 };
 
 struct Range
@@ -63,6 +81,7 @@ struct RandomBallsDef
   Range radius{0.05, 0.1};  ///< uniform [m]
   Range mass{1.0, 1.0};     ///< uniform [kg]
   Range speed{0.0, 2.0};    ///< uniform [m/s]; direction uniform in the tangent plane
+  double inertia = kSolidInertia;  ///< k of every ball, as BallDef::inertia
   struct Region
   {
     Vec2 min = Vec2::Zero();  ///< [m], x and y
@@ -79,6 +98,9 @@ struct Scene
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);      ///< [m/s^2]
   double restitution = 1.0;                  ///< default for every contact, 0..1
   std::optional<FloorDef> floor;             ///< balls move on it when present
+  /// Balls have their own spin and the floor's friction acts on them; absent: balls slide
+  /// without friction, their spin that of rolling (the same bits as ever).
+  std::optional<FrictionDef> friction;
   std::vector<WallDef> walls;
   std::vector<BallDef> balls;
   std::optional<RandomBallsDef> random_balls;

@@ -81,6 +81,13 @@ struct StepSettings
   double slide_longest_reach = 0.5;
   int slide_doublings = 64;
 
+  // ---- friction ----------------------------------------------------------------------
+  /// A slip of the contact point smaller than this part of the ball's speeds (|v| plus
+  /// r times its spin along the floor) is round-off, of a transition or of the input: the
+  /// ball rolls, and the sticking impulse that takes the slip away costs at most this
+  /// part squared of its energy [ratio].
+  double slip_tolerance = 1e-12;
+
   // ---- the floor's kind ---------------------------------------------------------------
   /// Gravity along a plane floor shorter than this part of gravity is none: balls move
   /// in straight lines between impacts there [ratio].

@@ -18,6 +18,11 @@ constexpr double kMaxLength = 1e6;
 constexpr double kMinLength = 1e-6;
 /// Largest speed accepted [m/s].
 constexpr double kMaxSpeed = 1e7;
+/// Largest angular speed accepted [rad/s]: kMaxSpeed over the smallest radius.
+constexpr double kMaxSpin = kMaxSpeed / kMinLength;
+/// Largest friction coefficient accepted: far above any real surface's (rubber on
+/// concrete is about 1); a typo such as 20 for 0.2 is refused.
+constexpr double kMaxFriction = 10.0;
 /// Largest mass accepted [kg].
 constexpr double kMaxMass = 1e12;
 /// Smallest mass accepted [kg]: below it 1 / m overflows.

@@ -5,6 +5,7 @@
 #include "ball_collision_sim/core/collision_event.hpp"
 #include "ball_collision_sim/core/event_queue.hpp"
 #include "ball_collision_sim/core/floor.hpp"
+#include "ball_collision_sim/core/friction.hpp"
 #include "ball_collision_sim/core/ground.hpp"
 #include "ball_collision_sim/core/placement.hpp"
 #include "ball_collision_sim/core/scene.hpp"
@@ -23,9 +24,27 @@ namespace ball_collision_sim::core
 /// Energy of the world; potential is measured from the origin along gravity.
 struct Energy
 {
-  double kinetic = 0.0;    ///< sum of m |v|^2 / 2 [J]
-  double potential = 0.0;  ///< sum of -m <g, p> [J]
-  double total() const { return kinetic + potential; }
+  double kinetic = 0.0;     ///< sum of m |v|^2 / 2 [J]
+  double rotational = 0.0;  ///< sum of k m r^2 |w|^2 / 2 where the world has friction, else 0 [J]
+  double potential = 0.0;   ///< sum of -m <g, p> [J]
+  double total() const { return kinetic + rotational + potential; }
+};
+
+/// A ball's own spin, kept where the world has friction.
+struct BallSpin
+{
+  Vec3 angular_velocity = Vec3::Zero();      ///< [rad/s]
+  double inertia = kSolidInertia;            ///< k in I = k m r^2
+  MotionKind kind = MotionKind::kStationary;
+};
+
+/// A ball's motion kind changed (a world with friction): at a phase's end or an impact.
+struct MotionTransition
+{
+  double time = 0.0;  ///< exact [s]
+  int ball = -1;      ///< id
+  MotionKind from = MotionKind::kSliding;
+  MotionKind to = MotionKind::kSliding;
 };
 
 /// Counters since construction or the last reset.
@@ -41,6 +60,7 @@ struct WorldStats
   std::uint64_t held_balls = 0;
   std::uint64_t sleeping_balls = 0;  ///< balls asleep after the last step (not a sum)
   std::uint64_t woken_balls = 0;     ///< balls woken by impacts
+  std::uint64_t transitions = 0;     ///< changes of a ball's motion kind (friction)
 };
 
 /// Result of adding or editing an object: ok, or the reason it was refused (the world
@@ -103,6 +123,10 @@ public:
   void recordEvents(bool record);
   bool recordsEvents() const { return record_events_; }
   const WorldStats& stats() const { return stats_; }
+  /// The friction block of the scene, or none (balls slide without friction).
+  const std::optional<FrictionDef>& friction() const { return scene_.friction; }
+  /// Changes of motion kind in the last step, in time order (empty without friction).
+  const std::vector<MotionTransition>& lastTransitions() const { return transitions_; }
 
   Energy energy() const;
   Vec3 momentum() const;
@@ -116,9 +140,15 @@ public:
   std::uint64_t stateHash() const;
   /// The ball with this id, or nullptr.
   const Ball* findBall(int id) const;
-  /// The angular velocity of balls()[k], rolling without slip: n x v / r, n the floor's
-  /// normal under it (up without a floor) [rad/s].
+  /// The angular velocity of balls()[k]: its own where the world has friction; else that
+  /// of rolling without slip, n x v / r, n the floor's normal under it (up without a
+  /// floor) [rad/s].
   Vec3 angularVelocity(std::size_t k) const;
+  /// How balls()[k] moves: with friction its state; without, rolling while it moves.
+  MotionKind motionKind(std::size_t k) const;
+  /// k in balls()[k]'s moment of inertia k m r^2 (the scene's where the world keeps no
+  /// spins: without friction it plays no part).
+  double inertia(std::size_t k) const;
 
   /// Adds a ball (put on the floor as `landing` says) unless it is invalid, overlaps
   /// something or is off the floor; then nothing changes. Ids start at kFirstId.
@@ -127,11 +157,17 @@ public:
   /// (less its part normal to the floor), keeping its id, radius, mass and orientation.
   /// Refused, nothing changed, when no ball has the id, a value is bad, or the ball would
   /// be off the floor or overlap a wall or another ball.
-  AddResult setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing = Landing::kUnder);
+  /// With friction, `angular_velocity` sets its spin (unset: rolling without slip).
+  AddResult setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing = Landing::kUnder,
+                         const std::optional<Vec3>& angular_velocity = std::nullopt);
   /// Adds impulse / mass to ball `id`'s velocity [impulse: N s]; on a floor, the part of
   /// the change along the floor's normal goes into the floor. Refused, nothing changed,
   /// when no ball has the id or the impulse is not finite or gives a speed past kMaxSpeed.
   AddResult applyImpulse(int id, const Vec3& impulse);
+  /// A cue's strike: impulse J [N s] at `offset` [m] from the ball's centre (|offset| at
+  /// most its radius): dv = J / m (less its part into the floor), dw = offset x J / (k m r^2)
+  /// where the world has friction. Refused, nothing changed, as applyImpulse().
+  AddResult strike(int id, const Vec3& impulse, const Vec3& offset);
   /// Adds a wall unless it is degenerate or cuts through a ball.
   AddResult addWall(const WallDef& def);
   /// False when no ball has this id.
@@ -141,6 +177,7 @@ public:
 private:
   struct Motion;
   struct MotionState;
+  struct SpinMotion;
   struct BlockedSet;
   using Event = StepEvent;
   /// Two balls resting on each other: no closing speed is left at the step's end.
@@ -157,6 +194,8 @@ private:
   void forgetOrder();
   /// The ball of `placed`, a definition already put on the floor.
   static Ball makeBall(int id, const BallDef& placed);
+  /// The spin record of `placed` (worlds with friction).
+  BallSpin makeSpin(const BallDef& placed) const;
   /// Why `def` cannot stand in the world (ignoring ball `ignore_id`), or ""; else `def`
   /// is put on the floor as `landing` says and `foot` gets its foot point (u, v).
   std::string place(BallDef& def, Landing landing, int ignore_id, Vec2& foot) const;
@@ -251,6 +290,30 @@ private:
   /// Ball i's motion's rate of change at x, per unit of x [m], and its parabola term (zero for a chord).
   Vec3 rateAt(std::size_t i, double x) const;
   Vec3 parabolaOf(std::size_t i) const;
+  /// The parabola term of ball i's free motion: the world's path_c_, or with friction its own.
+  const Vec3& pathTerm(std::size_t i) const;
+
+  // Friction (src/core/step/friction.cpp).
+  /// Ball i's friction phase from x on, from its start velocity and spin_motions_[i].w0;
+  /// a change of motion kind is recorded when `record`. A phase without friction force
+  /// (SpinMotion::conservative) is left for the caller to move as a frictionless ball.
+  void startFriction(std::size_t i, double x, bool record);
+  /// Ball i's motion from x on has no friction phase (held, frozen, kept out of blocked
+  /// directions): its spin stays as it is.
+  void keepSpin(std::size_t i);
+  Vec3 spinAt(std::size_t i, double x) const;
+  /// Queues the end of ball i's phase when it falls within the step.
+  void queueTransition(std::size_t i);
+  void resolveTransition(const Event& event);
+  /// Tangential impulses at an impact (ball_ball and wall friction): opposing the slip of
+  /// the touching points, at most mu times the normal impulse, never reversing the slip.
+  void ballBallFriction(const PairContact& c, double normal_impulse, Vec3& va, Vec3& vb, Vec3& wa, Vec3& wb) const;
+  void ballWallFriction(std::size_t i, const Vec3& n, const Vec3& floor_normal, double normal_impulse, Vec3& v,
+                        Vec3& w) const;
+  /// Turns ball i by the rotation vector `angle` [rad].
+  void turn(std::size_t i, const Vec3& angle);
+  /// The spin of a ball defined by `def` on the floor with normal n: its own, or rolling's.
+  static Vec3 spinOf(const BallDef& def, const Vec3& n);
   /// A parabola motion of ball i becomes its chord (the same end): the resting-contact
   /// corrections work on chords.
   void toChord(std::size_t i);
@@ -311,6 +374,10 @@ private:
   /// The parabola term of free balls' motions, a dt^2 / 2 with the ground's path
   /// acceleration a [m]; parabolas_ where it is not zero.
   Vec3 path_c_ = Vec3::Zero();
+  /// Free balls without friction move on parabolas (path_c_ not zero).
+  bool free_parabolas_ = false;
+  /// Some motions are parabolas: free_parabolas_, or a world with friction, where each
+  /// ball's phase has its own (SpinMotion::c).
   bool parabolas_ = false;
   std::vector<Wall> walls_;
   std::vector<Ball> balls_;
@@ -341,5 +408,12 @@ private:
   bool record_events_ = true;
   std::vector<RestingContact> resting_;
   std::vector<BlockedSet> blocked_sets_;
+
+  /// With friction (a plane floor): the laws under its normal, each ball's spin beside
+  /// balls_, the step's phases by visiting index, and the step's changes of kind.
+  std::optional<FrictionLaw> friction_;
+  std::vector<BallSpin> spins_;
+  std::vector<SpinMotion> spin_motions_;
+  std::vector<MotionTransition> transitions_;
 };
 }  // namespace ball_collision_sim::core

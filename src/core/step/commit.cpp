@@ -92,6 +92,16 @@ World::Committed World::commitBall(std::size_t i, bool settle)
   const Vec3 moved = end.centre - ball.position;
   ball.position = end.centre;
   ball.velocity = states_[i].frozen ? Vec3::Zero() : onFloorVelocity(i, 1.0, end.centre, end.normal);
+  if (friction_)
+  {
+    // its own spin at the end, and its turn over the step by the mean of its spins
+    SpinMotion& sm = spin_motions_[i];
+    BallSpin& spin = spins_[order_[i]];
+    const Vec3 w = spinAt(i, 1.0);
+    sm.turn = (0.5 * dt_) * (spin.angular_velocity + w);
+    spin.angular_velocity = w;
+    spin.kind = sm.kind;
+  }
   return {moved, end.normal};
 }
 
@@ -133,6 +143,11 @@ void World::settleRestingVelocities()
 
 void World::roll(std::size_t i, const Vec3& normal, const Vec3& d)
 {
+  if (friction_)
+  {
+    turn(i, spin_motions_[i].turn);  // by its own spin
+    return;
+  }
   // Rolling without slip: turned by |d| / r about n x d, d the move along the floor
   // (|n x d| is its length). Its angular velocity follows from n and v when asked for.
   Ball& ball = balls_[order_[i]];

@@ -25,12 +25,17 @@ void World::findFirstImpacts()
 {
   grid_.forEachNearObstacle([&](std::uint32_t i) { detectWalls(i); });
   grid_.forEachPair([&](std::uint32_t i, std::uint32_t j) { detectBall(i, j); });
+  if (friction_)
+    for (std::size_t i = 0; i < motions_.size(); ++i)
+      queueTransition(i);
 }
 
 void World::detect(std::size_t i)
 {
   detectWalls(i);
   grid_.query(static_cast<std::uint32_t>(i), [&](std::uint32_t j) { detectBall(i, j); });
+  if (friction_)
+    queueTransition(i);
 }
 
 void World::detectWalls(std::size_t i)
@@ -48,7 +53,7 @@ void World::detectWalls(std::size_t i)
                                 : sweepWall(wall, m.p0, m.b, m.radius, 1 - m.x0, settings_.closing_slop);
     if (hit)
       queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), states_[i].epoch, 0,
-                      true, hit->feature, hit->normal});
+                      true, hit->feature, false, hit->normal});
   }
 }
 
@@ -77,6 +82,6 @@ void World::detectBall(std::size_t i, std::size_t j)
   }
   if (t)
     queue_.push(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), states_[a].epoch, states_[b].epoch,
-                    false, WallFeature::kFace, Vec3::Zero()});
+                    false, WallFeature::kFace, false, Vec3::Zero()});
 }
 }  // namespace ball_collision_sim::core

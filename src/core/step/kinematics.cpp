@@ -20,18 +20,18 @@ Vec3 World::positionAt(std::size_t i, double x) const
   if (!parabolas_ || !states_[i].accelerates)
     return p;
   const double s = x - m.x0;
-  return p + (s * s) * path_c_;
+  return p + (s * s) * pathTerm(i);
 }
 
 Vec3 World::rateAt(std::size_t i, double x) const
 {
   const Motion& m = motions_[i];
-  return parabolas_ && states_[i].accelerates ? Vec3(m.b + (2 * (x - m.x0)) * path_c_) : m.b;
+  return parabolas_ && states_[i].accelerates ? Vec3(m.b + (2 * (x - m.x0)) * pathTerm(i)) : m.b;
 }
 
 Vec3 World::parabolaOf(std::size_t i) const
 {
-  return parabolas_ && states_[i].accelerates ? path_c_ : Vec3::Zero();
+  return parabolas_ && states_[i].accelerates ? pathTerm(i) : Vec3::Zero();
 }
 
 void World::toChord(std::size_t i)
@@ -39,8 +39,10 @@ void World::toChord(std::size_t i)
   if (!states_[i].accelerates)
     return;
   Motion& m = motions_[i];
-  m.b += (1 - m.x0) * path_c_;
+  m.b += (1 - m.x0) * pathTerm(i);
   states_[i].accelerates = false;
+  if (friction_)
+    keepSpin(i);
 }
 
 Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
@@ -51,6 +53,8 @@ Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
 Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
   const Motion& m = motions_[i];
+  if (friction_ && spin_motions_[i].free && !spin_motions_[i].conservative)
+    return startVelocity(i) + ((x - m.x0) * dt_) * spin_motions_[i].a;
   return ground_.velocityAt(startVelocity(i), (x - m.x0) * dt_, m.p0, position, normal);
 }
 
@@ -96,15 +100,27 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   if (states_[i].frozen)
   {
     v0 = m.b = Vec3::Zero();
+    if (friction_)
+      keepSpin(i);
     return;
   }
   v0 = redirected(i, velocity);
   if (states_[i].held)
   {
     m.b = Vec3::Zero();  // still held (no impact let it go): it keeps no motion
+    if (friction_)
+      keepSpin(i);
     return;
   }
-  if (parabolas_ && states_[i].blocked < 0)
+  if (friction_ && states_[i].blocked < 0)
+  {
+    startFriction(i, x, true);  // the phase its velocity and spin give it
+    if (!spin_motions_[i].conservative)
+      return;
+  }
+  else if (friction_)
+    keepSpin(i);  // (leaning on something: no friction phase until the next step)
+  if (free_parabolas_ && states_[i].blocked < 0)
   {
     // free: the parabola the ground gives it, exactly
     m.b = dt_ * v0;
@@ -119,6 +135,7 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   if (states_[i].held)
     m.b = Vec3::Zero();
 }
+
 
 Vec3 World::onFloor(std::size_t i, const Vec3& q) const
 {

@@ -44,6 +44,7 @@ void World::predictMotions()
     return;  // the last step's commit predicted them
   motions_.resize(balls_.size());
   states_.resize(balls_.size());
+  spin_motions_.resize(friction_ ? balls_.size() : 0);
   floor_uv_.resize(feet_.empty() ? 0 : balls_.size());  // where balls keep foot points
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
@@ -65,10 +66,28 @@ void World::predictMotion(std::size_t i)
   if (ball.asleep)
   {
     states_[i].frozen = states_[i].asleep = true;  // where it is, an obstacle, until woken
+    if (friction_)
+    {
+      spin_motions_[i].w0 = spins_[order_[i]].angular_velocity;
+      spin_motions_[i].kind = spins_[order_[i]].kind;
+      keepSpin(i);
+    }
     grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, m.p0, ball.radius));
     return;
   }
-  if (parabolas_)
+  if (friction_)
+  {
+    SpinMotion& sm = spin_motions_[i];
+    sm.w0 = spins_[order_[i]].angular_velocity;
+    sm.kind = spins_[order_[i]].kind;
+    startFriction(i, 0.0, false);  // (a change of kind was recorded where the last phase ended)
+    if (!spin_motions_[i].conservative)
+    {
+      grid_.setBox(static_cast<std::uint32_t>(i), currentBox(i));
+      return;
+    }
+  }
+  if (free_parabolas_)
   {
     m.b = dt_ * ball.velocity;  // the parabola the ground gives a free ball
     states_[i].accelerates = true;
@@ -98,7 +117,7 @@ Aabb World::currentBox(std::size_t i) const
     return sweptBox(m.p0, m.p0 + rest * m.b, m.radius);
   // the parabola lies within (rest^2 / 4) |c| of its chord, along each axis
   Aabb box = sweptBox(m.p0, positionAt(i, 1.0), m.radius);
-  const Vec3 sag = (0.25 * rest * rest) * path_c_.cwiseAbs();
+  const Vec3 sag = (0.25 * rest * rest) * pathTerm(i).cwiseAbs();
   box.min -= sag;
   box.max += sag;
   return box;

@@ -35,7 +35,9 @@ void World::resolveEventsInTimeOrder()
       ++stats_.stale_events;  // a ball involved has had an event since this was found
       continue;
     }
-    if (event.wall)
+    if (event.transition)
+      resolveTransition(event);
+    else if (event.wall)
       resolveBallWall(event);
     else
       resolveBallBall(event);
@@ -50,6 +52,7 @@ void World::resolveBallWall(const Event& event)
   const Vec3 p = positionAt(i, event.x);
   const Vec3 floor_normal = floorNormalAt(i, p);
   Vec3 v = onFloorVelocity(i, event.x, p, floor_normal);
+  Vec3 w = friction_ ? spinAt(i, event.x) : Vec3::Zero();
 
   const Vec3 n = -event.normal;  // from the ball toward the wall
   Vec3 dir = ground_.along(n, floor_normal);
@@ -62,6 +65,12 @@ void World::resolveBallWall(const Event& event)
   const double impulse =
       collisionImpulse(std::max(closing, 0.0), inv_mass, dir, 0.0, dir, resting ? 0.0 : wall.restitution);
   v -= (impulse * inv_mass) * dir;
+  if (friction_)
+  {
+    if (!resting)
+      ballWallFriction(i, n, floor_normal, impulse, v, w);
+    spin_motions_[i].w0 = w;
+  }
 
   if (resting)
   {
@@ -93,6 +102,8 @@ void World::resolveBallBall(const Event& event)
     va = Vec3::Zero();
   if (states_[j].frozen)
     vb = Vec3::Zero();
+  Vec3 wa = friction_ ? spinAt(i, event.x) : Vec3::Zero();
+  Vec3 wb = friction_ ? spinAt(j, event.x) : Vec3::Zero();
 
   Vec3 n = pb - pa;
   const double dist = n.norm();
@@ -121,6 +132,13 @@ void World::resolveBallBall(const Event& event)
   vb += (impulse * inv_b) * tb;
 
   const PairContact pair{i, j, n, na, nb, along_a, along_b, ta, tb, inv_a, inv_b};
+  if (friction_)
+  {
+    if (!resting)
+      ballBallFriction(pair, impulse, va, vb, wa, wb);
+    spin_motions_[i].w0 = wa;
+    spin_motions_[j].w0 = wb;
+  }
   const bool both_still = resting && blockAtRest(pair, va, vb);
   startMotion(i, event.x, pa, va, !resting);
   startMotion(j, event.x, pb, vb, !resting);
@@ -144,6 +162,8 @@ void World::countEvent(std::size_t i)
     startVelocity(i) = Vec3::Zero();
     motions_[i].b = Vec3::Zero();
     m.accelerates = false;
+    if (friction_)
+      keepSpin(i);
     ++stats_.frozen_balls;
   }
   // its new motion may reach beyond where the grid has it

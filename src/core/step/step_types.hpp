@@ -55,6 +55,26 @@ struct World::MotionState
   std::int32_t blocked = -1;     ///< its BlockedSet this step, if any
 };
 
+/// A ball's friction phase in the step (worlds with friction), by visiting index: while
+/// `free`, its motion's parabola term is c = a dt^2 / 2 and its spin at x is
+/// w0 + alpha (x - x0) dt, until x_end, where the phase ends as `ends` says.
+struct World::SpinMotion
+{
+  Vec3 w0 = Vec3::Zero();     ///< spin at the motion's start [rad/s]
+  Vec3 alpha = Vec3::Zero();  ///< angular acceleration [rad/s^2]
+  Vec3 a = Vec3::Zero();      ///< acceleration [m/s^2]
+  Vec3 c = Vec3::Zero();      ///< a dt^2 / 2 [m]
+  /// at the commit: the rotation over the step [rad]
+  Vec3 turn = Vec3::Zero();
+  double x_end = 2.0;         ///< where the phase ends (beyond 1: not in this step)
+  MotionKind kind = MotionKind::kStationary;
+  std::uint8_t ends = kPhaseRuns;
+  /// the motion follows the friction phase (else a chord or still, the spin kept)
+  bool free = false;
+  /// no friction force in the phase: the velocity is a frictionless ball's (Ground)
+  bool conservative = false;
+};
+
 /// Unit directions a ball may not move along for the rest of the step: toward a wall it
 /// leans on, or toward a ball that cannot give way. A ball in a corner or in a pile at
 /// rest has several; most balls have none, and no set.

@@ -1,0 +1,103 @@
+#pragma once
+
+#include "ball_collision_sim/core/scene.hpp"
+#include "ball_collision_sim/core/types.hpp"
+
+#include <cstdint>
+
+namespace ball_collision_sim::core
+{
+/// How a ball moves on the floor (pooltool's motion states).
+enum class MotionKind : std::uint8_t
+{
+  kSliding,     ///< its contact point slips on the floor
+  kRolling,     ///< moving without slip
+  kSpinning,    ///< still, turning about the floor's normal only
+  kStationary,  ///< still, not turning
+};
+/// "sliding", "rolling", "spinning", "stationary"
+const char* motionKindName(MotionKind kind);
+
+/// What ends a phase of constant accelerations (bits; several may end at once).
+enum PhaseEnd : std::uint8_t
+{
+  kPhaseRuns = 0,
+  kSlipStops = 1,  ///< the contact point's slip reaches zero
+  kBallStops = 2,  ///< the ball's velocity reaches zero
+  kSpinStops = 4,  ///< the spin about the floor's normal reaches zero
+};
+
+/// A stretch of a ball's motion on a plane under the friction laws, with constant
+/// linear and angular acceleration, up to the first transition.
+struct FrictionPhase
+{
+  MotionKind kind = MotionKind::kSliding;
+  Vec3 acceleration = Vec3::Zero();          ///< [m/s^2], along the floor
+  Vec3 angular_acceleration = Vec3::Zero();  ///< [rad/s^2]
+  double duration = 0.0;                     ///< [s] until `ends`; infinite where nothing ends it
+  std::uint8_t ends = kPhaseRuns;            ///< PhaseEnd bits
+  /// No friction force acts (its acceleration is gravity's along the floor): the motion
+  /// is a frictionless ball's, and keeps its energy as one does.
+  bool conservative = false;
+};
+
+/// The friction laws of a ball of radius r and inertia k m r^2 on a floor with unit normal
+/// n (against gravity) under gravity g; g_n = -<g, n>, g_t = g + g_n n, slip u = v + r n x w.
+///   sliding:    dv/dt = g_t - mu_s g_n u/|u|,  dw/dt = (mu_s g_n / (k r)) n x u/|u|
+///   rolling:    dv/dt = g_t / (1 + k) - mu_r g_n v/|v|,  w = n x v / r + (w.n) n
+///   stationary: while |g_t| / (1 + k) <= mu_r g_n
+///   spin about n decays at mu_sp g_n / (k r) in every state.
+/// The slip's and the velocity's directions are those at the phase's start: exact on a
+/// plane square to gravity and along a tilted plane's fall line, where they stay; elsewhere
+/// the phase is a step of first order, which the world starts again every step.
+class FrictionLaw
+{
+public:
+  /// `along`: gravity's part along the floor, as the floor gives it (zero where it is
+  /// round-off), so that a motion without friction force is a frictionless ball's.
+  FrictionLaw(const FrictionDef& mu, const Vec3& normal, const Vec3& gravity, const Vec3& along, double slip_tolerance);
+
+  /// The phase that starts from (v, w). A slip below slip_tolerance of the ball's speeds
+  /// is taken away (by the sticking impulse, as at the end of a sliding phase, where
+  /// there is sliding friction) and a rolling ball's spin made exactly
+  /// n x v / r + (w.n) n, so v and w may change.
+  FrictionPhase start(double k, double r, Vec3& v, Vec3& w) const;
+  /// The motion kind start() would give, without changing anything.
+  MotionKind kindOf(double k, double r, const Vec3& v, const Vec3& w) const;
+  /// The state at a phase's end made exact: slip 0 by the impulse at the contact point
+  /// that stops it (which keeps the angular momentum about that point and loses energy),
+  /// velocity 0 (and the spin of rolling with it), spin about n 0, as `ends` says. A
+  /// velocity left by the sticking impulse below slip_tolerance of `speeds`, the ball's
+  /// speeds at the phase's start (|v| + r |w along the floor|), is round-off of a ball
+  /// stopping dead (a stop shot): it is 0.
+  void finish(std::uint8_t ends, double k, double r, double speeds, Vec3& v, Vec3& w) const;
+  /// |v| + r |w along the floor|: what slip_tolerance is a part of [m/s].
+  double speeds(double r, const Vec3& v, const Vec3& w) const
+  {
+    return v.norm() + r * (w - w.dot(normal_) * normal_).norm();
+  }
+  /// The contact point's slip on the floor, v + r n x w.
+  Vec3 slip(double r, const Vec3& v, const Vec3& w) const { return v + r * normal_.cross(w); }
+  const Vec3& normal() const { return normal_; }
+
+private:
+  /// Removes slip u by the impulse at the contact point that stops it.
+  void stick(double k, double r, Vec3& v, Vec3& w) const;
+  FrictionPhase sliding(double k, double r, const Vec3& u_direction, double u_norm) const;
+  FrictionPhase rolling(double k, double r, const Vec3& v, const Vec3& direction) const;
+  /// Adds the decay of the spin about n to `phase`.
+  void spinDecay(double k, double r, double wn, FrictionPhase& phase) const;
+
+  FrictionDef mu_;
+  Vec3 normal_;
+  double g_n_;   ///< gravity into the floor [m/s^2]; friction forces scale with it
+  Vec3 g_t_;     ///< gravity along the floor [m/s^2]
+  double slip_tolerance_;
+};
+
+/// A tangential impulse at an impact: opposes the slip `slip` of the touching points
+/// (tangential to the contact normal), at most mu times the normal impulse, and never
+/// more than stops the slip, `inverse_mass` being the slip's change per unit impulse
+/// (sum over the bodies of 1/m + 1/(k m)) [N s].
+double tangentialImpulse(const Vec3& slip, double mu, double normal_impulse, double inverse_mass);
+}  // namespace ball_collision_sim::core

@@ -1,0 +1,169 @@
+// The friction laws of a ball on a plane: its motion kind from its velocity and spin, the
+// constant accelerations of each kind, and the exact time the phase ends.
+#include "ball_collision_sim/core/friction.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ball_collision_sim::core
+{
+namespace
+{
+constexpr double kNever = std::numeric_limits<double>::infinity();
+}  // namespace
+
+const char* motionKindName(MotionKind kind)
+{
+  switch (kind)
+  {
+    case MotionKind::kSliding:
+      return "sliding";
+    case MotionKind::kRolling:
+      return "rolling";
+    case MotionKind::kSpinning:
+      return "spinning";
+    case MotionKind::kStationary:
+      return "stationary";
+  }
+  return "?";
+}
+
+FrictionLaw::FrictionLaw(const FrictionDef& mu, const Vec3& normal, const Vec3& gravity, const Vec3& along,
+                         double slip_tolerance)
+    : mu_(mu), normal_(normal), slip_tolerance_(slip_tolerance)
+{
+  // (no pull into the floor, no friction: a floor above its balls, or no gravity)
+  g_n_ = std::max(0.0, -gravity.dot(normal));
+  g_t_ = along;
+}
+
+void FrictionLaw::stick(double k, double r, Vec3& v, Vec3& w) const
+{
+  // The impulse P at the contact point changes the slip by (1 + 1/k) P / m: P = -m u k / (1 + k).
+  Vec3 u = slip(r, v, w);
+  u -= u.dot(normal_) * normal_;
+  v -= (k / (1 + k)) * u;
+  w += normal_.cross(u) / ((1 + k) * r);
+}
+
+FrictionPhase FrictionLaw::sliding(double k, double r, const Vec3& u_direction, double u_norm) const
+{
+  FrictionPhase phase;
+  phase.kind = MotionKind::kSliding;
+  const double force = mu_.sliding * g_n_;  // friction's deceleration [m/s^2]
+  phase.acceleration = g_t_ - force * u_direction;
+  phase.angular_acceleration = (force / (k * r)) * normal_.cross(u_direction);
+  // du/dt = g_t - mu_s g_n (1 + 1/k) u/|u|: |u| falls at this rate along its direction
+  const double rate = force * (1 + k) / k - g_t_.dot(u_direction);
+  phase.duration = kNever;
+  if (u_norm > 0 && rate > 0)
+  {
+    phase.duration = u_norm / rate;
+    phase.ends = kSlipStops;
+  }
+  return phase;
+}
+
+FrictionPhase FrictionLaw::rolling(double k, double r, const Vec3& v, const Vec3& direction) const
+{
+  FrictionPhase phase;
+  phase.kind = MotionKind::kRolling;
+  phase.acceleration = g_t_ / (1 + k) - (mu_.rolling * g_n_) * direction;
+  phase.angular_acceleration = normal_.cross(phase.acceleration) / r;
+  const double speed = v.norm();
+  const double rate = mu_.rolling * g_n_ - g_t_.dot(direction) / (1 + k);
+  phase.duration = kNever;
+  if (speed > 0 && rate > 0)
+  {
+    phase.duration = speed / rate;
+    phase.ends = kBallStops;
+  }
+  return phase;
+}
+
+void FrictionLaw::spinDecay(double k, double r, double wn, FrictionPhase& phase) const
+{
+  if (phase.kind == MotionKind::kStationary && wn != 0)
+    phase.kind = MotionKind::kSpinning;
+  const double rate = mu_.spinning * g_n_ / (k * r);  // [rad/s^2]
+  if (wn == 0 || !(rate > 0))
+    return;
+  phase.angular_acceleration -= std::copysign(rate, wn) * normal_;
+  const double t = std::abs(wn) / rate;
+  if (t < phase.duration)
+  {
+    phase.duration = t;
+    phase.ends = kSpinStops;
+  }
+  else if (t == phase.duration)
+    phase.ends |= kSpinStops;
+}
+
+FrictionPhase FrictionLaw::start(double k, double r, Vec3& v, Vec3& w) const
+{
+  const double wn = w.dot(normal_);
+  const Vec3 u = slip(r, v, w);
+  const double u_norm = u.norm();
+  const double scale = speeds(r, v, w);
+  FrictionPhase phase;
+  if (u_norm > slip_tolerance_ * scale)
+  {
+    phase = sliding(k, r, u / u_norm, u_norm);
+    spinDecay(k, r, wn, phase);
+    phase.conservative = phase.acceleration == g_t_;
+    return phase;
+  }
+  if (u_norm > 0 && mu_.sliding * g_n_ > 0)
+    stick(k, r, v, w);
+  w = normal_.cross(v) / r + wn * normal_;  // rolling's spin, exactly
+  const double speed = v.norm();
+  const double pull = g_t_.norm();
+  // friction holds rolling while k |g_t| / (1 + k) <= mu_s g_n; beyond, slip grows along g_t
+  const bool holds = k * pull / (1 + k) <= mu_.sliding * g_n_;
+  const Vec3 downhill = pull > 0 ? Vec3(g_t_ / pull) : Vec3::Zero();
+  if (speed > 0)
+    phase = holds ? rolling(k, r, v, v / speed) : sliding(k, r, downhill, 0.0);
+  else if (pull / (1 + k) <= mu_.rolling * g_n_)
+  {
+    phase.kind = MotionKind::kStationary;  // (spinning, where it turns about n)
+    phase.duration = kNever;
+  }
+  else
+    phase = holds ? rolling(k, r, v, downhill) : sliding(k, r, downhill, 0.0);
+  spinDecay(k, r, wn, phase);
+  phase.conservative = phase.acceleration == g_t_;
+  return phase;
+}
+
+MotionKind FrictionLaw::kindOf(double k, double r, const Vec3& v, const Vec3& w) const
+{
+  Vec3 v_copy = v, w_copy = w;
+  return start(k, r, v_copy, w_copy).kind;
+}
+
+void FrictionLaw::finish(std::uint8_t ends, double k, double r, double speeds, Vec3& v, Vec3& w) const
+{
+  if (ends & kSlipStops)
+  {
+    stick(k, r, v, w);
+    if (v.norm() <= slip_tolerance_ * speeds)
+      ends |= kBallStops;
+  }
+  if (ends & kBallStops)
+  {
+    v = Vec3::Zero();
+    w = w.dot(normal_) * normal_;
+  }
+  if (ends & kSpinStops)
+    w -= w.dot(normal_) * normal_;
+}
+
+double tangentialImpulse(const Vec3& slip, double mu, double normal_impulse, double inverse_mass)
+{
+  const double s = slip.norm();
+  if (!(s > 0) || !(mu > 0) || !(normal_impulse > 0) || !(inverse_mass > 0))
+    return 0.0;
+  return std::min(mu * normal_impulse, s / inverse_mass);
+}
+}  // namespace ball_collision_sim::core

@@ -1,0 +1,142 @@
+// Friction in the step (worlds with a friction block, on a plane): each free ball's
+// motion is a phase of constant accelerations from the friction laws (FrictionLaw); the
+// end of a phase (slip, speed or spin about the normal reaching zero) is an event at its
+// exact time, and impacts add tangential impulses. Reads and writes motions_, states_,
+// spin_motions_, the start velocities and the queue; writes transitions_ and stats_.
+#include "step_types.hpp"
+
+#include <cmath>
+
+namespace ball_collision_sim::core
+{
+using namespace step;
+
+const Vec3& World::pathTerm(std::size_t i) const
+{
+  return friction_ ? spin_motions_[i].c : path_c_;
+}
+
+Vec3 World::spinOf(const BallDef& def, const Vec3& n)
+{
+  return def.angular_velocity ? *def.angular_velocity : Vec3(n.cross(def.velocity) / def.radius);
+}
+
+void World::startFriction(std::size_t i, double x, bool record)
+{
+  Motion& m = motions_[i];
+  SpinMotion& sm = spin_motions_[i];
+  const BallSpin& spin = spins_[order_[i]];
+  Vec3& v = startVelocity(i);
+  const MotionKind before = sm.kind;
+  const FrictionPhase phase = friction_->start(spin.inertia, m.radius, v, sm.w0);
+  sm.a = phase.acceleration;
+  sm.alpha = phase.angular_acceleration;
+  sm.c = (0.5 * dt_ * dt_) * phase.acceleration;
+  sm.kind = phase.kind;
+  sm.ends = phase.ends;
+  sm.x_end = x + phase.duration / dt_;
+  sm.free = true;
+  sm.conservative = phase.conservative;
+  if (record && phase.kind != before)
+  {
+    ++stats_.transitions;
+    transitions_.push_back({(static_cast<double>(stats_.steps) + x) * dt_, balls_[order_[i]].id, before, phase.kind});
+  }
+  if (phase.conservative)
+    return;  // the caller gives it a frictionless ball's motion
+  m.b = dt_ * v;
+  states_[i].accelerates = true;
+}
+
+void World::keepSpin(std::size_t i)
+{
+  SpinMotion& sm = spin_motions_[i];
+  sm.alpha = sm.a = sm.c = Vec3::Zero();
+  sm.x_end = 2.0;
+  sm.ends = kPhaseRuns;
+  sm.free = false;
+}
+
+Vec3 World::spinAt(std::size_t i, double x) const
+{
+  const SpinMotion& sm = spin_motions_[i];
+  return sm.w0 + ((x - motions_[i].x0) * dt_) * sm.alpha;
+}
+
+void World::queueTransition(std::size_t i)
+{
+  const SpinMotion& sm = spin_motions_[i];
+  if (!sm.free || states_[i].frozen || !(sm.x_end <= 1))
+    return;
+  const auto k = static_cast<std::uint32_t>(i);
+  queue_.push(Event{sm.x_end, k, k, states_[i].epoch, states_[i].epoch, false, WallFeature::kFace, true, Vec3::Zero()});
+}
+
+void World::resolveTransition(const Event& event)
+{
+  const std::size_t i = event.i;
+  const Motion& m = motions_[i];
+  SpinMotion& sm = spin_motions_[i];
+  const Vec3 p = positionAt(i, event.x);
+  Vec3 v = onFloorVelocity(i, event.x, p, floorNormalAt(i, p));
+  Vec3 w = spinAt(i, event.x);
+  const double speeds = friction_->speeds(m.radius, startVelocity(i), sm.w0);
+  friction_->finish(sm.ends, spins_[order_[i]].inertia, m.radius, speeds, v, w);
+  sm.w0 = w;
+  startMotion(i, event.x, p, v, false);
+  countEvent(i);
+  detect(i);
+}
+
+void World::ballBallFriction(const PairContact& c, double normal_impulse, Vec3& va, Vec3& vb, Vec3& wa,
+                             Vec3& wb) const
+{
+  const double mu = scene_.friction->ball_ball;
+  if (!(mu > 0))
+    return;
+  const double ra = motions_[c.i].radius, rb = motions_[c.j].radius;
+  const double ka = spins_[order_[c.i]].inertia, kb = spins_[order_[c.j]].inertia;
+  // the touching points' velocities: a's at ra n from its centre, b's at -rb n from its
+  const Vec3 relative = (va + wa.cross(ra * c.n)) - (vb - wb.cross(rb * c.n));
+  const Vec3 slip = relative - relative.dot(c.n) * c.n;
+  const double inverse_mass = c.inv_a * (1 + 1 / ka) + c.inv_b * (1 + 1 / kb);
+  const double jt = tangentialImpulse(slip, mu, normal_impulse, inverse_mass);
+  if (jt == 0)
+    return;
+  const Vec3 impulse = (-jt / slip.norm()) * slip;  // on a; -impulse on b
+  // the floor takes the part of each push into it
+  va += c.inv_a * ground_.along(impulse, c.na);
+  vb -= c.inv_b * ground_.along(impulse, c.nb);
+  wa += (c.inv_a / (ka * ra)) * c.n.cross(impulse);
+  wb += (c.inv_b / (kb * rb)) * c.n.cross(impulse);
+}
+
+void World::ballWallFriction(std::size_t i, const Vec3& n, const Vec3& floor_normal, double normal_impulse,
+                             Vec3& v, Vec3& w) const
+{
+  const double mu = scene_.friction->wall;
+  if (!(mu > 0) || states_[i].frozen)
+    return;
+  const double r = motions_[i].radius;
+  const double k = spins_[order_[i]].inertia;
+  const double inv = 1.0 / balls_[order_[i]].mass;
+  const Vec3 point = v + w.cross(r * n);  // the touching point's velocity, n toward the wall
+  const Vec3 slip = point - point.dot(n) * n;
+  const double jt = tangentialImpulse(slip, mu, normal_impulse, inv * (1 + 1 / k));
+  if (jt == 0)
+    return;
+  const Vec3 impulse = (-jt / slip.norm()) * slip;
+  v += inv * ground_.along(impulse, floor_normal);
+  w += (inv / (k * r)) * n.cross(impulse);
+}
+
+void World::turn(std::size_t i, const Vec3& angle)
+{
+  const double a = angle.norm();
+  if (!(a > 0))
+    return;
+  Ball& ball = balls_[order_[i]];
+  const Quat q = Quat(Eigen::AngleAxisd(a, angle / a)) * ball.orientation;
+  ball.orientation = q.normalized();
+}
+}  // namespace ball_collision_sim::core
