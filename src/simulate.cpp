@@ -101,9 +101,12 @@ class CsvWriter
 {
 public:
   /// Opens the file and writes the header; the error text when it cannot be opened.
-  std::string open(const std::string& path)
+  /// With `spin` (a scene with friction, where balls have their own spin) each row ends
+  /// with the angular velocity, wx,wy,wz.
+  std::string open(const std::string& path, bool spin)
   {
     path_ = path;
+    spin_ = spin;
     file_.reset(std::fopen(path.c_str(), "w"));
     if (!file_)
     {
@@ -113,7 +116,7 @@ public:
     // A large buffer: a sample per step of many balls is a lot of small writes.
     buffer_.resize(1 << 20);
     std::setvbuf(file_.get(), buffer_.data(), _IOFBF, buffer_.size());
-    std::fputs("t,id,x,y,z,vx,vy,vz\n", file_.get());
+    std::fputs(spin ? "t,id,x,y,z,vx,vy,vz,wx,wy,wz\n" : "t,id,x,y,z,vx,vy,vz\n", file_.get());
     return "";
   }
 
@@ -122,10 +125,17 @@ public:
   void writeSample(const World& world)
   {
     const double t = world.time();
-    for (const Ball& ball : world.balls())
+    for (std::size_t k = 0; k < world.balls().size(); ++k)
     {
-      std::fprintf(file_.get(), "%.17g,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, ball.id, ball.position.x(),
+      const Ball& ball = world.balls()[k];
+      std::fprintf(file_.get(), "%.17g,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", t, ball.id, ball.position.x(),
                    ball.position.y(), ball.position.z(), ball.velocity.x(), ball.velocity.y(), ball.velocity.z());
+      if (spin_)
+      {
+        const ball_collision_sim::core::Vec3 w = world.angularVelocity(k);
+        std::fprintf(file_.get(), ",%.17g,%.17g,%.17g", w.x(), w.y(), w.z());
+      }
+      std::fputc('\n', file_.get());
     }
   }
 
@@ -154,6 +164,7 @@ private:
     void operator()(std::FILE* file) const { std::fclose(file); }
   };
   std::string path_;
+  bool spin_ = false;
   // Declared before file_ so that it is destroyed after it: fclose flushes from it.
   std::vector<char> buffer_;
   std::unique_ptr<std::FILE, FileCloser> file_;
@@ -198,7 +209,7 @@ int run(const SimulateOptions& options)
   CsvWriter csv;
   if (!options.csv_path.empty())
   {
-    const std::string error = csv.open(options.csv_path);
+    const std::string error = csv.open(options.csv_path, world->friction().has_value());
     if (!error.empty())
     {
       return reportBadInput("--csv: " + error);

@@ -548,9 +548,15 @@ TEST(ConfigScenes, BilliardsRackLeavesAGap)
   for (const auto& ball : scene.balls)
   {
     EXPECT_EQ(ball.radius, 0.028575);
-    EXPECT_EQ(ball.mass, 0.17);
+    EXPECT_EQ(ball.mass, 0.170097);
   }
-  EXPECT_NEAR(scene.balls[0].velocity.norm(), 3.0, 1e-12);
+  for (const auto& wall : scene.walls)
+    EXPECT_EQ(wall.restitution, 0.85);
+  ASSERT_TRUE(scene.friction.has_value());
+  EXPECT_EQ(scene.friction->sliding, 0.2);
+  EXPECT_EQ(scene.friction->rolling, 0.01);
+  EXPECT_EQ(scene.friction->spinning, 0.044);
+  EXPECT_NEAR(scene.balls[0].velocity.norm(), 6.0, 1e-12);
   for (std::size_t i = 1; i < scene.balls.size(); ++i)
   {
     for (std::size_t j = i + 1; j < scene.balls.size(); ++j)
@@ -559,6 +565,38 @@ TEST(ConfigScenes, BilliardsRackLeavesAGap)
       EXPECT_GE(gap, 1e-6 - 1e-12) << "balls " << i << " and " << j;
     }
   }
+}
+
+// The break on the pool table with friction: every ball slides, rolls and stops within
+// 30 s, with the energy (spins' included) never rising in a step and no ball lost.
+TEST(ConfigScenes, BilliardsBreakComesToRest)
+{
+  using ball_collision_sim::core::MotionKind;
+  using ball_collision_sim::core::World;
+  World world(loadValidScene(kConfigDir + "/billiards.yaml"));
+  double energy = world.energy().total();
+  double rise = 0;
+  bool all_still = false;
+  std::set<MotionKind> seen;
+  for (int step = 0; step < 15000 && !all_still; ++step)
+  {
+    world.step();
+    const double now = world.energy().total();
+    rise = std::max(rise, now - energy);
+    energy = now;
+    all_still = true;
+    for (std::size_t k = 0; k < world.balls().size(); ++k)
+    {
+      seen.insert(world.motionKind(k));
+      all_still = all_still && world.motionKind(k) == MotionKind::kStationary;
+    }
+  }
+  EXPECT_TRUE(all_still);
+  EXPECT_LE(rise, 1e-13);
+  EXPECT_EQ(world.energy().kinetic + world.energy().rotational, 0.0);
+  EXPECT_EQ(world.lostBalls(), 0);
+  EXPECT_EQ(seen.count(MotionKind::kSliding), 1u);
+  EXPECT_EQ(seen.count(MotionKind::kRolling), 1u);
 }
 
 TEST(ConfigScenes, NewtonsCradleBallsTouchExactly)

@@ -59,7 +59,7 @@ std::vector<LostBall> World::removeLostBalls()
     std::string why = whyLost(k, bounds);
     if (!why.empty())
     {
-      lost.push_back({balls_[k], angularVelocity(k), std::move(why)});
+      lost.push_back({balls_[k], angularVelocity(k), motionKind(k), inertia(k), std::move(why)});
       continue;
     }
     if (kept != k)

@@ -280,7 +280,7 @@ AddResult refused(int id, std::string error)
 }  // namespace
 
 AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing,
-                               const std::optional<Vec3>& angular_velocity)
+                               const std::optional<Vec3>& angular_velocity, const std::optional<double>& inertia)
 {
   const std::size_t k = indexOf(id);
   if (k == balls_.size())
@@ -293,7 +293,7 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
   def.radius = balls_[k].radius;
   def.mass = balls_[k].mass;
   def.angular_velocity = angular_velocity;
-  def.inertia = inertia(k);
+  def.inertia = inertia ? *inertia : this->inertia(k);
   Vec2 foot(0.5, 0.5);
   result.error = place(def, landing, id, foot);
   if (!result.error.empty())

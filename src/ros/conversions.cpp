@@ -48,7 +48,40 @@ geometry_msgs::Quaternion toQuaternion(const core::Quat& q)
 }
 }  // namespace
 
-ball_collision_sim::BallState toMsg(const core::Ball& ball, const core::Vec3& angular_velocity)
+std::uint8_t motionConstant(core::MotionKind kind)
+{
+  switch (kind)
+  {
+    case core::MotionKind::kSliding:
+      return ball_collision_sim::BallState::SLIDING;
+    case core::MotionKind::kRolling:
+      return ball_collision_sim::BallState::ROLLING;
+    case core::MotionKind::kSpinning:
+      return ball_collision_sim::BallState::SPINNING;
+    case core::MotionKind::kStationary:
+      return ball_collision_sim::BallState::STATIONARY;
+  }
+  return ball_collision_sim::BallState::STATIONARY;
+}
+
+ball_collision_sim::BallState toMsg(const core::World& world, std::size_t k)
+{
+  return toMsg(world.balls()[k], world.angularVelocity(k), world.motionKind(k), world.inertia(k));
+}
+
+ball_collision_sim::MotionTransition toMsg(const core::MotionTransition& transition, const std::string& frame_id)
+{
+  ball_collision_sim::MotionTransition msg;
+  msg.header.stamp = ros::Time(transition.time);
+  msg.header.frame_id = frame_id;
+  msg.ball = transition.ball;
+  msg.before = motionConstant(transition.from);
+  msg.after = motionConstant(transition.to);
+  return msg;
+}
+
+ball_collision_sim::BallState toMsg(const core::Ball& ball, const core::Vec3& angular_velocity, core::MotionKind motion,
+                                    double inertia)
 {
   ball_collision_sim::BallState msg;
   msg.id = ball.id;
@@ -58,6 +91,8 @@ ball_collision_sim::BallState toMsg(const core::Ball& ball, const core::Vec3& an
   msg.pose.orientation = toQuaternion(ball.orientation);
   msg.twist.linear = toVector3(ball.velocity);
   msg.twist.angular = toVector3(angular_velocity);
+  msg.motion = motionConstant(motion);
+  msg.inertia = inertia;
   return msg;
 }
 
@@ -119,6 +154,10 @@ core::BallDef fromMsg(const ball_collision_sim::AddBall::Request& request)
   def.velocity = toVec3(request.velocity);
   def.radius = request.radius;
   def.mass = request.mass;
+  if (request.set_angular_velocity)
+    def.angular_velocity = toVec3(request.angular_velocity);
+  if (request.inertia != 0)
+    def.inertia = request.inertia;  // (checked with the ball: in (0, 1])
   return def;
 }
 

@@ -79,6 +79,15 @@ bool SimulatorNode::onApplyImpulse(ApplyImpulse::Request& req, ApplyImpulse::Res
   return true;
 }
 
+bool SimulatorNode::onStrike(Strike::Request& req, Strike::Response& res)
+{
+  const Lock guard = lock();
+  answerStrike(world_, req, res);
+  if (res.success)
+    publishEdit();
+  return true;
+}
+
 bool SimulatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
 {
   const Lock guard = lock();

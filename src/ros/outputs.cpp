@@ -24,7 +24,7 @@ BallStateArray statesMessage(const core::World& world, const std::string& frame_
   msg.header.frame_id = frame_id;
   msg.balls.reserve(world.balls().size());
   for (std::size_t k = 0; k < world.balls().size(); ++k)
-    msg.balls.push_back(toMsg(world.balls()[k], world.angularVelocity(k)));
+    msg.balls.push_back(toMsg(world, k));
   return msg;
 }
 

@@ -85,7 +85,14 @@ void answerSetBallState(core::World& world, const SetBallState::Request& req, Se
   const std::optional<core::Landing> landing = landingOf(req.placement, res.message);
   if (!landing)
     return;
-  const core::AddResult result = world.setBallState(req.id, toVec3(req.position), toVec3(req.velocity), *landing);
+  std::optional<core::Vec3> spin;
+  if (req.set_angular_velocity)
+    spin = toVec3(req.angular_velocity);
+  std::optional<double> inertia;
+  if (req.inertia != 0)
+    inertia = req.inertia;
+  const core::AddResult result =
+      world.setBallState(req.id, toVec3(req.position), toVec3(req.velocity), *landing, spin, inertia);
   res.success = result.ok;
   res.message = result.ok ? "ball " + std::to_string(req.id) + " set" : result.error;
   if (result.ok)
@@ -105,6 +112,19 @@ void answerApplyImpulse(core::World& world, const ApplyImpulse::Request& req, Ap
     res.state = ballState(world, req.id);
 }
 
+void answerStrike(core::World& world, const Strike::Request& req, Strike::Response& res)
+{
+  res.success = false;
+  res.message = checkId(req.id);
+  if (!res.message.empty())
+    return;
+  const core::AddResult result = world.strike(req.id, toVec3(req.impulse), toVec3(req.offset));
+  res.success = result.ok;
+  res.message = result.ok ? "struck ball " + std::to_string(req.id) : result.error;
+  if (result.ok)
+    res.state = ballState(world, req.id);
+}
+
 std::string whyNoSteps(bool paused, std::uint32_t steps)
 {
   if (!paused)
@@ -119,7 +139,7 @@ LostBall lostBallMessage(const core::LostBall& gone, const std::string& frame_id
   LostBall msg;
   msg.header.stamp = ros::Time(time);
   msg.header.frame_id = frame_id;
-  msg.ball = toMsg(gone.ball, gone.angular_velocity);
+  msg.ball = toMsg(gone.ball, gone.angular_velocity, gone.motion, gone.inertia);
   msg.reason = gone.reason;
   return msg;
 }
@@ -128,7 +148,7 @@ BallState ballState(const core::World& world, int id)
 {
   const core::Ball* ball = world.findBall(id);
   const auto k = static_cast<std::size_t>(ball - world.balls().data());
-  return toMsg(*ball, world.angularVelocity(k));
+  return toMsg(world, k);
 }
 
 void answerGetState(const core::World& world, bool paused, const std::string& frame_prefix, GetState::Response& res)
@@ -142,7 +162,7 @@ void answerGetState(const core::World& world, bool paused, const std::string& fr
   res.balls.clear();
   res.balls.reserve(world.balls().size());
   for (std::size_t k = 0; k < world.balls().size(); ++k)
-    res.balls.push_back(toMsg(world.balls()[k], world.angularVelocity(k)));
+    res.balls.push_back(toMsg(world, k));
   res.walls.clear();
   for (const core::Wall& wall : world.walls())
     res.walls.push_back(toMsg(wall));

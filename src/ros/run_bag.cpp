@@ -82,6 +82,11 @@ void RunBag::afterStep(const core::World& world)
       const auto msg = toMsg(event, frame_id_);
       write("/ball_sim/collisions", msg.header.stamp, msg);
     }
+  for (const core::MotionTransition& transition : world.lastTransitions())
+  {
+    const auto msg = toMsg(transition, frame_id_);
+    write("/ball_sim/motion_transitions", msg.header.stamp, msg);
+  }
   if (world.stats().steps % state_every_ == 0)
     write("/ball_sim/ball_states", stamp, statesMessage(world, frame_id_, stamp));
   if (marker_every_ > 0 && node_.collision_flashes)

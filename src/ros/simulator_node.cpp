@@ -112,6 +112,7 @@ void SimulatorNode::advertise()
       "ball_states", 100, [this](const ros::SingleSubscriberPublisher& s) { onStatesSubscriber(s); });
   collisions_pub_ = pnh_.advertise<ball_collision_sim::CollisionEvent>("collisions", 1000);
   lost_pub_ = pnh_.advertise<ball_collision_sim::LostBall>("lost_balls", 100);
+  transitions_pub_ = pnh_.advertise<ball_collision_sim::MotionTransition>("motion_transitions", 1000);
   tf_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf", 100,
                                                [this](const ros::SingleSubscriberPublisher& s) { onTfSubscriber(s); });
   applyWiring(settings_);
@@ -127,6 +128,7 @@ void SimulatorNode::advertise()
   services_.push_back(pnh_.advertiseService("remove_wall", &SimulatorNode::onRemoveWall, this));
   services_.push_back(pnh_.advertiseService("set_ball_state", &SimulatorNode::onSetBallState, this));
   services_.push_back(pnh_.advertiseService("apply_impulse", &SimulatorNode::onApplyImpulse, this));
+  services_.push_back(pnh_.advertiseService("strike", &SimulatorNode::onStrike, this));
   services_.push_back(pnh_.advertiseService("reset", &SimulatorNode::onReset, this));
   services_.push_back(pnh_.advertiseService("load_scene", &SimulatorNode::onLoadScene, this));
   services_.push_back(pnh_.advertiseService("pause", &SimulatorNode::onPause, this));
@@ -222,6 +224,9 @@ void SimulatorNode::stepOnce()
   if (settings_.node.publish_collisions && collisions_pub_.getNumSubscribers() > 0)
     for (const core::CollisionEvent& event : world_.lastEvents())
       collisions_pub_.publish(toMsg(event, frame_id_));
+  if (transitions_pub_.getNumSubscribers() > 0)
+    for (const core::MotionTransition& transition : world_.lastTransitions())
+      transitions_pub_.publish(toMsg(transition, frame_id_));
   removeLostBalls();
   if (world_.stats().steps % state_every_ == 0 && states_pub_.getNumSubscribers() > 0)
     publishStates(stamp);

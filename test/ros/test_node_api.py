@@ -21,9 +21,9 @@ from std_srvs.srv import SetBool, Trigger
 
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
 import node_helpers as nh  # noqa: E402
-from ball_collision_sim.msg import BallStateArray, LostBall  # noqa: E402
+from ball_collision_sim.msg import BallState, BallStateArray, LostBall, MotionTransition  # noqa: E402
 from ball_collision_sim.srv import (AddBall, ApplyImpulse, GetState, LoadScene, RemoveObject,  # noqa: E402
-                                    SetBallState, Step)
+                                    SetBallState, Step, Strike)
 
 PKG = "ball_collision_sim"
 NS = "/ball_sim/"
@@ -234,6 +234,66 @@ class NodeApi(unittest.TestCase):
         self.assertTrue(r.success, r.message)
         self.assertEqual(get().frame_prefix, "")
         self.assertEqual(rospy.get_param(NS + "marker_rate"), 30.0)
+
+    def test_friction_spin_strike_and_transitions(self):
+        """A scene with friction: add_ball and set_ball_state take spin and inertia,
+        strike gives dv = J / m and dw = offset x J / (k m r^2), bad requests change
+        nothing, and the slide-to-roll transition comes on its topic at its exact time."""
+        fresh()
+        text = ("floor: {type: plane, point: [-2, -1, 0], u: [6, 0, 0], v: [0, 2, 0]}\n"
+                "friction: {sliding: 0.2, rolling: 0.01, spinning: 0.044}\n"
+                "balls:\n  - {position: [-1.5, 0, 0.1], radius: 0.1, mass: 2}\n")
+        try:
+            r = nh.call(NS + "load_scene", LoadScene, yaml=text)
+            self.assertTrue(r.success, r.message)
+            r = nh.call(NS + "add_ball", AddBall, position=vec(0.5, 0.5), velocity=vec(1.0), radius=0.1, mass=1.0,
+                        angular_velocity=vec(0.0, 0.0, 3.0), set_angular_velocity=True, inertia=2.0 / 3)
+            self.assertTrue(r.success, r.message)
+            added = get().balls[1]
+            self.assertEqual((added.twist.angular.x, added.twist.angular.z), (0.0, 3.0))
+            self.assertEqual(added.inertia, 2.0 / 3)
+            self.assertEqual(added.motion, BallState.SLIDING)  # no spin about y: its foot slips
+            self.assertEqual(get().balls[0].motion, BallState.STATIONARY)
+            before = get()
+            bad = [("strike", Strike, {}, "id"),
+                   ("strike", Strike, {"id": 1, "impulse": vec(1.0), "offset": vec(0.0, 0.0, 0.15)}, "offset"),
+                   ("strike", Strike, {"id": 1, "impulse": vec(float("nan"))}, "impulse"),
+                   ("strike", Strike, {"id": 7, "impulse": vec(1.0)}, "id"),
+                   ("add_ball", AddBall, {"position": vec(1.0), "radius": 0.1, "mass": 1.0, "inertia": 1.5},
+                    "inertia"),
+                   ("set_ball_state", SetBallState, {"id": 1, "position": vec(-1.0),
+                                                     "angular_velocity": vec(float("inf")),
+                                                     "set_angular_velocity": True}, "angular_velocity")]
+            for service, srv_type, fields, field in bad:
+                r = nh.call(NS + service, srv_type, **fields)
+                self.assertFalse(r.success, (service, fields))
+                self.assertTrue(r.message.startswith(field + ": "), (service, fields, r.message))
+                self.assertUnchanged(before)
+            # struck 0.06 m above its centre (follow): J = 1 N s along x on 2 kg
+            r = nh.call(NS + "strike", Strike, id=1, impulse=vec(1.0), offset=vec(0.0, 0.0, 0.06))
+            self.assertTrue(r.success, r.message)
+            v0 = 0.5
+            w0 = 0.06 * 1.0 / (0.4 * 2.0 * 0.1 ** 2)  # (0, 0, 0.06) x (1, 0, 0) = (0, 0.06, 0)
+            self.assertEqual(r.state.twist.linear.x, v0)
+            self.assertAlmostEqual(r.state.twist.angular.y, w0, places=12)
+            self.assertEqual(r.state.motion, BallState.SLIDING)
+            transitions = nh.Inbox(NS + "motion_transitions", MotionTransition)
+            transitions.wait_connected()
+            # slip u = v0 - r w0 < 0 (more topspin than rolling): friction pushes it on until
+            # |u| k / ((1 + k) mu_s g) has passed
+            u = v0 - 0.1 * w0
+            t1 = abs(u) * 0.4 / (1.4 * 0.2 * 9.81)
+            step(int(t1 / DT) + 2)
+            self.assertTrue(transitions.wait_for(lambda all: any(m.ball == 1 for m in all)))
+            first = [m for m in transitions.take() if m.ball == 1][0]
+            self.assertEqual((first.before, first.after), (BallState.SLIDING, BallState.ROLLING))
+            self.assertAlmostEqual(first.header.stamp.to_sec(), t1, places=8)
+            rolled = get().balls[0]
+            self.assertEqual(rolled.motion, BallState.ROLLING)
+            self.assertAlmostEqual(rolled.twist.angular.y, rolled.twist.linear.x / 0.1, places=12)
+        finally:
+            r = nh.call(NS + "load_scene", LoadScene, path="package://ball_collision_sim/test/data/node_scene.yaml")
+            self.assertTrue(r.success, r.message)
 
     def test_a_ball_that_leaves_is_reported_once_and_removed(self):
         fresh()

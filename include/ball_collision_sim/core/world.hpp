@@ -77,6 +77,8 @@ struct LostBall
 {
   Ball ball;               ///< its state when it was found gone
   Vec3 angular_velocity;   ///< [rad/s], as World::angularVelocity() gave it then
+  MotionKind motion = MotionKind::kStationary;  ///< as World::motionKind() gave it then
+  double inertia = kSolidInertia;               ///< as World::inertia() gave it
   std::string reason;  ///< "left the floor (foot point at u = 1.02, v = 0.5)"
 };
 
@@ -157,9 +159,11 @@ public:
   /// (less its part normal to the floor), keeping its id, radius, mass and orientation.
   /// Refused, nothing changed, when no ball has the id, a value is bad, or the ball would
   /// be off the floor or overlap a wall or another ball.
-  /// With friction, `angular_velocity` sets its spin (unset: rolling without slip).
+  /// With friction, `angular_velocity` sets its spin (unset: rolling without slip) and
+  /// `inertia` its k (unset: kept).
   AddResult setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing = Landing::kUnder,
-                         const std::optional<Vec3>& angular_velocity = std::nullopt);
+                         const std::optional<Vec3>& angular_velocity = std::nullopt,
+                         const std::optional<double>& inertia = std::nullopt);
   /// Adds impulse / mass to ball `id`'s velocity [impulse: N s]; on a floor, the part of
   /// the change along the floor's normal goes into the floor. Refused, nothing changed,
   /// when no ball has the id or the impulse is not finite or gives a speed past kMaxSpeed.

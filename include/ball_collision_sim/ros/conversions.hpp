@@ -4,11 +4,13 @@
 #include "ball_collision_sim/core/collision_event.hpp"
 #include "ball_collision_sim/core/scene.hpp"
 #include "ball_collision_sim/core/wall.hpp"
+#include "ball_collision_sim/core/world.hpp"
 
 #include <ball_collision_sim/AddBall.h>
 #include <ball_collision_sim/AddWall.h>
 #include <ball_collision_sim/BallState.h>
 #include <ball_collision_sim/CollisionEvent.h>
+#include <ball_collision_sim/MotionTransition.h>
 #include <ball_collision_sim/Wall.h>
 #include <geometry_msgs/Point.h>
 #include <geometry_msgs/TransformStamped.h>
@@ -27,8 +29,16 @@ core::Vec3 toVec3(const geometry_msgs::Vector3& v);
 /// The tf frame of a ball: prefix + "ball_<id>".
 std::string ballFrame(int id, const std::string& prefix = "");
 
-/// With the ball's angular velocity (core::World::angularVelocity()).
-ball_collision_sim::BallState toMsg(const core::Ball& ball, const core::Vec3& angular_velocity);
+/// With the ball's angular velocity (core::World::angularVelocity()), motion kind and
+/// inertia k.
+ball_collision_sim::BallState toMsg(const core::Ball& ball, const core::Vec3& angular_velocity,
+                                    core::MotionKind motion, double inertia);
+/// balls()[k] of the world.
+ball_collision_sim::BallState toMsg(const core::World& world, std::size_t k);
+/// BallState's constant for a motion kind.
+std::uint8_t motionConstant(core::MotionKind kind);
+/// Stamped with its exact time.
+ball_collision_sim::MotionTransition toMsg(const core::MotionTransition& transition, const std::string& frame_id);
 /// Stamped with the exact time of impact.
 ball_collision_sim::CollisionEvent toMsg(const core::CollisionEvent& event, const std::string& frame_id);
 /// frame_id -> prefix + ball_<id>, with the ball's rolling orientation.

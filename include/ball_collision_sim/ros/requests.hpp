@@ -7,6 +7,7 @@
 #include <ball_collision_sim/AddBall.h>
 #include <ball_collision_sim/AddWall.h>
 #include <ball_collision_sim/ApplyImpulse.h>
+#include <ball_collision_sim/Strike.h>
 #include <ball_collision_sim/GetState.h>
 #include <ball_collision_sim/LoadScene.h>
 #include <ball_collision_sim/LostBall.h>
@@ -45,6 +46,8 @@ void answerRemoveBall(core::World& world, const RemoveObject::Request& req, Remo
 void answerRemoveWall(core::World& world, const RemoveObject::Request& req, RemoveObject::Response& res);
 void answerSetBallState(core::World& world, const SetBallState::Request& req, SetBallState::Response& res);
 void answerApplyImpulse(core::World& world, const ApplyImpulse::Request& req, ApplyImpulse::Response& res);
+/// A strike: impulse at an offset from the centre (core::World::strike()).
+void answerStrike(core::World& world, const Strike::Request& req, Strike::Response& res);
 /// Why `steps` steps may not run now (not paused, or out of range), or "".
 std::string whyNoSteps(bool paused, std::uint32_t steps);
 

@@ -11,6 +11,7 @@
 #include <ball_collision_sim/AddBall.h>
 #include <ball_collision_sim/AddWall.h>
 #include <ball_collision_sim/ApplyImpulse.h>
+#include <ball_collision_sim/Strike.h>
 #include <ball_collision_sim/GetState.h>
 #include <ball_collision_sim/LoadScene.h>
 #include <ball_collision_sim/RemoveObject.h>
@@ -101,6 +102,7 @@ private:
   bool onRemoveWall(RemoveObject::Request& req, RemoveObject::Response& res);
   bool onSetBallState(SetBallState::Request& req, SetBallState::Response& res);
   bool onApplyImpulse(ApplyImpulse::Request& req, ApplyImpulse::Response& res);
+  bool onStrike(Strike::Request& req, Strike::Response& res);
   bool onGetState(GetState::Request& req, GetState::Response& res);
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onLoadScene(LoadScene::Request& req, LoadScene::Response& res);
@@ -157,6 +159,7 @@ private:
   ros::Publisher states_pub_;
   ros::Publisher collisions_pub_;
   ros::Publisher lost_pub_;
+  ros::Publisher transitions_pub_;
   ros::Publisher clock_pub_;
   ros::Publisher tf_pub_;
   ros::Publisher scene_pub_;
