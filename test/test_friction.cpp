@@ -439,3 +439,100 @@ TEST(FrictionLaw, SlipOfRoundOffIsRolling)
   EXPECT_EQ(phase.kind, MotionKind::kSliding);
   EXPECT_EQ(phase.ends, kSlipStops);
 }
+
+namespace
+{
+/// Impacts only: no floor friction, so velocities and spins stay as the impact left them.
+Scene impactsOnly(double ball_ball, double wall)
+{
+  Scene scene = flatScene(-2, 2, -1, 1);
+  addBox(scene, -2, 2, -1, 1);
+  FrictionDef f;
+  f.ball_ball = ball_ball;
+  f.wall = wall;
+  scene.friction = f;
+  return scene;
+}
+}  // namespace
+
+// Head on, e = 1, a ball with side spin w about z meets a ball at rest: the touching points
+// slip by w r across the normal; the tangential impulse that stops it is w r m / 7 (solid,
+// equal masses), below mu Jn = mu m v here: "throw". Above it, mu Jn exactly.
+TEST(ImpactFriction, BallBallThrowStopsTheSlipOrReachesCoulomb)
+{
+  const double v = 1.0, r = 0.1, m = 1.0, mu = 0.3;
+  for (const double w : {2.0, 40.0})
+  {
+    Scene scene = impactsOnly(mu, 0.0);
+    scene.balls = {struck(-1.0, v, Vec3(0, 0, w), kSolidInertia, r), struck(0.0, 0.0, Vec3::Zero(), kSolidInertia, r)};
+    World world(scene);
+    for (int s = 0; s < 100; ++s)
+      world.step();
+    ASSERT_EQ(world.stats().events, 1u);
+    const double jt = std::min(mu * m * v, w * r * m / 7);
+    EXPECT_NEAR(world.balls()[0].velocity.y(), -jt / m, 1e-15) << w;
+    EXPECT_NEAR(world.balls()[1].velocity.y(), jt / m, 1e-15) << w;
+    EXPECT_NEAR(world.balls()[1].velocity.x(), v, 1e-15);
+    EXPECT_NEAR(world.momentum().y(), 0.0, 1e-15);
+    EXPECT_NEAR(world.angularVelocity(0).z(), w - jt / (kSolidInertia * m * r), 1e-12) << w;
+    EXPECT_NEAR(world.angularVelocity(1).z(), -jt / (kSolidInertia * m * r), 1e-12) << w;
+    // the touching points' slip after: w_a r + w_b r + 2 v_y... never reversed
+    const double slip_after = (world.angularVelocity(0).z() + world.angularVelocity(1).z()) * r +
+                              (world.balls()[0].velocity.y() - world.balls()[1].velocity.y());
+    EXPECT_GE(slip_after, -1e-15) << w;
+  }
+}
+
+// A ball with side spin meets a wall square on (e = 1): the wall's tangential impulse
+// min(mu (1 + e) m v, w r m / (1 + 1/k)) turns its path and its spin; without wall
+// friction the spin passes through unchanged.
+TEST(ImpactFriction, WallTurnsASpinningBall)
+{
+  const double v = 1.0, r = 0.1, m = 1.0, w = 5.0;
+  for (const double mu : {0.0, 0.05, 0.5})
+  {
+    Scene scene = impactsOnly(0.0, mu);
+    scene.balls = {struck(1.5, v, Vec3(0, 0, w), kSolidInertia, r)};
+    World world(scene);
+    for (int s = 0; s < 60; ++s)
+      world.step();
+    ASSERT_EQ(world.stats().events, 1u);
+    const double jt = std::min(mu * 2 * m * v, w * r * m / (1 + 1 / kSolidInertia));
+    // the touching point (at +r x) slips by w r along +y: the impulse is along -y
+    EXPECT_NEAR(world.balls()[0].velocity.x(), -v, 1e-15) << mu;
+    EXPECT_NEAR(world.balls()[0].velocity.y(), -jt / m, 1e-15) << mu;
+    EXPECT_NEAR(world.angularVelocity(0).z(), w - jt / (kSolidInertia * m * r), 1e-12) << mu;
+  }
+}
+
+// A table of balls at e = 0.9 with every friction on, impacts' too: the energy never rises
+// in a step and every ball comes to rest.
+TEST(ImpactFriction, TableComesToRestWithEnergyNeverRising)
+{
+  Scene scene = flatScene(-1, 1, -1, 1);
+  addBox(scene, -1, 1, -1, 1);
+  scene.restitution = 0.9;
+  scene.random_balls = randomBalls(80, 5, {0.03, 0.06}, {0.1, 0.3}, {0.5, 3});
+  FrictionDef f = friction(0.2, 0.01, 0.044);
+  f.ball_ball = 0.05;
+  f.wall = 0.2;
+  scene.friction = f;
+  World world(scene);
+  double e = world.energy().total(), rise = 0;
+  bool still = false;
+  int steps = 0;
+  for (; steps < 3000 && !still; ++steps)
+  {
+    world.step();
+    rise = std::max(rise, world.energy().total() - e);
+    e = world.energy().total();
+    still = true;
+    for (std::size_t k = 0; k < world.balls().size(); ++k)
+      still = still && world.motionKind(k) == MotionKind::kStationary;
+  }
+  EXPECT_TRUE(still) << "moving after " << steps << " steps";
+  EXPECT_LE(rise, 1e-12);
+  EXPECT_GT(world.stats().events, 80u);
+  EXPECT_EQ(world.stats().frozen_balls, 0u);
+  EXPECT_LT(deepestOverlap(world.balls()), 1e-9);
+}

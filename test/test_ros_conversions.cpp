@@ -83,8 +83,10 @@ TEST(Conversions, BallStateAndTransform)
   ball.position = core::Vec3(1, 2, 0.2);
   ball.velocity = core::Vec3(0.5, 0, 0);
   ball.orientation = core::Quat(Eigen::AngleAxisd(0.3, core::Vec3::UnitY()));
-  const auto msg = bridge::toMsg(ball, core::Vec3(0, 2.5, 0));
+  const auto msg = bridge::toMsg(ball, core::Vec3(0, 2.5, 0), core::MotionKind::kSpinning, core::kHollowInertia);
   EXPECT_EQ(msg.id, 7);
+  EXPECT_EQ(msg.motion, ball_collision_sim::BallState::SPINNING);
+  EXPECT_EQ(msg.inertia, 2.0 / 3);
   EXPECT_EQ(msg.pose.position.y, 2);
   EXPECT_EQ(msg.twist.angular.y, 2.5);
   EXPECT_NEAR(msg.pose.orientation.w, std::cos(0.15), 1e-15);
@@ -93,6 +95,21 @@ TEST(Conversions, BallStateAndTransform)
   EXPECT_EQ(tf.header.frame_id, "world");
   EXPECT_EQ(tf.header.stamp, ros::Time(1.5));
   EXPECT_EQ(tf.transform.translation.x, 1);
+}
+
+TEST(Conversions, TransitionStampIsItsExactTime)
+{
+  core::MotionTransition transition;
+  transition.time = 1.2345678901;
+  transition.ball = 4;
+  transition.from = core::MotionKind::kSliding;
+  transition.to = core::MotionKind::kRolling;
+  const auto msg = bridge::toMsg(transition, "table");
+  EXPECT_EQ(msg.header.stamp, ros::Time(1.2345678901));
+  EXPECT_EQ(msg.header.frame_id, "table");
+  EXPECT_EQ(msg.ball, 4);
+  EXPECT_EQ(msg.before, ball_collision_sim::BallState::SLIDING);
+  EXPECT_EQ(msg.after, ball_collision_sim::BallState::ROLLING);
 }
 
 TEST(Conversions, CollisionStampIsTheTimeOfImpact)

@@ -100,9 +100,55 @@ void FrictionLaw::spinDecay(double k, double r, double wn, FrictionPhase& phase)
     phase.ends |= kSpinStops;
 }
 
-FrictionPhase FrictionLaw::start(double k, double r, Vec3& v, Vec3& w) const
+double FrictionLaw::spinAboutNormal(double r, const Vec3& v, Vec3& w) const
 {
   const double wn = w.dot(normal_);
+  // A spin about n of round-off (of the projection that ended it, on a tilted floor) is none.
+  if (wn != 0 && std::abs(wn) <= slip_tolerance_ * (w.norm() + v.norm() / r))
+  {
+    w -= wn * normal_;
+    return 0.0;
+  }
+  return wn;
+}
+
+FrictionLaw::ConstrainedSpin FrictionLaw::constrained(double k, double r, const Vec3& v, Vec3& w) const
+{
+  ConstrainedSpin out;
+  const double wn = spinAboutNormal(r, v, w);
+  const Vec3 along = w - wn * normal_;
+  const Vec3 rolling = normal_.cross(v) / r;
+  const Vec3 gap = along - rolling;
+  const double gap_norm = gap.norm();
+  const double rate = mu_.sliding * g_n_ / (k * r);  // [rad/s^2]
+  if (gap_norm > 0 && rate > 0 && rolling.norm() <= along.norm())
+  {
+    out.along_rate = (-rate / gap_norm) * gap;
+    out.along_time = gap_norm / rate;
+  }
+  const double spin_rate = mu_.spinning * g_n_ / (k * r);
+  if (wn != 0 && spin_rate > 0)
+  {
+    out.normal_rate = -std::copysign(spin_rate, wn);
+    out.normal_time = std::abs(wn) / spin_rate;
+  }
+  return out;
+}
+
+MotionKind FrictionLaw::constrainedKind(double r, const Vec3& v, const Vec3& w) const
+{
+  const double wn = w.dot(normal_);
+  const Vec3 gap = w - wn * normal_ - normal_.cross(v) / r;
+  if (gap.norm() > slip_tolerance_ * speeds(r, v, w) / r)
+    return MotionKind::kSliding;
+  if (v != Vec3::Zero())
+    return MotionKind::kRolling;
+  return std::abs(wn) > slip_tolerance_ * w.norm() ? MotionKind::kSpinning : MotionKind::kStationary;
+}
+
+FrictionPhase FrictionLaw::start(double k, double r, Vec3& v, Vec3& w) const
+{
+  const double wn = spinAboutNormal(r, v, w);
   const Vec3 u = slip(r, v, w);
   const double u_norm = u.norm();
   const double scale = speeds(r, v, w);

@@ -60,8 +60,26 @@ public:
   /// The phase that starts from (v, w). A slip below slip_tolerance of the ball's speeds
   /// is taken away (by the sticking impulse, as at the end of a sliding phase, where
   /// there is sliding friction) and a rolling ball's spin made exactly
-  /// n x v / r + (w.n) n, so v and w may change.
+  /// n x v / r + (w.n) n, so v and w may change. A spin about n below slip_tolerance of
+  /// |w| + |v| / r is none (round-off of the projection that ended it).
   FrictionPhase start(double k, double r, Vec3& v, Vec3& w) const;
+  /// How the spin of a ball whose motion its contacts decide (leaning on a wall or in a
+  /// pile; v its velocity there) changes: friction's torque turns its spin along the floor
+  /// toward rolling's, n x v / r, at mu_s g_n / (k r), where that does not raise its
+  /// energy (|n x v / r| at most the spin's), until it gets there; the spin about n dies
+  /// as always. The force's linear part goes into the contacts. The spin's change does not
+  /// change the ball's path, so its ends are not events: the spin after t is
+  /// w + min(t, along_time) along_rate + min(t, normal_time) normal_rate n.
+  struct ConstrainedSpin
+  {
+    Vec3 along_rate = Vec3::Zero();  ///< [rad/s^2]
+    double along_time = 0.0;         ///< [s]
+    double normal_rate = 0.0;        ///< [rad/s^2]
+    double normal_time = 0.0;        ///< [s]
+  };
+  ConstrainedSpin constrained(double k, double r, const Vec3& v, Vec3& w) const;
+  /// The kind of a ball whose contacts decide its motion, from its velocity and spin.
+  MotionKind constrainedKind(double r, const Vec3& v, const Vec3& w) const;
   /// The motion kind start() would give, without changing anything.
   MotionKind kindOf(double k, double r, const Vec3& v, const Vec3& w) const;
   /// The state at a phase's end made exact: slip 0 by the impulse at the contact point
@@ -85,6 +103,8 @@ private:
   void stick(double k, double r, Vec3& v, Vec3& w) const;
   FrictionPhase sliding(double k, double r, const Vec3& u_direction, double u_norm) const;
   FrictionPhase rolling(double k, double r, const Vec3& v, const Vec3& direction) const;
+  /// w.n, or 0 (and w made so) where it is round-off.
+  double spinAboutNormal(double r, const Vec3& v, Vec3& w) const;
   /// Adds the decay of the spin about n to `phase`.
   void spinDecay(double k, double r, double wn, FrictionPhase& phase) const;
 

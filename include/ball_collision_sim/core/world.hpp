@@ -302,9 +302,14 @@ private:
   /// a change of motion kind is recorded when `record`. A phase without friction force
   /// (SpinMotion::conservative) is left for the caller to move as a frictionless ball.
   void startFriction(std::size_t i, double x, bool record);
-  /// Ball i's motion from x on has no friction phase (held, frozen, kept out of blocked
-  /// directions): its spin stays as it is.
+  /// Ball i has no motion for the rest of the step (frozen by the cap, or asleep): its
+  /// spin stays as it is.
   void keepSpin(std::size_t i);
+  /// Ball i's motion from x on is its contacts' (held, or kept out of blocked
+  /// directions): its spin follows FrictionLaw::constrained().
+  void constrainSpin(std::size_t i, double x);
+  /// Records a transition at x where ball i's kind is not the one last reported.
+  void recordKind(std::size_t i, double x);
   Vec3 spinAt(std::size_t i, double x) const;
   /// Queues the end of ball i's phase when it falls within the step.
   void queueTransition(std::size_t i);

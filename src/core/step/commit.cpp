@@ -100,6 +100,9 @@ World::Committed World::commitBall(std::size_t i, bool settle)
     const Vec3 w = spinAt(i, 1.0);
     sm.turn = (0.5 * dt_) * (spin.angular_velocity + w);
     spin.angular_velocity = w;
+    if (sm.constrained)
+      sm.kind = friction_->constrainedKind(motions_[i].radius, ball.velocity, w);
+    recordKind(i, motions_[i].x0);  // (a kind the step's events did not report)
     spin.kind = sm.kind;
   }
   return {moved, end.normal};

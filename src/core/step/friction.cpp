@@ -5,6 +5,7 @@
 // spin_motions_, the start velocities and the queue; writes transitions_ and stats_.
 #include "step_types.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ball_collision_sim::core
@@ -21,13 +22,22 @@ Vec3 World::spinOf(const BallDef& def, const Vec3& n)
   return def.angular_velocity ? *def.angular_velocity : Vec3(n.cross(def.velocity) / def.radius);
 }
 
+void World::recordKind(std::size_t i, double x)
+{
+  SpinMotion& sm = spin_motions_[i];
+  if (sm.kind == sm.reported)
+    return;
+  ++stats_.transitions;
+  transitions_.push_back({(static_cast<double>(stats_.steps) + x) * dt_, balls_[order_[i]].id, sm.reported, sm.kind});
+  sm.reported = sm.kind;
+}
+
 void World::startFriction(std::size_t i, double x, bool record)
 {
   Motion& m = motions_[i];
   SpinMotion& sm = spin_motions_[i];
   const BallSpin& spin = spins_[order_[i]];
   Vec3& v = startVelocity(i);
-  const MotionKind before = sm.kind;
   const FrictionPhase phase = friction_->start(spin.inertia, m.radius, v, sm.w0);
   sm.a = phase.acceleration;
   sm.alpha = phase.angular_acceleration;
@@ -36,12 +46,10 @@ void World::startFriction(std::size_t i, double x, bool record)
   sm.ends = phase.ends;
   sm.x_end = x + phase.duration / dt_;
   sm.free = true;
+  sm.constrained = false;
   sm.conservative = phase.conservative;
-  if (record && phase.kind != before)
-  {
-    ++stats_.transitions;
-    transitions_.push_back({(static_cast<double>(stats_.steps) + x) * dt_, balls_[order_[i]].id, before, phase.kind});
-  }
+  if (record)
+    recordKind(i, x);
   if (phase.conservative)
     return;  // the caller gives it a frictionless ball's motion
   m.b = dt_ * v;
@@ -54,13 +62,31 @@ void World::keepSpin(std::size_t i)
   sm.alpha = sm.a = sm.c = Vec3::Zero();
   sm.x_end = 2.0;
   sm.ends = kPhaseRuns;
-  sm.free = false;
+  sm.free = sm.constrained = sm.conservative = false;
+}
+
+void World::constrainSpin(std::size_t i, double x)
+{
+  keepSpin(i);
+  SpinMotion& sm = spin_motions_[i];
+  const FrictionLaw::ConstrainedSpin spin =
+      friction_->constrained(spins_[order_[i]].inertia, motions_[i].radius, startVelocity(i), sm.w0);
+  sm.alpha = spin.along_rate;
+  sm.along_time = spin.along_time;
+  sm.normal_rate = spin.normal_rate;
+  sm.normal_time = spin.normal_time;
+  sm.constrained = true;
+  (void)x;
 }
 
 Vec3 World::spinAt(std::size_t i, double x) const
 {
   const SpinMotion& sm = spin_motions_[i];
-  return sm.w0 + ((x - motions_[i].x0) * dt_) * sm.alpha;
+  const double t = (x - motions_[i].x0) * dt_;
+  if (!sm.constrained)
+    return sm.w0 + t * sm.alpha;
+  return sm.w0 + std::min(t, sm.along_time) * sm.alpha +
+         (std::min(t, sm.normal_time) * sm.normal_rate) * friction_->normal();
 }
 
 void World::queueTransition(std::size_t i)

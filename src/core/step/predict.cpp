@@ -69,7 +69,7 @@ void World::predictMotion(std::size_t i)
     if (friction_)
     {
       spin_motions_[i].w0 = spins_[order_[i]].angular_velocity;
-      spin_motions_[i].kind = spins_[order_[i]].kind;
+      spin_motions_[i].kind = spin_motions_[i].reported = spins_[order_[i]].kind;
       keepSpin(i);
     }
     grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, m.p0, ball.radius));
@@ -79,7 +79,7 @@ void World::predictMotion(std::size_t i)
   {
     SpinMotion& sm = spin_motions_[i];
     sm.w0 = spins_[order_[i]].angular_velocity;
-    sm.kind = spins_[order_[i]].kind;
+    sm.kind = sm.reported = spins_[order_[i]].kind;
     startFriction(i, 0.0, false);  // (a change of kind was recorded where the last phase ended)
     if (!spin_motions_[i].conservative)
     {

@@ -73,6 +73,14 @@ struct World::SpinMotion
   bool free = false;
   /// no friction force in the phase: the velocity is a frictionless ball's (Ground)
   bool conservative = false;
+  /// its contacts decide its motion; friction acts on its spin only (FrictionLaw::constrained):
+  /// alpha along the floor for along_time, normal_rate about n for normal_time
+  bool constrained = false;
+  double along_time = 0.0;   ///< [s]
+  double normal_rate = 0.0;  ///< [rad/s^2]
+  double normal_time = 0.0;  ///< [s]
+  /// the kind clients last heard of (a transition is recorded where it changes)
+  MotionKind reported = MotionKind::kStationary;
 };
 
 /// Unit directions a ball may not move along for the rest of the step: toward a wall it
