@@ -5,6 +5,7 @@
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
 
 #include <ball_collision_sim/BallStateArray.h>
+#include <ball_collision_sim/MotionTransition.h>
 #include <gtest/gtest.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
@@ -610,3 +611,66 @@ TEST_F(SimulateCli, PeersTableChecksTheTargetsOfOneRun)
   EXPECT_TRUE(contains(readFile(path("e.txt")), "no column engine")) << readFile(path("e.txt"));
 }
 }  // namespace
+
+// With friction the CSV appends the angular velocity, and the summary's energies count
+// the spins' k m r^2 |w|^2 / 2: the billiards break, 12 s, from the cue ball sliding
+// without spin to every ball at rest; the bag holds the motion transitions, and
+// plot_run draws the states.
+TEST_F(SimulateCli, FrictionAppendsTheSpinAndTransitions)
+{
+  const std::string scene_path = std::string(BCS_CONFIG_DIR) + "/billiards.yaml";
+  const std::string csv = path("break.csv");
+  const RunResult result =
+      run({scene_path, "--duration", "12", "--csv", csv, "--sample-every", "100", "--bag", path("break.bag")});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const std::vector<std::string> all = lines(readFile(csv));
+  ASSERT_GT(all.size(), 2u);
+  EXPECT_EQ(all[0], "t,id,x,y,z,vx,vy,vz,wx,wy,wz");
+  const ball_collision_sim::core::Scene scene = ball_collision_sim::yaml::loadValidScene(scene_path);
+  const std::size_t balls = scene.balls.size();
+  double start = 0, end = 0;
+  for (std::size_t i = 1; i < all.size(); ++i)
+  {
+    double t, x, y, z, vx, vy, vz, wx, wy, wz;
+    int id;
+    char tail = 0;
+    ASSERT_EQ(std::sscanf(all[i].c_str(), "%lf,%d,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf%c", &t, &id, &x, &y, &z, &vx,
+                          &vy, &vz, &wx, &wy, &wz, &tail),
+              11)
+        << all[i];
+    const ball_collision_sim::core::BallDef& b = scene.balls.at(static_cast<std::size_t>(id) - 1);
+    const double e = 0.5 * b.mass * (vx * vx + vy * vy + vz * vz) +
+                     0.5 * b.inertia * b.mass * b.radius * b.radius * (wx * wx + wy * wy + wz * wz) +
+                     b.mass * 9.81 * z;
+    if (i <= balls)
+      start += e;
+    if (i + balls >= all.size())
+    {
+      end += e;
+      EXPECT_EQ(vx * vx + vy * vy + wx * wx + wy * wy + wz * wz, 0.0) << "ball " << id << " still moves at the end";
+    }
+  }
+  const Summary summary = parseSummary(lines(result.out).back());
+  EXPECT_NEAR(summary.energy_start, start, 1e-12 * start);
+  EXPECT_NEAR(summary.energy_end, end, 1e-12 * end);
+  EXPECT_LT(summary.energy_end, summary.energy_start);
+
+  rosbag::Bag bag(path("break.bag"));
+  int transitions = 0;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/ball_sim/motion_transitions")))
+    if (const auto msg = m.instantiate<ball_collision_sim::MotionTransition>())
+    {
+      ++transitions;
+      EXPECT_NE(msg->before, msg->after);
+      EXPECT_GT(msg->header.stamp.toSec(), 0.0);
+    }
+  bag.close();
+  EXPECT_GE(transitions, static_cast<int>(balls));  // every ball stops at least
+  const std::string command = "/usr/bin/python3 " + std::string(BCS_CONFIG_DIR) + "/../scripts/plot_run " +
+                              shellQuote(path("break.bag")) + " --out " + shellQuote(path("plots")) + " > " +
+                              shellQuote(path("plot.txt")) + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << readFile(path("plot.txt"));
+  EXPECT_GT(fs::file_size(path("plots") + "/states.png"), 5000u);
+  EXPECT_NEAR(field(lines(readFile(path("plot.txt"))).back(), "energy_start"), summary.energy_start,
+              1e-12 * summary.energy_start);
+}
