@@ -39,6 +39,14 @@ void BM_S1Billiards(benchmark::State& state)
 }
 BENCHMARK(BM_S1Billiards)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
+/// The first 10 s of the table with friction (1000 steps), while its balls slide, roll
+/// and stop; later it is all at rest and costs next to nothing.
+void BM_S1Friction(benchmark::State& state)
+{
+  runSteps(state, World(ball_collision_sim::bench::billiardsFriction(static_cast<int>(state.range(0)))));
+}
+BENCHMARK(BM_S1Friction)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->Iterations(1000);
+
 void BM_S2Bullets(benchmark::State& state)
 {
   runSteps(state, World(ball_collision_sim::bench::bullets()));

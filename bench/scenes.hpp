@@ -65,6 +65,23 @@ inline Scene billiards(int n, std::uint64_t seed = 1)
   return s;
 }
 
+/// S1 with friction: S1's balls and box with pooltool's cloth (mu_s 0.2, mu_r 0.01,
+/// mu_sp 0.044) and ball-ball restitution 0.95; every ball starts sliding without spin
+/// (struck through its centre), so that it slides, rolls and, after about 20 s, stops.
+inline Scene billiardsFriction(int n, std::uint64_t seed = 1)
+{
+  Scene s = billiards(n, seed);
+  s.restitution = 0.95;
+  core::FrictionDef f;
+  f.sliding = 0.2;
+  f.rolling = 0.01;
+  f.spinning = 0.044;
+  s.friction = f;
+  for (BallDef& b : s.balls)
+    b.angular_velocity = Vec3::Zero();
+  return s;
+}
+
 /// S2 bullets: 100 balls of radius 0.02 m at 200 m/s in a 2 m box of thin walls; 1 s.
 inline Scene bullets(std::uint64_t seed = 2)
 {
