@@ -30,8 +30,8 @@ const char* motionKindName(MotionKind kind)
 }
 
 FrictionLaw::FrictionLaw(const FrictionDef& mu, const Vec3& normal, const Vec3& gravity, const Vec3& along,
-                         double slip_tolerance)
-    : mu_(mu), normal_(normal), slip_tolerance_(slip_tolerance)
+                         double slip_tolerance, double still_speed)
+    : mu_(mu), normal_(normal), slip_tolerance_(slip_tolerance), still_speed_(still_speed)
 {
   // (no pull into the floor, no friction: a floor above its balls, or no gravity)
   g_n_ = std::max(0.0, -gravity.dot(normal));
@@ -104,7 +104,7 @@ double FrictionLaw::spinAboutNormal(double r, const Vec3& v, Vec3& w) const
 {
   const double wn = w.dot(normal_);
   // A spin about n of round-off (of the projection that ended it, on a tilted floor) is none.
-  if (wn != 0 && std::abs(wn) <= slip_tolerance_ * (w.norm() + v.norm() / r))
+  if (wn != 0 && (std::abs(wn) <= slip_tolerance_ * (w.norm() + v.norm() / r) || std::abs(wn) * r <= still_speed_))
   {
     w -= wn * normal_;
     return 0.0;
@@ -143,12 +143,18 @@ MotionKind FrictionLaw::constrainedKind(double r, const Vec3& v, const Vec3& w) 
     return MotionKind::kSliding;
   if (v != Vec3::Zero())
     return MotionKind::kRolling;
-  return std::abs(wn) > slip_tolerance_ * w.norm() ? MotionKind::kSpinning : MotionKind::kStationary;
+  return std::abs(wn) > slip_tolerance_ * w.norm() && std::abs(wn) * r > still_speed_ ? MotionKind::kSpinning
+                                                                                     : MotionKind::kStationary;
 }
 
 FrictionPhase FrictionLaw::start(double k, double r, Vec3& v, Vec3& w) const
 {
   const double wn = spinAboutNormal(r, v, w);
+  if (v.norm() <= still_speed_ && r * (w - wn * normal_).norm() <= still_speed_)
+  {
+    v = Vec3::Zero();  // (a ball all but still, slipping by round-off: still)
+    w = wn * normal_;
+  }
   const Vec3 u = slip(r, v, w);
   const double u_norm = u.norm();
   const double scale = speeds(r, v, w);

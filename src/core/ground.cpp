@@ -77,9 +77,10 @@ Vec3 Ground::pathAcceleration() const
   return plane_ ? tangentPart(gravity_, plane_normal_) : gravity_;
 }
 
-Vec3 Ground::velocityAt(const Vec3& v0, double elapsed, const Vec3& p0, const Vec3& p, const Vec3& n) const
+Vec3 Ground::velocityAt(const Vec3& v0, double elapsed, const Vec3& p0, const Vec3& p, const Vec3& n,
+                        const Vec3& pull) const
 {
-  const Vec3 v = along(v0 + elapsed * gravity_, n);
+  const Vec3 v = along(v0 + elapsed * pull, n);
   if (straight_)
     return v;  // no force along the floor: the motion is the chord itself
   // Under a force along the floor the ball's path is a curve and its motion in the step
@@ -87,7 +88,7 @@ Vec3 Ground::velocityAt(const Vec3& v0, double elapsed, const Vec3& p0, const Ve
   // the velocity the force gave by then does not go with the height the chord reached.
   // Keep the frictionless ball's |v|^2 = |v0|^2 + 2 <g, p - p0> (the course code's
   // correction on its curved floor).
-  const double target = v0.squaredNorm() + 2 * gravity_.dot(p - p0);
+  const double target = v0.squaredNorm() + 2 * pull.dot(p - p0);
   const double norm = v.norm();
   if (target <= 0 || norm == 0)
     return Vec3::Zero();

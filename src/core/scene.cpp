@@ -396,8 +396,6 @@ SceneCheck check(const Scene& scene)
       check.nonNegative(key, value, kMaxFriction);
     if (!scene.floor)
       check.fail("friction", "needs a floor (friction acts between the balls and the floor)");
-    else if (scene.floor->type != FloorDef::Type::kPlane)
-      check.fail("friction", "acts on a plane floor only so far (the floor is biquadratic)");
   }
 
   bool walls_ok = true;

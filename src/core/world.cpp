@@ -36,10 +36,11 @@ World::World(const Scene& scene, SceneCheck checked, const StepSettings& setting
 {
   if (!checked.issues.empty())
     throw std::invalid_argument(joinIssues(checked.issues));
-  // (check() allows friction on a plane floor only)
+  // (the plane's laws; on a curved floor each ball's are found under its normal)
   if (scene.friction)
-    friction_.emplace(*scene.friction, ground_.floor()->planeNormal(), scene.gravity, ground_.pathAcceleration(),
-                      settings_.slip_tolerance);
+    friction_.emplace(*scene.friction, ground_.floor()->isPlane() ? ground_.floor()->planeNormal() : ground_.up(),
+                      scene.gravity, ground_.pathAcceleration(), settings_.slip_tolerance,
+                      settings_.resting_speed_floor);
   // (a ball's event count is kept in 16 bits, up to one past the cap)
   if (settings_.max_events_per_ball_step >= 0xffff)
     throw std::invalid_argument("max_events_per_ball_step: must be below 65535");
@@ -74,7 +75,7 @@ void World::load(const std::vector<PlacedBall>& balls)
     if (ground_.bends())
       feet_.push_back(ball.foot);
     if (friction_)
-      spins_.push_back(makeSpin(ball.def));
+      spins_.push_back(makeSpin(ball.def, ball.foot));
   }
   stats_ = WorldStats{};
   events_.clear();
@@ -106,12 +107,13 @@ Ball World::makeBall(int id, const BallDef& placed)
   return ball;
 }
 
-BallSpin World::makeSpin(const BallDef& placed) const
+BallSpin World::makeSpin(const BallDef& placed, const Vec2& foot) const
 {
   BallSpin spin;
-  spin.angular_velocity = spinOf(placed, friction_->normal());
+  const FrictionLaw law = frictionUnder(ground_.normalAt(placed.position, foot));
+  spin.angular_velocity = spinOf(placed, law.normal());
   spin.inertia = placed.inertia;
-  spin.kind = friction_->kindOf(placed.inertia, placed.radius, placed.velocity, spin.angular_velocity);
+  spin.kind = law.kindOf(placed.inertia, placed.radius, placed.velocity, spin.angular_velocity);
   return spin;
 }
 
@@ -261,7 +263,7 @@ AddResult World::addBall(const BallDef& def, Landing landing)
   if (ground_.bends())
     feet_.push_back(foot);
   if (friction_)
-    spins_.push_back(makeSpin(placed));
+    spins_.push_back(makeSpin(placed, foot));
   balls_.push_back(makeBall(next_ball_id_, placed));
   result.id = next_ball_id_++;
   forgetOrder();
@@ -301,7 +303,7 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
   balls_[k].position = def.position;
   balls_[k].velocity = def.velocity;
   if (friction_)
-    spins_[k] = makeSpin(def);
+    spins_[k] = makeSpin(def, foot);
   if (ground_.bends())
     feet_[k] = foot;
   forgetOrder();
@@ -349,7 +351,7 @@ AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
       return result;
     }
     spin.angular_velocity = w;
-    spin.kind = friction_->kindOf(spin.inertia, ball.radius, velocity, w);
+    spin.kind = frictionUnder(ground_.normalUnder(footOf(k))).kindOf(spin.inertia, ball.radius, velocity, w);
   }
   ball.velocity = velocity;
   forgetOrder();

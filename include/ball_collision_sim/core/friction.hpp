@@ -55,13 +55,17 @@ class FrictionLaw
 public:
   /// `along`: gravity's part along the floor, as the floor gives it (zero where it is
   /// round-off), so that a motion without friction force is a frictionless ball's.
-  FrictionLaw(const FrictionDef& mu, const Vec3& normal, const Vec3& gravity, const Vec3& along, double slip_tolerance);
+  /// `still_speed` [m/s]: speeds (and r times spins) below it are round-off of zero, where
+  /// a relative tolerance says nothing (StepSettings::resting_speed_floor).
+  FrictionLaw(const FrictionDef& mu, const Vec3& normal, const Vec3& gravity, const Vec3& along, double slip_tolerance,
+              double still_speed);
 
   /// The phase that starts from (v, w). A slip below slip_tolerance of the ball's speeds
   /// is taken away (by the sticking impulse, as at the end of a sliding phase, where
   /// there is sliding friction) and a rolling ball's spin made exactly
   /// n x v / r + (w.n) n, so v and w may change. A spin about n below slip_tolerance of
-  /// |w| + |v| / r is none (round-off of the projection that ended it).
+  /// |w| + |v| / r is none (round-off of the projection that ended it); so are a velocity
+  /// and a spin along the floor both below still_speed (and r w).
   FrictionPhase start(double k, double r, Vec3& v, Vec3& w) const;
   /// How the spin of a ball whose motion its contacts decide (leaning on a wall or in a
   /// pile; v its velocity there) changes: friction's torque turns its spin along the floor
@@ -97,6 +101,8 @@ public:
   /// The contact point's slip on the floor, v + r n x w.
   Vec3 slip(double r, const Vec3& v, const Vec3& w) const { return v + r * normal_.cross(w); }
   const Vec3& normal() const { return normal_; }
+  /// Gravity along the floor, g_t [m/s^2].
+  const Vec3& along() const { return g_t_; }
 
 private:
   /// Removes slip u by the impulse at the contact point that stops it.
@@ -113,6 +119,7 @@ private:
   double g_n_;   ///< gravity into the floor [m/s^2]; friction forces scale with it
   Vec3 g_t_;     ///< gravity along the floor [m/s^2]
   double slip_tolerance_;
+  double still_speed_;  ///< [m/s]
 };
 
 /// A tangential impulse at an impact: opposes the slip `slip` of the touching points

@@ -52,7 +52,14 @@ public:
   /// A ball's velocity at p, on the floor with normal n there, `elapsed` seconds into a
   /// motion that started at p0 with velocity v0: gravity's along the floor added, and
   /// where gravity pulls along the floor, the speed its energy gives at p.
-  Vec3 velocityAt(const Vec3& v0, double elapsed, const Vec3& p0, const Vec3& p, const Vec3& n) const;
+  Vec3 velocityAt(const Vec3& v0, double elapsed, const Vec3& p0, const Vec3& p, const Vec3& n) const
+  {
+    return velocityAt(v0, elapsed, p0, p, n, gravity_);
+  }
+  /// The same under `pull` [m/s^2] in gravity's place: gravity and a friction force (whose
+  /// work <f, p - p0> per unit mass comes off the energy too).
+  Vec3 velocityAt(const Vec3& v0, double elapsed, const Vec3& p0, const Vec3& p, const Vec3& n,
+                  const Vec3& pull) const;
   /// A velocity `before` turned to the direction of `after` by something frictionless
   /// (a resting contact, the floor): where gravity pulls along the floor a ball's speed
   /// is its energy's, and the turn keeps it; elsewhere `after` as it is.

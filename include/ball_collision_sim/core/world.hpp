@@ -198,8 +198,8 @@ private:
   void forgetOrder();
   /// The ball of `placed`, a definition already put on the floor.
   static Ball makeBall(int id, const BallDef& placed);
-  /// The spin record of `placed` (worlds with friction).
-  BallSpin makeSpin(const BallDef& placed) const;
+  /// The spin record of `placed`, whose foot point is `foot` (worlds with friction).
+  BallSpin makeSpin(const BallDef& placed, const Vec2& foot) const;
   /// Why `def` cannot stand in the world (ignoring ball `ignore_id`), or ""; else `def`
   /// is put on the floor as `landing` says and `foot` gets its foot point (u, v).
   std::string place(BallDef& def, Landing landing, int ignore_id, Vec2& foot) const;
@@ -301,7 +301,9 @@ private:
   /// Ball i's friction phase from x on, from its start velocity and spin_motions_[i].w0;
   /// a change of motion kind is recorded when `record`. A phase without friction force
   /// (SpinMotion::conservative) is left for the caller to move as a frictionless ball.
-  void startFriction(std::size_t i, double x, bool record);
+  /// On a curved floor a ball that was rolling, and not hit (`impact`), rolls on under
+  /// the normal where it is now.
+  void startFriction(std::size_t i, double x, bool record, bool impact);
   /// Ball i has no motion for the rest of the step (frozen by the cap, or asleep): its
   /// spin stays as it is.
   void keepSpin(std::size_t i);
@@ -319,6 +321,12 @@ private:
   void ballBallFriction(const PairContact& c, double normal_impulse, Vec3& va, Vec3& vb, Vec3& wa, Vec3& wb) const;
   void ballWallFriction(std::size_t i, const Vec3& n, const Vec3& floor_normal, double normal_impulse, Vec3& v,
                         Vec3& w) const;
+  /// The friction laws under the floor's normal n (the plane's, or on a curved floor the
+  /// local one).
+  FrictionLaw frictionUnder(const Vec3& n) const;
+  /// What pulls ball i's chord on a curved floor: gravity, and with friction the phase's
+  /// friction force per unit mass [m/s^2].
+  const Vec3& pullOf(std::size_t i) const;
   /// Turns ball i by the rotation vector `angle` [rad].
   void turn(std::size_t i, const Vec3& angle);
   /// The spin of a ball defined by `def` on the floor with normal n: its own, or rolling's.

@@ -97,11 +97,14 @@ World::Committed World::commitBall(std::size_t i, bool settle)
     // its own spin at the end, and its turn over the step by the mean of its spins
     SpinMotion& sm = spin_motions_[i];
     BallSpin& spin = spins_[order_[i]];
-    const Vec3 w = spinAt(i, 1.0);
+    Vec3 w = spinAt(i, 1.0);
+    // (on a curved floor a rolling ball rolls under the normal where it ends)
+    if (ground_.bends() && sm.free && sm.kind == MotionKind::kRolling)
+      w = end.normal.cross(ball.velocity) / ball.radius + w.dot(end.normal) * end.normal;
     sm.turn = (0.5 * dt_) * (spin.angular_velocity + w);
     spin.angular_velocity = w;
     if (sm.constrained)
-      sm.kind = friction_->constrainedKind(motions_[i].radius, ball.velocity, w);
+      sm.kind = frictionUnder(end.normal).constrainedKind(motions_[i].radius, ball.velocity, w);
     recordKind(i, motions_[i].x0);  // (a kind the step's events did not report)
     spin.kind = sm.kind;
   }

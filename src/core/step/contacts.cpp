@@ -172,7 +172,7 @@ void World::endOnFloor(std::size_t i)
 double World::EnergyCheck::speedSquaredWith(const Vec3& b) const
 {
   const Motion& m = world->motions_[i];
-  return world->startVelocity(i).squaredNorm() + 2 * world->gravity_.dot(world->onFloor(i, m.p0 + rest * b) - m.p0);
+  return world->startVelocity(i).squaredNorm() + 2 * world->pullOf(i).dot(world->onFloor(i, m.p0 + rest * b) - m.p0);
 }
 
 double World::EnergyCheck::speedSquared(double s) const
@@ -182,7 +182,7 @@ double World::EnergyCheck::speedSquared(double s) const
 
 double World::EnergyCheck::chordSpeedSquared(const Vec3& b) const
 {
-  return world->startVelocity(i).squaredNorm() + 2 * rest * world->gravity_.dot(b);
+  return world->startVelocity(i).squaredNorm() + 2 * rest * world->pullOf(i).dot(b);
 }
 
 void World::keepEnergy(std::size_t i)

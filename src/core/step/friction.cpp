@@ -5,6 +5,8 @@
 // spin_motions_, the start velocities and the queue; writes transitions_ and stats_.
 #include "step_types.hpp"
 
+#include "ball_collision_sim/core/response.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -32,13 +34,35 @@ void World::recordKind(std::size_t i, double x)
   sm.reported = sm.kind;
 }
 
-void World::startFriction(std::size_t i, double x, bool record)
+FrictionLaw World::frictionUnder(const Vec3& n) const
+{
+  if (!ground_.bends())
+    return *friction_;
+  return FrictionLaw(*scene_.friction, n, gravity_, tangentPart(gravity_, n), settings_.slip_tolerance,
+                     settings_.resting_speed_floor);
+}
+
+const Vec3& World::pullOf(std::size_t i) const
+{
+  if (friction_ && spin_motions_[i].free && !spin_motions_[i].conservative)
+    return spin_motions_[i].pull;
+  return gravity_;
+}
+
+void World::startFriction(std::size_t i, double x, bool record, bool impact)
 {
   Motion& m = motions_[i];
   SpinMotion& sm = spin_motions_[i];
   const BallSpin& spin = spins_[order_[i]];
   Vec3& v = startVelocity(i);
-  const FrictionPhase phase = friction_->start(spin.inertia, m.radius, v, sm.w0);
+  const FrictionLaw law = frictionUnder(floorNormalAt(i, m.p0));
+  // (the normal turned under it since its phase began: the discrete path's turn, not a slip)
+  if (ground_.bends() && !impact && sm.kind == MotionKind::kRolling)
+    sm.w0 = law.normal().cross(v) / m.radius + sm.w0.dot(law.normal()) * law.normal();
+  const FrictionPhase phase = law.start(spin.inertia, m.radius, v, sm.w0);
+  sm.normal = law.normal();
+  // (a curved floor's chord: gravity, and the friction force where gravity along the floor was)
+  sm.pull = gravity_ + (phase.acceleration - law.along());
   sm.a = phase.acceleration;
   sm.alpha = phase.angular_acceleration;
   sm.c = (0.5 * dt_ * dt_) * phase.acceleration;
@@ -69,8 +93,10 @@ void World::constrainSpin(std::size_t i, double x)
 {
   keepSpin(i);
   SpinMotion& sm = spin_motions_[i];
+  const FrictionLaw law = frictionUnder(floorNormalAt(i, motions_[i].p0));
+  sm.normal = law.normal();
   const FrictionLaw::ConstrainedSpin spin =
-      friction_->constrained(spins_[order_[i]].inertia, motions_[i].radius, startVelocity(i), sm.w0);
+      law.constrained(spins_[order_[i]].inertia, motions_[i].radius, startVelocity(i), sm.w0);
   sm.alpha = spin.along_rate;
   sm.along_time = spin.along_time;
   sm.normal_rate = spin.normal_rate;
@@ -86,7 +112,7 @@ Vec3 World::spinAt(std::size_t i, double x) const
   if (!sm.constrained)
     return sm.w0 + t * sm.alpha;
   return sm.w0 + std::min(t, sm.along_time) * sm.alpha +
-         (std::min(t, sm.normal_time) * sm.normal_rate) * friction_->normal();
+         (std::min(t, sm.normal_time) * sm.normal_rate) * sm.normal;
 }
 
 void World::queueTransition(std::size_t i)
@@ -106,9 +132,12 @@ void World::resolveTransition(const Event& event)
   const Vec3 p = positionAt(i, event.x);
   Vec3 v = onFloorVelocity(i, event.x, p, floorNormalAt(i, p));
   Vec3 w = spinAt(i, event.x);
-  const double speeds = friction_->speeds(m.radius, startVelocity(i), sm.w0);
-  friction_->finish(sm.ends, spins_[order_[i]].inertia, m.radius, speeds, v, w);
+  const FrictionLaw law = frictionUnder(sm.normal);
+  const double speeds = law.speeds(m.radius, startVelocity(i), sm.w0);
+  law.finish(sm.ends, spins_[order_[i]].inertia, m.radius, speeds, v, w);
   sm.w0 = w;
+  if (sm.ends & kSlipStops)
+    sm.kind = MotionKind::kRolling;  // (its slip is gone: it rolls, or finds it cannot)
   startMotion(i, event.x, p, v, false);
   countEvent(i);
   detect(i);

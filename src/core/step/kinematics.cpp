@@ -54,7 +54,11 @@ Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const
 {
   const Motion& m = motions_[i];
   if (friction_ && spin_motions_[i].free && !spin_motions_[i].conservative)
-    return startVelocity(i) + ((x - m.x0) * dt_) * spin_motions_[i].a;
+  {
+    if (!ground_.bends())
+      return startVelocity(i) + ((x - m.x0) * dt_) * spin_motions_[i].a;
+    return ground_.velocityAt(startVelocity(i), (x - m.x0) * dt_, m.p0, position, normal, spin_motions_[i].pull);
+  }
   return ground_.velocityAt(startVelocity(i), (x - m.x0) * dt_, m.p0, position, normal);
 }
 
@@ -114,9 +118,9 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   }
   if (friction_ && states_[i].blocked < 0)
   {
-    startFriction(i, x, true);  // the phase its velocity and spin give it
-    if (!spin_motions_[i].conservative)
-      return;
+    startFriction(i, x, true, impact);  // the phase its velocity and spin give it
+    if (!spin_motions_[i].conservative && !ground_.bends())
+      return;  // (on a curved floor: the chord below, under the phase's pull)
   }
   else if (friction_)
     constrainSpin(i, x);  // (leaning on something: its contacts decide its motion)

@@ -80,8 +80,8 @@ void World::predictMotion(std::size_t i)
     SpinMotion& sm = spin_motions_[i];
     sm.w0 = spins_[order_[i]].angular_velocity;
     sm.kind = sm.reported = spins_[order_[i]].kind;
-    startFriction(i, 0.0, false);  // (a change of kind was recorded where the last phase ended)
-    if (!spin_motions_[i].conservative)
+    startFriction(i, 0.0, false, false);  // (a change of kind was recorded where the last phase ended)
+    if (!spin_motions_[i].conservative && !ground_.bends())
     {
       grid_.setBox(static_cast<std::uint32_t>(i), currentBox(i));
       return;
@@ -105,7 +105,7 @@ void World::predictMotion(std::size_t i)
 Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span)
 {
   // seed (1): ds = dt v + dt^2 g / 2, then back onto the floor, seed (2)-(4)
-  const Vec3 q = p + span * v + (0.5 * span * span) * gravity_;
+  const Vec3 q = p + span * v + (0.5 * span * span) * pullOf(i);
   return ground_.landKeepingFoot(q, motions_[i].radius, guessOf(i));
 }
 

@@ -81,6 +81,11 @@ struct World::SpinMotion
   double normal_time = 0.0;  ///< [s]
   /// the kind clients last heard of (a transition is recorded where it changes)
   MotionKind reported = MotionKind::kStationary;
+  /// the floor's normal the phase was found under
+  Vec3 normal = Vec3::UnitZ();
+  /// curved floors: the chord's pull, gravity and the phase's friction force per unit
+  /// mass, in gravity's place (World::pullOf()) [m/s^2]
+  Vec3 pull = Vec3::Zero();
 };
 
 /// Unit directions a ball may not move along for the rest of the step: toward a wall it
