@@ -624,7 +624,7 @@ TEST(SceneParams, BadSceneStopsTheNode)
 // A bad node setting stops the node the same way, with one message naming the key.
 TEST(SceneParams, BadBallColorStopsTheNode)
 {
-  expectNodeStopsAtStart("bad_color_sim", "ball_color: expected speed or id, got the string \"fast\"");
+  expectNodeStopsAtStart("bad_color_sim", "ball_color: expected speed, id or motion, got the string \"fast\"");
 }
 
 int main(int argc, char** argv)

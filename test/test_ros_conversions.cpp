@@ -329,8 +329,8 @@ TEST(SceneYaml, BallColorSettingsAreCheckedByName)
     }
     return std::string("accepted");
   };
-  EXPECT_EQ(error("ball_color: fast"), "t.yaml: ball_color: expected speed or id, got fast");
-  EXPECT_EQ(error("ball_color: [speed]"), "t.yaml: ball_color: expected speed or id, got a list");
+  EXPECT_EQ(error("ball_color: fast"), "t.yaml: ball_color: expected speed, id or motion, got fast");
+  EXPECT_EQ(error("ball_color: [speed]"), "t.yaml: ball_color: expected speed, id or motion, got a list");
   EXPECT_EQ(error("speed_color_max: -1"),
             "t.yaml: speed_color_max: must be in [0, 1e7] m/s (0 = the fastest ball at the start), got -1");
   EXPECT_EQ(error("speed_color_max: .nan"),
@@ -341,7 +341,7 @@ TEST(SceneYaml, BallColorSettingsAreCheckedByName)
   params["ball_color"] = std::string("id");
   EXPECT_EQ(yaml::parseSceneFile(bridge::toYaml(params)).node.ball_color, BallColor::kId);
   params["ball_color"] = std::string("fast");
-  EXPECT_NE(error(bridge::toYaml(params)).find("ball_color: expected speed or id"), std::string::npos);
+  EXPECT_NE(error(bridge::toYaml(params)).find("ball_color: expected speed, id or motion"), std::string::npos);
 }
 
 TEST(CollisionFlashes, AShortLivedSphereAtTheContactPoint)

@@ -8,9 +8,25 @@ namespace ball_collision_sim
 /// How the node draws its balls.
 enum class BallColor
 {
-  kSpeed,  ///< by speed, on a scale up to NodeSettings::speed_color_max
-  kId,     ///< a fixed colour per id
+  kSpeed,   ///< by speed, on a scale up to NodeSettings::speed_color_max
+  kId,      ///< a fixed colour per id
+  kMotion,  ///< by motion state: sliding, rolling, spinning, stationary
 };
+
+/// "speed", "id", "motion"
+inline const char* ballColorName(BallColor color)
+{
+  return color == BallColor::kSpeed ? "speed" : color == BallColor::kId ? "id" : "motion";
+}
+
+/// The colour mode of a name, or none.
+inline std::optional<BallColor> ballColorNamed(const std::string& name)
+{
+  for (const BallColor color : {BallColor::kSpeed, BallColor::kId, BallColor::kMotion})
+    if (name == ballColorName(color))
+      return color;
+  return std::nullopt;
+}
 
 /// Settings read only by the ROS node: what it publishes and how, not physics. They may
 /// sit in a scene file beside the scene; the offline tool reads, checks and ignores them.

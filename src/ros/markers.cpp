@@ -99,10 +99,22 @@ visualization_msgs::Marker wallMarker(const core::Wall& wall, const std::string&
   return m;
 }
 
-std_msgs::ColorRGBA ballColor(const core::Ball& ball, const BallColoring& coloring)
+std_msgs::ColorRGBA ballColor(const core::Ball& ball, const BallColoring& coloring, core::MotionKind motion)
 {
   if (coloring.mode == BallColor::kId)
     return hue(0.61803398875 * ball.id + 0.05, 0.95, 1.0);
+  if (coloring.mode == BallColor::kMotion)
+    switch (motion)
+    {
+      case core::MotionKind::kSliding:
+        return rgba(0.95, 0.2, 0.15, 1.0);
+      case core::MotionKind::kRolling:
+        return rgba(0.2, 0.4, 1.0, 1.0);
+      case core::MotionKind::kSpinning:
+        return rgba(1.0, 0.6, 0.1, 1.0);
+      case core::MotionKind::kStationary:
+        return rgba(0.55, 0.55, 0.55, 1.0);
+    }
   const double t = coloring.speed_max > 0 ? std::clamp(ball.velocity.norm() / coloring.speed_max, 0.0, 1.0) : 1.0;
   const std_msgs::ColorRGBA slow = rgba(0.2, 0.35, 1.0, 1.0), middle = rgba(0.9, 0.15, 0.65, 1.0),
                             fast = rgba(1.0, 0.85, 0.1, 1.0);
@@ -110,7 +122,7 @@ std_msgs::ColorRGBA ballColor(const core::Ball& ball, const BallColoring& colori
 }
 
 visualization_msgs::Marker ballMarker(const core::Ball& ball, const std::string& frame_id, const ros::Time& stamp,
-                                      const BallColoring& coloring)
+                                      const BallColoring& coloring, core::MotionKind motion)
 {
   visualization_msgs::Marker m = base(kBallsNs, ball.id, visualization_msgs::Marker::SPHERE, frame_id);
   m.header.stamp = stamp;
@@ -120,7 +132,7 @@ visualization_msgs::Marker ballMarker(const core::Ball& ball, const std::string&
   m.pose.orientation.z = ball.orientation.z();
   m.pose.orientation.w = ball.orientation.w();
   m.scale.x = m.scale.y = m.scale.z = 2 * ball.radius;
-  m.color = ballColor(ball, coloring);
+  m.color = ballColor(ball, coloring, motion);
   return m;
 }
 

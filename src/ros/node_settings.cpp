@@ -80,7 +80,7 @@ SimulatorConfig toConfig(const NodeSettings& node)
   config.status_period = node.status_period;
   config.max_balls = node.max_balls;
   config.marker_list_threshold = node.marker_list_threshold;
-  config.ball_color = node.ball_color == BallColor::kSpeed ? "speed" : "id";
+  config.ball_color = ballColorName(node.ball_color);
   config.speed_color_max = node.speed_color_max;
   config.collision_flashes = node.collision_flashes;
   return config;
@@ -113,12 +113,12 @@ std::vector<std::string> applyConfig(SimulatorConfig& config, NodeSettings& node
   node.marker_list_threshold = config.marker_list_threshold;
   node.publish_collisions = config.publish_collisions;
   node.collision_flashes = config.collision_flashes;
-  if (config.ball_color == "speed" || config.ball_color == "id")
-    node.ball_color = config.ball_color == "speed" ? BallColor::kSpeed : BallColor::kId;
+  if (const std::optional<BallColor> color = ballColorNamed(config.ball_color))
+    node.ball_color = *color;
   else
   {
-    kept.push_back("ball_color: expected speed or id, got \"" + config.ball_color + "\"");
-    config.ball_color = node.ball_color == BallColor::kSpeed ? "speed" : "id";
+    kept.push_back("ball_color: expected speed, id or motion, got \"" + config.ball_color + "\"");
+    config.ball_color = ballColorName(node.ball_color);
   }
   return kept;
 }

@@ -63,8 +63,8 @@ visualization_msgs::MarkerArray ballMarkers(const core::World& world, const std:
   if (world.balls().size() <= list_threshold)
   {
     msg.markers.reserve(world.balls().size());
-    for (const core::Ball& ball : world.balls())
-      msg.markers.push_back(ballMarker(ball, frame_id, stamp, coloring));
+    for (std::size_t k = 0; k < world.balls().size(); ++k)
+      msg.markers.push_back(ballMarker(world.balls()[k], frame_id, stamp, coloring, world.motionKind(k)));
     return msg;
   }
   // One list per distinct radius, in increasing radius.
@@ -87,12 +87,13 @@ visualization_msgs::MarkerArray ballMarkers(const core::World& world, const std:
     m.pose = geometry_msgs::Pose();
     m.pose.orientation.w = 1.0;
   }
-  for (const core::Ball& ball : world.balls())
+  for (std::size_t k = 0; k < world.balls().size(); ++k)
   {
+    const core::Ball& ball = world.balls()[k];
     visualization_msgs::Marker& m =
         msg.markers[static_cast<std::size_t>(std::lower_bound(radii.begin(), radii.end(), ball.radius) - radii.begin())];
     m.points.push_back(toPoint(ball.position));
-    m.colors.push_back(ballColor(ball, coloring));
+    m.colors.push_back(ballColor(ball, coloring, world.motionKind(k)));
   }
   return msg;
 }

@@ -652,9 +652,10 @@ void readNodeSettings(const MapFields& fields, NodeSettings& node)
   // reader checks these two itself, for the node and the offline tool alike.
   if (const YAML::Node* value = fields.find("ball_color"))
   {
-    if (!value->IsScalar() || (value->Scalar() != "speed" && value->Scalar() != "id"))
-      fail("ball_color", "expected speed or id, got " + describe(*value));
-    node.ball_color = value->Scalar() == "speed" ? BallColor::kSpeed : BallColor::kId;
+    const std::optional<BallColor> color = value->IsScalar() ? ballColorNamed(value->Scalar()) : std::nullopt;
+    if (!color)
+      fail("ball_color", "expected speed, id or motion, got " + describe(*value));
+    node.ball_color = *color;
   }
   if (const YAML::Node* value = fields.find("speed_color_max"))
   {

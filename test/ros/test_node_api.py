@@ -168,7 +168,7 @@ class NodeApi(unittest.TestCase):
         client = Client("/ball_sim", timeout=20)
         client.update_configuration({"marker_rate": 5.0})
         self.assertEqual(rospy.get_param(NS + "marker_rate"), 5.0)
-        # a ball colour that is not speed or id is refused and the old one kept
+        # a ball colour that is not speed, id or motion is refused and the old one kept
         config = client.update_configuration({"ball_color": "red"})
         self.assertEqual(config["ball_color"], "speed")
         # real_time_factor: simulated time runs 4 times as fast as wall time, at once

@@ -3,6 +3,7 @@
 #include "ball_collision_sim/core/ball.hpp"
 #include "ball_collision_sim/core/collision_event.hpp"
 #include "ball_collision_sim/core/floor.hpp"
+#include "ball_collision_sim/core/friction.hpp"
 #include "ball_collision_sim/core/scene.hpp"
 #include "ball_collision_sim/core/wall.hpp"
 #include "ball_collision_sim/node_settings.hpp"
@@ -39,8 +40,10 @@ struct BallColoring
 
 /// By speed: blue when still, through magenta, to yellow at `speed_max` and above (never
 /// green, so balls stand out on the green floor). By id: golden-ratio steps of hue, so
-/// that neighbouring ids get clearly different colours.
-std_msgs::ColorRGBA ballColor(const core::Ball& ball, const BallColoring& coloring);
+/// that neighbouring ids get clearly different colours. By motion (`motion`, its state):
+/// sliding red, rolling blue, spinning orange, stationary grey.
+std_msgs::ColorRGBA ballColor(const core::Ball& ball, const BallColoring& coloring,
+                              core::MotionKind motion = core::MotionKind::kRolling);
 
 /// The floor as a triangle mesh of resolution x resolution quads, shaded by height.
 visualization_msgs::Marker floorMarker(const core::Floor& floor, const std::string& frame_id, int resolution = 24);
@@ -48,7 +51,8 @@ visualization_msgs::Marker floorMarker(const core::Floor& floor, const std::stri
 visualization_msgs::Marker wallMarker(const core::Wall& wall, const std::string& frame_id);
 /// A sphere with the ball's radius and orientation, coloured by ballColor().
 visualization_msgs::Marker ballMarker(const core::Ball& ball, const std::string& frame_id, const ros::Time& stamp,
-                                      const BallColoring& coloring);
+                                      const BallColoring& coloring,
+                                      core::MotionKind motion = core::MotionKind::kRolling);
 /// A bright sphere of kFlashSize at the contact point, gone after kFlashLifetime.
 visualization_msgs::Marker collisionFlash(const core::CollisionEvent& event, const std::string& frame_id,
                                           const ros::Time& stamp, int id);
