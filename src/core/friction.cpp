@@ -41,8 +41,7 @@ FrictionLaw::FrictionLaw(const FrictionDef& mu, const Vec3& normal, const Vec3& 
 void FrictionLaw::stick(double k, double r, Vec3& v, Vec3& w) const
 {
   // The impulse P at the contact point changes the slip by (1 + 1/k) P / m: P = -m u k / (1 + k).
-  Vec3 u = slip(r, v, w);
-  u -= u.dot(normal_) * normal_;
+  const Vec3 u = slip(r, v, w);
   v -= (k / (1 + k)) * u;
   w += normal_.cross(u) / ((1 + k) * r);
 }
@@ -69,6 +68,7 @@ FrictionPhase FrictionLaw::rolling(double k, double r, const Vec3& v, const Vec3
 {
   FrictionPhase phase;
   phase.kind = MotionKind::kRolling;
+  phase.gravity_share = 1 / (1 + k);
   phase.acceleration = g_t_ / (1 + k) - (mu_.rolling * g_n_) * direction;
   phase.angular_acceleration = normal_.cross(phase.acceleration) / r;
   const double speed = v.norm();
@@ -169,17 +169,19 @@ FrictionPhase FrictionLaw::start(double k, double r, Vec3& v, Vec3& w) const
   if (u_norm > 0 && mu_.sliding * g_n_ > 0)
     stick(k, r, v, w);
   w = normal_.cross(v) / r + wn * normal_;  // rolling's spin, exactly
-  const double speed = v.norm();
+  const Vec3 moving = along(v);  // (the direction of rolling is along the floor)
+  const double speed = moving.norm();
   const double pull = g_t_.norm();
   // friction holds rolling while k |g_t| / (1 + k) <= mu_s g_n; beyond, slip grows along g_t
   const bool holds = k * pull / (1 + k) <= mu_.sliding * g_n_;
   const Vec3 downhill = pull > 0 ? Vec3(g_t_ / pull) : Vec3::Zero();
   if (speed > 0)
-    phase = holds ? rolling(k, r, v, v / speed) : sliding(k, r, downhill, 0.0);
+    phase = holds ? rolling(k, r, moving, moving / speed) : sliding(k, r, downhill, 0.0);
   else if (pull / (1 + k) <= mu_.rolling * g_n_)
   {
     phase.kind = MotionKind::kStationary;  // (spinning, where it turns about n)
     phase.duration = kNever;
+    phase.gravity_share = 0.0;
   }
   else
     phase = holds ? rolling(k, r, v, downhill) : sliding(k, r, downhill, 0.0);

@@ -124,9 +124,12 @@ struct EnergyScale
 EnergyScale energyOf(const core::World& world)
 {
   EnergyScale e;
-  for (const core::Ball& b : world.balls())
+  for (std::size_t k = 0; k < world.balls().size(); ++k)
   {
-    const double kinetic = 0.5 * b.mass * b.velocity.squaredNorm();
+    const core::Ball& b = world.balls()[k];
+    double kinetic = 0.5 * b.mass * b.velocity.squaredNorm();
+    if (world.friction())  // (the spins' too, where balls have their own)
+      kinetic += 0.5 * world.inertia(k) * b.mass * b.radius * b.radius * world.angularVelocity(k).squaredNorm();
     const double potential = -b.mass * world.gravity().dot(b.position);
     e.total += kinetic + potential;
     e.scale += kinetic + std::abs(potential);
@@ -307,6 +310,25 @@ StepCase decodeStepCase(const std::uint8_t* data, std::size_t size)
       clear = clear && wall.distance(ball.position) >= ball.radius;
     if (clear)
       scene.balls.push_back(ball);
+  }
+  // Friction, from bytes after the rest (inputs kept from before it decode as they did):
+  // coefficients up to 1 (some exactly 0), and each ball's spin and inertia.
+  if (in.u8() % 2 == 1)
+  {
+    core::FrictionDef f;
+    for (double* mu : {&f.sliding, &f.rolling, &f.spinning, &f.ball_ball, &f.wall})
+      *mu = in.u8() % 4 == 0 ? 0.0 : in.range(0.0, 1.0);
+    scene.friction = f;
+    for (core::BallDef& ball : scene.balls)
+    {
+      ball.inertia = in.u8() % 2 == 0 ? core::kSolidInertia : in.range(0.05, 1.0);
+      if (in.flag())
+      {
+        const double spin = in.logRange(1e-3, 1e3);
+        const double wx = in.range(-1, 1), wy = in.range(-1, 1), wz = in.range(-1, 1);
+        ball.angular_velocity = spin * Vec3(wx, wy, wz);
+      }
+    }
   }
   return out;
 }

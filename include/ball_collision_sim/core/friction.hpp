@@ -39,6 +39,10 @@ struct FrictionPhase
   /// No friction force acts (its acceleration is gravity's along the floor): the motion
   /// is a frictionless ball's, and keeps its energy as one does.
   bool conservative = false;
+  /// The part of gravity along the floor in the acceleration: 1 sliding, 1 / (1 + k)
+  /// rolling (the rest turns the ball), 0 still; the rest of the acceleration is
+  /// friction's. On a curved floor the chord is pulled by this part of gravity itself.
+  double gravity_share = 1.0;
 };
 
 /// The friction laws of a ball of radius r and inertia k m r^2 on a floor with unit normal
@@ -98,11 +102,14 @@ public:
   {
     return v.norm() + r * (w - w.dot(normal_) * normal_).norm();
   }
-  /// The contact point's slip on the floor, v + r n x w.
-  Vec3 slip(double r, const Vec3& v, const Vec3& w) const { return v + r * normal_.cross(w); }
+  /// The contact point's slip on the floor, v + r n x w (v's part along the floor: a
+  /// normal part of round-off is the floor's, not a slip).
+  Vec3 slip(double r, const Vec3& v, const Vec3& w) const { return along(v) + r * normal_.cross(w); }
+  /// x less its part along n.
+  Vec3 along(const Vec3& x) const { return x - x.dot(normal_) * normal_; }
   const Vec3& normal() const { return normal_; }
   /// Gravity along the floor, g_t [m/s^2].
-  const Vec3& along() const { return g_t_; }
+  const Vec3& gravityAlong() const { return g_t_; }
 
 private:
   /// Removes slip u by the impulse at the contact point that stops it.

@@ -300,7 +300,8 @@ private:
   // Friction (src/core/step/friction.cpp).
   /// Ball i's friction phase from x on, from its start velocity and spin_motions_[i].w0;
   /// a change of motion kind is recorded when `record`. A phase without friction force
-  /// (SpinMotion::conservative) is left for the caller to move as a frictionless ball.
+  /// (SpinMotion::conservative) is left for the caller to move as a frictionless ball,
+  /// and on a curved floor every phase to move on its chord under SpinMotion::pull.
   /// On a curved floor a ball that was rolling, and not hit (`impact`), rolls on under
   /// the normal where it is now.
   void startFriction(std::size_t i, double x, bool record, bool impact);

@@ -56,13 +56,19 @@ void World::startFriction(std::size_t i, double x, bool record, bool impact)
   const BallSpin& spin = spins_[order_[i]];
   Vec3& v = startVelocity(i);
   const FrictionLaw law = frictionUnder(floorNormalAt(i, m.p0));
-  // (the normal turned under it since its phase began: the discrete path's turn, not a slip)
+  // (the normal turned under it since its phase began: the discrete path's turn, not a
+  // slip; its spin about the normal is carried over, so |w| and the energy stay)
   if (ground_.bends() && !impact && sm.kind == MotionKind::kRolling)
-    sm.w0 = law.normal().cross(v) / m.radius + sm.w0.dot(law.normal()) * law.normal();
+    sm.w0 = law.normal().cross(v) / m.radius + sm.w0.dot(sm.normal) * law.normal();
   const FrictionPhase phase = law.start(spin.inertia, m.radius, v, sm.w0);
   sm.normal = law.normal();
-  // (a curved floor's chord: gravity, and the friction force where gravity along the floor was)
-  sm.pull = gravity_ + (phase.acceleration - law.along());
+  // (a curved floor's chord: its share of gravity itself, and the friction force; so the
+  // speed its energy gives counts gravity's work along the chord, not along the tangent)
+  // A still ball has no share: the pull into the floor keeps it on it, and a start below
+  // the floor (a chord's point at a mid-step end of its phase) may not rise for nothing.
+  sm.pull = phase.gravity_share > 0
+                ? Vec3(phase.gravity_share * gravity_ + (phase.acceleration - phase.gravity_share * law.gravityAlong()))
+                : Vec3(gravity_ - law.gravityAlong());
   sm.a = phase.acceleration;
   sm.alpha = phase.angular_acceleration;
   sm.c = (0.5 * dt_ * dt_) * phase.acceleration;
@@ -74,8 +80,8 @@ void World::startFriction(std::size_t i, double x, bool record, bool impact)
   sm.conservative = phase.conservative;
   if (record)
     recordKind(i, x);
-  if (phase.conservative)
-    return;  // the caller gives it a frictionless ball's motion
+  if (phase.conservative || ground_.bends())
+    return;  // the caller gives it a frictionless ball's motion, or a chord under sm.pull
   m.b = dt_ * v;
   states_[i].accelerates = true;
 }
@@ -152,7 +158,10 @@ void World::ballBallFriction(const PairContact& c, double normal_impulse, Vec3& 
   const double ra = motions_[c.i].radius, rb = motions_[c.j].radius;
   const double ka = spins_[order_[c.i]].inertia, kb = spins_[order_[c.j]].inertia;
   // the touching points' velocities: a's at ra n from its centre, b's at -rb n from its
-  const Vec3 relative = (va + wa.cross(ra * c.n)) - (vb - wb.cross(rb * c.n));
+  // (a ball without motion, asleep or stopped by the cap, is still: its surface too,
+  // else it would drive the other like a belt)
+  const Vec3 spin_a = states_[c.i].frozen ? Vec3::Zero() : wa, spin_b = states_[c.j].frozen ? Vec3::Zero() : wb;
+  const Vec3 relative = (va + spin_a.cross(ra * c.n)) - (vb - spin_b.cross(rb * c.n));
   const Vec3 slip = relative - relative.dot(c.n) * c.n;
   const double inverse_mass = c.inv_a * (1 + 1 / ka) + c.inv_b * (1 + 1 / kb);
   const double jt = tangentialImpulse(slip, mu, normal_impulse, inverse_mass);

@@ -80,6 +80,7 @@ void World::predictMotion(std::size_t i)
     SpinMotion& sm = spin_motions_[i];
     sm.w0 = spins_[order_[i]].angular_velocity;
     sm.kind = sm.reported = spins_[order_[i]].kind;
+    sm.normal = floorNormalAt(i, m.p0);  // (where its last step put it)
     startFriction(i, 0.0, false, false);  // (a change of kind was recorded where the last phase ended)
     if (!spin_motions_[i].conservative && !ground_.bends())
     {

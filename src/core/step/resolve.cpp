@@ -163,7 +163,10 @@ void World::countEvent(std::size_t i)
     motions_[i].b = Vec3::Zero();
     m.accelerates = false;
     if (friction_)
+    {
       keepSpin(i);
+      spin_motions_[i].w0 = Vec3::Zero();  // (its spin too: no motion at all, and no energy made)
+    }
     ++stats_.frozen_balls;
   }
   // its new motion may reach beyond where the grid has it
