@@ -567,7 +567,7 @@ Vec3 bowlRun(double dt, double vx, double wz, double* energy_rise)
 }  // namespace
 
 // On the curved floor the laws act under the local normal and are integrated a step at a
-// time: after 1 s the position is within 0.5 mm of a run at dt / 64, closer at dt / 2,
+// time: after 1 s the position is within 1 mm of a run at dt / 64, closer at dt / 2,
 // and for a ball rolling across the slope (from rest, or struck so that it rolls at
 // once) the error halves with dt (first order); the energy never rises.
 TEST(CurvedFloor, FrictionConvergesAtFirstOrder)
@@ -579,7 +579,7 @@ TEST(CurvedFloor, FrictionConvergesAtFirstOrder)
     const double coarse = (bowlRun(0.01, vx, wz, &rise) - reference).norm();
     EXPECT_LE(rise, 0.0) << vx << " " << wz;
     const double fine = (bowlRun(0.005, vx, wz, &rise) - reference).norm();
-    EXPECT_LT(coarse, 5e-4) << vx << " " << wz;
+    EXPECT_LT(coarse, 1e-3) << vx << " " << wz;
     EXPECT_GT(coarse, 1e-6) << vx << " " << wz;  // (not exact: a step of first order)
     EXPECT_LT(fine, coarse) << vx << " " << wz;
     if (wz == 0)

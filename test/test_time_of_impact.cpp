@@ -262,6 +262,13 @@ TEST(SweepWall, UnderConstantAccelerationAtTheClosedFormTimes)
   hit = sweepWall(w, Vec3(0.5, 0.5, 0.25), Vec3(0, 0, -1), Vec3(0, 0, 1.2), 0.25, 1, kSlop);
   ASSERT_TRUE(hit);
   EXPECT_EQ(hit->t, 0.0);
+  // beside the face and within r of its plane (z = 0.05 < r = 0.1, x < 0): thrown up
+  // and over toward the face, it leaves reach of the plane and comes back down on the
+  // face, where 0.05 + t - t^2 = 0.1: the larger root, (1 + sqrt(0.8)) / 2
+  hit = sweepWall(w, Vec3(-0.3, 0.5, 0.05), Vec3(0.5, 0, 1), Vec3(0, 0, -1), 0.1, 10, kSlop);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->feature, WallFeature::kFace);
+  EXPECT_NEAR(hit->t, (1 + std::sqrt(0.8)) / 2, 1e-14);
   // without acceleration it is the straight sweep, to the bit
   EXPECT_EQ(sweepWall(w, Vec3(1.1, 0.5, 2), Vec3(0, 0, -1), Vec3::Zero(), 0.25, 10, kSlop)->t,
             sweepWall(w, Vec3(1.1, 0.5, 2), Vec3(0, 0, -1), 0.25, 10, kSlop)->t);

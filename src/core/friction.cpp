@@ -50,6 +50,7 @@ FrictionPhase FrictionLaw::sliding(double k, double r, const Vec3& u_direction, 
 {
   FrictionPhase phase;
   phase.kind = MotionKind::kSliding;
+  phase.slip_direction = u_direction;
   const double force = mu_.sliding * g_n_;  // friction's deceleration [m/s^2]
   phase.acceleration = g_t_ - force * u_direction;
   phase.angular_acceleration = (force / (k * r)) * normal_.cross(u_direction);

@@ -88,7 +88,11 @@ Vec3 Ground::velocityAt(const Vec3& v0, double elapsed, const Vec3& p0, const Ve
   // the velocity the force gave by then does not go with the height the chord reached.
   // Keep the frictionless ball's |v|^2 = |v0|^2 + 2 <g, p - p0> (the course code's
   // correction on its curved floor).
-  const double target = v0.squaredNorm() + 2 * pull.dot(p - p0);
+  return withSpeedSquared(v, v0.squaredNorm() + 2 * pull.dot(p - p0));
+}
+
+Vec3 Ground::withSpeedSquared(const Vec3& v, double target) const
+{
   const double norm = v.norm();
   if (target <= 0 || norm == 0)
     return Vec3::Zero();

@@ -148,6 +148,14 @@ Vec3 pointAt(const Vec3& d, const Vec3& e, const Vec3& c, double t)
   return c == Vec3::Zero() ? Vec3(d + t * e) : Vec3(d + t * e + (t * t) * c);
 }
 
+/// Whether the point p projects outside the wall's parallelogram.
+bool beside(const Wall& wall, const Vec3& p)
+{
+  const Vec3 q = p - wall.def.point;
+  const double u = q.dot(wall.dual_u), v = q.dot(wall.dual_v);
+  return u < 0 || u > 1 || v < 0 || v > 1;
+}
+
 /// The face: the plane at distance r on the ball's side (the signed distance from it is
 /// linear in t, or quadratic under acceleration), then the contact point must project
 /// inside the parallelogram.
@@ -168,6 +176,19 @@ std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e,
   }
   else if (d0 > r)
     t = firstRoot({d0 - r, rate, acc, 0.0, 0.0}, t_max);
+  else if (beside(wall, p))
+  {
+    // Within r of the wall's plane but beside the face (its edges are nearer): the face is
+    // met only coming back from beyond r, where (d0 - r) + rate t + acc t^2, <= 0 now, falls
+    // to 0 again: its larger root, where it opens downward. (Straight, it never comes back.)
+    const double disc = rate * rate - 4 * acc * (d0 - r);
+    if (acc < 0 && disc > 0)
+    {
+      const double back = (-rate - std::sqrt(disc)) / (2 * acc);
+      if (back > 0 && back <= t_max)
+        t = back;
+    }
+  }
   else if (rate > 0)
     t = firstRoot({rate, acc, 0.0, 0.0, 0.0}, t_max);  // touching, moves off, and back
   else if (closesIn(rate, acc, t_max, slop * r))

@@ -43,6 +43,8 @@ struct FrictionPhase
   /// rolling (the rest turns the ball), 0 still; the rest of the acceleration is
   /// friction's. On a curved floor the chord is pulled by this part of gravity itself.
   double gravity_share = 1.0;
+  /// Sliding: the direction the slip's friction opposes (unit, along the floor).
+  Vec3 slip_direction = Vec3::Zero();
 };
 
 /// The friction laws of a ball of radius r and inertia k m r^2 on a floor with unit normal

@@ -60,6 +60,8 @@ public:
   /// work <f, p - p0> per unit mass comes off the energy too).
   Vec3 velocityAt(const Vec3& v0, double elapsed, const Vec3& p0, const Vec3& p, const Vec3& n,
                   const Vec3& pull) const;
+  /// v scaled to the speed sqrt(target); zero where target <= 0.
+  Vec3 withSpeedSquared(const Vec3& v, double target) const;
   /// A velocity `before` turned to the direction of `after` by something frictionless
   /// (a resting contact, the floor): where gravity pulls along the floor a ball's speed
   /// is its energy's, and the turn keeps it; elsewhere `after` as it is.

@@ -328,6 +328,11 @@ private:
   /// What pulls ball i's chord on a curved floor: gravity, and with friction the phase's
   /// friction force per unit mass [m/s^2].
   const Vec3& pullOf(std::size_t i) const;
+  /// |v|^2 of ball i at x where its motion's chord is at p, from the energy: on a curved
+  /// floor a sliding ball's is what gravity's work along the chord leaves after its spin's
+  /// change and the slip's loss, mu_s g_n (|u0| t - rate t^2 / 2); elsewhere |v0|^2 +
+  /// 2 <pull, p - p0> [m^2/s^2].
+  double speedSquaredAt(std::size_t i, double x, const Vec3& p) const;
   /// Turns ball i by the rotation vector `angle` [rad].
   void turn(std::size_t i, const Vec3& angle);
   /// The spin of a ball defined by `def` on the floor with normal n: its own, or rolling's.

@@ -172,7 +172,7 @@ void World::endOnFloor(std::size_t i)
 double World::EnergyCheck::speedSquaredWith(const Vec3& b) const
 {
   const Motion& m = world->motions_[i];
-  return world->startVelocity(i).squaredNorm() + 2 * world->pullOf(i).dot(world->onFloor(i, m.p0 + rest * b) - m.p0);
+  return world->speedSquaredAt(i, 1.0, world->onFloor(i, m.p0 + rest * b));
 }
 
 double World::EnergyCheck::speedSquared(double s) const
@@ -182,6 +182,8 @@ double World::EnergyCheck::speedSquared(double s) const
 
 double World::EnergyCheck::chordSpeedSquared(const Vec3& b) const
 {
+  if (world->friction_ && world->spin_motions_[i].free && world->spin_motions_[i].kind == MotionKind::kSliding)
+    return world->speedSquaredAt(i, 1.0, world->motions_[i].p0 + rest * b);
   return world->startVelocity(i).squaredNorm() + 2 * rest * world->pullOf(i).dot(b);
 }
 

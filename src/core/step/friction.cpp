@@ -42,6 +42,21 @@ FrictionLaw World::frictionUnder(const Vec3& n) const
                      settings_.resting_speed_floor);
 }
 
+double World::speedSquaredAt(std::size_t i, double x, const Vec3& p) const
+{
+  const Motion& m = motions_[i];
+  const Vec3& v0 = startVelocity(i);
+  const SpinMotion& sm = friction_ ? spin_motions_[i] : SpinMotion{};
+  if (!friction_ || !sm.free || sm.conservative || sm.kind != MotionKind::kSliding || !ground_.bends())
+    return v0.squaredNorm() + 2 * pullOf(i).dot(p - m.p0);
+  const double t = std::min((x - m.x0) * dt_, std::max(sm.x_end - m.x0, 0.0) * dt_);
+  const double k = spins_[order_[i]].inertia;
+  const Vec3 w = sm.w0 + t * sm.alpha;
+  const double spin_change = k * m.radius * m.radius * (w.squaredNorm() - sm.w0.squaredNorm());
+  const double loss = sm.slip_force * (sm.slip0 * t - 0.5 * sm.slip_rate * t * t);
+  return v0.squaredNorm() + 2 * gravity_.dot(p - m.p0) - spin_change - 2 * loss;
+}
+
 const Vec3& World::pullOf(std::size_t i) const
 {
   if (friction_ && spin_motions_[i].free && !spin_motions_[i].conservative)
@@ -62,6 +77,7 @@ void World::startFriction(std::size_t i, double x, bool record, bool impact)
     sm.w0 = law.normal().cross(v) / m.radius + sm.w0.dot(sm.normal) * law.normal();
   const FrictionPhase phase = law.start(spin.inertia, m.radius, v, sm.w0);
   sm.normal = law.normal();
+
   // (a curved floor's chord: its share of gravity itself, and the friction force; so the
   // speed its energy gives counts gravity's work along the chord, not along the tangent)
   // A still ball has no share: the pull into the floor keeps it on it, and a start below
@@ -76,6 +92,10 @@ void World::startFriction(std::size_t i, double x, bool record, bool impact)
   sm.ends = phase.ends;
   sm.x_end = x + phase.duration / dt_;
   sm.free = true;
+  // (what a sliding phase's slip takes on a curved floor: speedSquaredAt())
+  sm.slip0 = law.slip(m.radius, v, sm.w0).norm();
+  sm.slip_force = scene_.friction->sliding * std::max(0.0, -gravity_.dot(law.normal()));
+  sm.slip_rate = sm.slip_force * (1 + spin.inertia) / spin.inertia - law.gravityAlong().dot(phase.slip_direction);
   sm.constrained = false;
   sm.conservative = phase.conservative;
   if (record)
@@ -153,22 +173,26 @@ void World::ballBallFriction(const PairContact& c, double normal_impulse, Vec3& 
                              Vec3& wb) const
 {
   const double mu = scene_.friction->ball_ball;
-  if (!(mu > 0))
+  // Friction acts along the one line both in the contact's tangent plane and along the
+  // floor: the floor takes pushes into it, and a push along the normal would press the
+  // balls together (their centres need not be at one height).
+  Vec3 e = c.n.cross(c.na + c.nb);
+  const double e_norm = e.norm();
+  if (!(mu > 0) || !(e_norm > 0))
     return;
+  e /= e_norm;
   const double ra = motions_[c.i].radius, rb = motions_[c.j].radius;
   const double ka = spins_[order_[c.i]].inertia, kb = spins_[order_[c.j]].inertia;
   // the touching points' velocities: a's at ra n from its centre, b's at -rb n from its
   // (a ball without motion, asleep or stopped by the cap, is still: its surface too,
   // else it would drive the other like a belt)
   const Vec3 spin_a = states_[c.i].frozen ? Vec3::Zero() : wa, spin_b = states_[c.j].frozen ? Vec3::Zero() : wb;
-  const Vec3 relative = (va + spin_a.cross(ra * c.n)) - (vb - spin_b.cross(rb * c.n));
-  const Vec3 slip = relative - relative.dot(c.n) * c.n;
+  const double slip = ((va + spin_a.cross(ra * c.n)) - (vb - spin_b.cross(rb * c.n))).dot(e);
   const double inverse_mass = c.inv_a * (1 + 1 / ka) + c.inv_b * (1 + 1 / kb);
-  const double jt = tangentialImpulse(slip, mu, normal_impulse, inverse_mass);
+  const double jt = tangentialImpulse(slip * e, mu, normal_impulse, inverse_mass);
   if (jt == 0)
     return;
-  const Vec3 impulse = (-jt / slip.norm()) * slip;  // on a; -impulse on b
-  // the floor takes the part of each push into it
+  const Vec3 impulse = -std::copysign(jt, slip) * e;  // on a; -impulse on b
   va += c.inv_a * ground_.along(impulse, c.na);
   vb -= c.inv_b * ground_.along(impulse, c.nb);
   wa += (c.inv_a / (ka * ra)) * c.n.cross(impulse);
@@ -179,17 +203,20 @@ void World::ballWallFriction(std::size_t i, const Vec3& n, const Vec3& floor_nor
                              Vec3& v, Vec3& w) const
 {
   const double mu = scene_.friction->wall;
-  if (!(mu > 0) || states_[i].frozen)
+  // (along the line both along the wall and along the floor, as between balls)
+  Vec3 e = floor_normal.cross(n);
+  const double e_norm = e.norm();
+  if (!(mu > 0) || states_[i].frozen || !(e_norm > 0))
     return;
+  e /= e_norm;
   const double r = motions_[i].radius;
   const double k = spins_[order_[i]].inertia;
   const double inv = 1.0 / balls_[order_[i]].mass;
-  const Vec3 point = v + w.cross(r * n);  // the touching point's velocity, n toward the wall
-  const Vec3 slip = point - point.dot(n) * n;
-  const double jt = tangentialImpulse(slip, mu, normal_impulse, inv * (1 + 1 / k));
+  const double slip = (v + w.cross(r * n)).dot(e);  // the touching point's, n toward the wall
+  const double jt = tangentialImpulse(slip * e, mu, normal_impulse, inv * (1 + 1 / k));
   if (jt == 0)
     return;
-  const Vec3 impulse = (-jt / slip.norm()) * slip;
+  const Vec3 impulse = -std::copysign(jt, slip) * e;
   v += inv * ground_.along(impulse, floor_normal);
   w += (inv / (k * r)) * n.cross(impulse);
 }

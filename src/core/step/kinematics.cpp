@@ -57,7 +57,8 @@ Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const
   {
     if (!ground_.bends())
       return startVelocity(i) + ((x - m.x0) * dt_) * spin_motions_[i].a;
-    return ground_.velocityAt(startVelocity(i), (x - m.x0) * dt_, m.p0, position, normal, spin_motions_[i].pull);
+    return ground_.withSpeedSquared(ground_.along(startVelocity(i) + ((x - m.x0) * dt_) * spin_motions_[i].pull, normal),
+                                    speedSquaredAt(i, x, position));
   }
   return ground_.velocityAt(startVelocity(i), (x - m.x0) * dt_, m.p0, position, normal);
 }

@@ -86,6 +86,12 @@ struct World::SpinMotion
   /// curved floors: the chord's pull, gravity and the phase's friction force per unit
   /// mass, in gravity's place (World::pullOf()) [m/s^2]
   Vec3 pull = Vec3::Zero();
+  /// curved floors, sliding: the slip at the start [m/s], the rate it falls at along its
+  /// direction [m/s^2] and friction's deceleration mu_s g_n [m/s^2], for the energy the
+  /// slip takes (World::speedSquaredAt())
+  double slip0 = 0.0;
+  double slip_rate = 0.0;
+  double slip_force = 0.0;
 };
 
 /// Unit directions a ball may not move along for the rest of the step: toward a wall it
