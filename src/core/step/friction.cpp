@@ -102,6 +102,9 @@ void World::startFriction(std::size_t i, double x, bool record, bool impact)
     recordKind(i, x);
   if (phase.conservative || ground_.bends())
     return;  // the caller gives it a frictionless ball's motion, or a chord under sm.pull
+  // (its path is a parabola on the plane: a part of v into the floor, which a contact's
+  // projection out of a leaning wall can leave, is the floor's)
+  v = law.along(v);
   m.b = dt_ * v;
   states_[i].accelerates = true;
 }
