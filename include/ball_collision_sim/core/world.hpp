@@ -301,10 +301,10 @@ private:
   /// Ball i's friction phase from x on, from its start velocity and spin_motions_[i].w0;
   /// a change of motion kind is recorded when `record`. A phase without friction force
   /// (SpinMotion::conservative) is left for the caller to move as a frictionless ball,
-  /// and on a curved floor every phase to move on its chord under SpinMotion::pull.
-  /// On a curved floor a ball that was rolling, and not hit (`impact`), rolls on under
-  /// the normal where it is now.
-  void startFriction(std::size_t i, double x, bool record, bool impact);
+  /// and on a curved floor every moving phase to move on its chord under
+  /// SpinMotion::pull: returns whether the caller is to move it. On a curved floor a ball
+  /// that was rolling, and not hit (`impact`), rolls on under the normal where it is now.
+  bool startFriction(std::size_t i, double x, bool record, bool impact);
   /// Ball i has no motion for the rest of the step (frozen by the cap, or asleep): its
   /// spin stays as it is.
   void keepSpin(std::size_t i);

@@ -64,7 +64,7 @@ const Vec3& World::pullOf(std::size_t i) const
   return gravity_;
 }
 
-void World::startFriction(std::size_t i, double x, bool record, bool impact)
+bool World::startFriction(std::size_t i, double x, bool record, bool impact)
 {
   Motion& m = motions_[i];
   SpinMotion& sm = spin_motions_[i];
@@ -98,15 +98,27 @@ void World::startFriction(std::size_t i, double x, bool record, bool impact)
   sm.slip_rate = sm.slip_force * (1 + spin.inertia) / spin.inertia - law.gravityAlong().dot(phase.slip_direction);
   sm.constrained = false;
   sm.conservative = phase.conservative;
+  sm.still = !(phase.gravity_share > 0);
   if (record)
     recordKind(i, x);
-  if (phase.conservative || ground_.bends())
-    return;  // the caller gives it a frictionless ball's motion, or a chord under sm.pull
+  if (phase.conservative)
+    return true;  // the caller gives it a frictionless ball's motion
+  if (ground_.bends() && phase.gravity_share > 0)
+    return true;  // ... or a chord under sm.pull
+  if (ground_.bends())
+  {
+    // Still on a curved floor: it stays where it is, with no speed (a chord's point below
+    // the floor, where a phase ended mid-step, is not lifted onto it for nothing).
+    v = m.b = Vec3::Zero();
+    states_[i].accelerates = false;
+    return false;
+  }
   // (its path is a parabola on the plane: a part of v into the floor, which a contact's
   // projection out of a leaning wall can leave, is the floor's)
   v = law.along(v);
   m.b = dt_ * v;
   states_[i].accelerates = true;
+  return false;
 }
 
 void World::keepSpin(std::size_t i)

@@ -55,7 +55,7 @@ Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const
   const Motion& m = motions_[i];
   if (friction_ && spin_motions_[i].free && !spin_motions_[i].conservative)
   {
-    if (!ground_.bends())
+    if (!ground_.bends() || spin_motions_[i].still)
       return startVelocity(i) + ((x - m.x0) * dt_) * spin_motions_[i].a;
     return ground_.withSpeedSquared(ground_.along(startVelocity(i) + ((x - m.x0) * dt_) * spin_motions_[i].pull, normal),
                                     speedSquaredAt(i, x, position));
@@ -119,9 +119,8 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   }
   if (friction_ && states_[i].blocked < 0)
   {
-    startFriction(i, x, true, impact);  // the phase its velocity and spin give it
-    if (!spin_motions_[i].conservative && !ground_.bends())
-      return;  // (on a curved floor: the chord below, under the phase's pull)
+    if (!startFriction(i, x, true, impact))  // the phase its velocity and spin give it
+      return;                                // (else the chord below, under the phase's pull)
   }
   else if (friction_)
     constrainSpin(i, x);  // (leaning on something: its contacts decide its motion)

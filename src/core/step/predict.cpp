@@ -81,8 +81,8 @@ void World::predictMotion(std::size_t i)
     sm.w0 = spins_[order_[i]].angular_velocity;
     sm.kind = sm.reported = spins_[order_[i]].kind;
     sm.normal = floorNormalAt(i, m.p0);  // (where its last step put it)
-    startFriction(i, 0.0, false, false);  // (a change of kind was recorded where the last phase ended)
-    if (!spin_motions_[i].conservative && !ground_.bends())
+    // (a change of kind was recorded where the last phase ended)
+    if (!startFriction(i, 0.0, false, false))
     {
       grid_.setBox(static_cast<std::uint32_t>(i), currentBox(i));
       return;

@@ -73,6 +73,8 @@ struct World::SpinMotion
   bool free = false;
   /// no friction force in the phase: the velocity is a frictionless ball's (Ground)
   bool conservative = false;
+  /// a still phase (stationary or spinning): no share of gravity moves it
+  bool still = false;
   /// its contacts decide its motion; friction acts on its spin only (FrictionLaw::constrained):
   /// alpha along the floor for along_time, normal_rate about n for normal_time
   bool constrained = false;
