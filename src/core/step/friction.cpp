@@ -47,8 +47,17 @@ double World::speedSquaredAt(std::size_t i, double x, const Vec3& p) const
   const Motion& m = motions_[i];
   const Vec3& v0 = startVelocity(i);
   const SpinMotion& sm = friction_ ? spin_motions_[i] : SpinMotion{};
-  if (!friction_ || !sm.free || sm.conservative || sm.kind != MotionKind::kSliding || !ground_.bends())
+  if (!friction_ || !sm.free || sm.conservative || !ground_.bends() ||
+      (sm.kind != MotionKind::kSliding && sm.kind != MotionKind::kRolling))
     return v0.squaredNorm() + 2 * pullOf(i).dot(p - m.p0);
+  if (sm.kind == MotionKind::kRolling)
+  {
+    // d(v^2 / 2) = <g, dp> / (1 + k) - mu_r g_n ds: the chord's length for the path's (no
+    // longer than it), so rolling resistance never gives energy, also where the ball
+    // turns within the chord
+    const double k = spins_[order_[i]].inertia;
+    return v0.squaredNorm() + 2 * (gravity_.dot(p - m.p0) / (1 + k) - sm.roll_resistance * (p - m.p0).norm());
+  }
   const double t = std::min((x - m.x0) * dt_, std::max(sm.x_end - m.x0, 0.0) * dt_);
   const double k = spins_[order_[i]].inertia;
   const Vec3 w = sm.w0 + t * sm.alpha;
@@ -95,6 +104,7 @@ bool World::startFriction(std::size_t i, double x, bool record, bool impact)
   // (what a sliding phase's slip takes on a curved floor: speedSquaredAt())
   sm.slip0 = law.slip(m.radius, v, sm.w0).norm();
   sm.slip_force = scene_.friction->sliding * std::max(0.0, -gravity_.dot(law.normal()));
+  sm.roll_resistance = scene_.friction->rolling * std::max(0.0, -gravity_.dot(law.normal()));
   sm.slip_rate = sm.slip_force * (1 + spin.inertia) / spin.inertia - law.gravityAlong().dot(phase.slip_direction);
   sm.constrained = false;
   sm.conservative = phase.conservative;

@@ -94,6 +94,8 @@ struct World::SpinMotion
   double slip0 = 0.0;
   double slip_rate = 0.0;
   double slip_force = 0.0;
+  /// curved floors, rolling: mu_r g_n [m/s^2]
+  double roll_resistance = 0.0;
 };
 
 /// Unit directions a ball may not move along for the rest of the step: toward a wall it
