@@ -317,11 +317,14 @@ private:
   /// Queues the end of ball i's phase when it falls within the step.
   void queueTransition(std::size_t i);
   void resolveTransition(const Event& event);
-  /// Tangential impulses at an impact (ball_ball and wall friction): opposing the slip of
-  /// the touching points, at most mu times the normal impulse, never reversing the slip.
-  void ballBallFriction(const PairContact& c, double normal_impulse, Vec3& va, Vec3& vb, Vec3& wa, Vec3& wb) const;
-  void ballWallFriction(std::size_t i, const Vec3& n, const Vec3& floor_normal, double normal_impulse, Vec3& v,
-                        Vec3& w) const;
+  /// An impact at x with friction: the balls' spins there, and the tangential impulse
+  /// (ball_ball and wall friction) opposing the slip of the touching points, at most mu
+  /// times the normal impulse (0 for a resting contact), never reversing the slip; the
+  /// spins become the new motions' (SpinMotion::w0).
+  void ballBallFriction(const PairContact& c, double x, double normal_impulse, Vec3& va, Vec3& vb);
+  /// The same at a wall; n is the contact normal toward the wall.
+  void ballWallFriction(std::size_t i, double x, const Vec3& n, const Vec3& floor_normal, double normal_impulse,
+                        Vec3& v);
   /// The friction laws under the floor's normal n (the plane's, or on a curved floor the
   /// local one).
   FrictionLaw frictionUnder(const Vec3& n) const;

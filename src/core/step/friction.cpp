@@ -194,9 +194,12 @@ void World::resolveTransition(const Event& event)
   detect(i);
 }
 
-void World::ballBallFriction(const PairContact& c, double normal_impulse, Vec3& va, Vec3& vb, Vec3& wa,
-                             Vec3& wb) const
+void World::ballBallFriction(const PairContact& c, double x, double normal_impulse, Vec3& va, Vec3& vb)
 {
+  Vec3& wa = spin_motions_[c.i].w0;
+  Vec3& wb = spin_motions_[c.j].w0;
+  wa = spinAt(c.i, x);
+  wb = spinAt(c.j, x);
   const double mu = scene_.friction->ball_ball;
   // Friction acts along the one line both in the contact's tangent plane and along the
   // floor: the floor takes pushes into it, and a push along the normal would press the
@@ -224,9 +227,11 @@ void World::ballBallFriction(const PairContact& c, double normal_impulse, Vec3& 
   wb += (c.inv_b / (kb * rb)) * c.n.cross(impulse);
 }
 
-void World::ballWallFriction(std::size_t i, const Vec3& n, const Vec3& floor_normal, double normal_impulse,
-                             Vec3& v, Vec3& w) const
+void World::ballWallFriction(std::size_t i, double x, const Vec3& n, const Vec3& floor_normal, double normal_impulse,
+                             Vec3& v)
 {
+  Vec3& w = spin_motions_[i].w0;
+  w = spinAt(i, x);
   const double mu = scene_.friction->wall;
   // (along the line both along the wall and along the floor, as between balls)
   Vec3 e = floor_normal.cross(n);

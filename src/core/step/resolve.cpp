@@ -52,7 +52,6 @@ void World::resolveBallWall(const Event& event)
   const Vec3 p = positionAt(i, event.x);
   const Vec3 floor_normal = floorNormalAt(i, p);
   Vec3 v = onFloorVelocity(i, event.x, p, floor_normal);
-  Vec3 w = friction_ ? spinAt(i, event.x) : Vec3::Zero();
 
   const Vec3 n = -event.normal;  // from the ball toward the wall
   Vec3 dir = ground_.along(n, floor_normal);
@@ -66,11 +65,7 @@ void World::resolveBallWall(const Event& event)
       collisionImpulse(std::max(closing, 0.0), inv_mass, dir, 0.0, dir, resting ? 0.0 : wall.restitution);
   v -= (impulse * inv_mass) * dir;
   if (friction_)
-  {
-    if (!resting)
-      ballWallFriction(i, n, floor_normal, impulse, v, w);
-    spin_motions_[i].w0 = w;
-  }
+    ballWallFriction(i, event.x, n, floor_normal, resting ? 0.0 : impulse, v);
 
   if (resting)
   {
@@ -102,8 +97,6 @@ void World::resolveBallBall(const Event& event)
     va = Vec3::Zero();
   if (states_[j].frozen)
     vb = Vec3::Zero();
-  Vec3 wa = friction_ ? spinAt(i, event.x) : Vec3::Zero();
-  Vec3 wb = friction_ ? spinAt(j, event.x) : Vec3::Zero();
 
   Vec3 n = pb - pa;
   const double dist = n.norm();
@@ -133,12 +126,7 @@ void World::resolveBallBall(const Event& event)
 
   const PairContact pair{i, j, n, na, nb, along_a, along_b, ta, tb, inv_a, inv_b};
   if (friction_)
-  {
-    if (!resting)
-      ballBallFriction(pair, impulse, va, vb, wa, wb);
-    spin_motions_[i].w0 = wa;
-    spin_motions_[j].w0 = wb;
-  }
+    ballBallFriction(pair, event.x, resting ? 0.0 : impulse, va, vb);
   const bool both_still = resting && blockAtRest(pair, va, vb);
   startMotion(i, event.x, pa, va, !resting);
   startMotion(j, event.x, pb, vb, !resting);
