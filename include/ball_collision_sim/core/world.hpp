@@ -308,9 +308,9 @@ private:
   /// Ball i has no motion for the rest of the step (frozen by the cap, or asleep): its
   /// spin stays as it is.
   void keepSpin(std::size_t i);
-  /// Ball i's motion from x on is its contacts' (held, or kept out of blocked
+  /// Ball i's motion from its start on is its contacts' (held, or kept out of blocked
   /// directions): its spin follows FrictionLaw::constrained().
-  void constrainSpin(std::size_t i, double x);
+  void constrainSpin(std::size_t i);
   /// Records a transition at x where ball i's kind is not the one last reported.
   void recordKind(std::size_t i, double x);
   Vec3 spinAt(std::size_t i, double x) const;

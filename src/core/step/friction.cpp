@@ -140,7 +140,7 @@ void World::keepSpin(std::size_t i)
   sm.free = sm.constrained = sm.conservative = false;
 }
 
-void World::constrainSpin(std::size_t i, double x)
+void World::constrainSpin(std::size_t i)
 {
   keepSpin(i);
   SpinMotion& sm = spin_motions_[i];
@@ -153,7 +153,6 @@ void World::constrainSpin(std::size_t i, double x)
   sm.normal_rate = spin.normal_rate;
   sm.normal_time = spin.normal_time;
   sm.constrained = true;
-  (void)x;
 }
 
 Vec3 World::spinAt(std::size_t i, double x) const

@@ -42,7 +42,7 @@ void World::toChord(std::size_t i)
   m.b += (1 - m.x0) * pathTerm(i);
   states_[i].accelerates = false;
   if (friction_)
-    constrainSpin(i, m.x0);
+    constrainSpin(i);
 }
 
 Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
@@ -114,7 +114,7 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   {
     m.b = Vec3::Zero();  // still held (no impact let it go): it keeps no motion
     if (friction_)
-      constrainSpin(i, x);
+      constrainSpin(i);
     return;
   }
   if (friction_ && states_[i].blocked < 0)
@@ -123,7 +123,7 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
       return;                                // (else the chord below, under the phase's pull)
   }
   else if (friction_)
-    constrainSpin(i, x);  // (leaning on something: its contacts decide its motion)
+    constrainSpin(i);  // (leaning on something: its contacts decide its motion)
   if (free_parabolas_ && states_[i].blocked < 0)
   {
     // free: the parabola the ground gives it, exactly
