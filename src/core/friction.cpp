@@ -148,15 +148,34 @@ MotionKind FrictionLaw::constrainedKind(double r, const Vec3& v, const Vec3& w) 
                                                                                      : MotionKind::kStationary;
 }
 
+Vec3 FrictionLaw::rollingSpin(double r, const Vec3& v, const Vec3& w, double wn) const
+{
+  const Vec3 along_floor = normal_.cross(v) / r;
+  const Vec3 rolling = along_floor + wn * normal_;
+  // Under a normal other than the one the spin was rolling under (a curved floor's, a
+  // step on), part of the spin along the floor becomes spin about n: it may not add
+  // energy, so the spin about n is cut to what |w| leaves.
+  if (!(rolling.squaredNorm() > w.squaredNorm()))
+    return rolling;
+  const double room = w.squaredNorm() - along_floor.squaredNorm();
+  return along_floor + std::copysign(std::sqrt(std::max(0.0, room)), wn) * normal_;
+}
+
 FrictionPhase FrictionLaw::start(double k, double r, Vec3& v, Vec3& w) const
 {
   const double wn = spinAboutNormal(r, v, w);
-  if (v.norm() <= still_speed_ && r * (w - wn * normal_).norm() <= still_speed_)
-  {
-    v = Vec3::Zero();  // (a ball all but still, slipping by round-off: still)
-    w = wn * normal_;
-  }
-  const Vec3 u = slip(r, v, w);
+  // (a ball all but still, slipping by round-off: still)
+  const auto stillIfAllBut = [&] {
+    if (v.norm() <= still_speed_ && r * (w - wn * normal_).norm() <= still_speed_)
+    {
+      v = Vec3::Zero();
+      w = wn * normal_;
+      return true;
+    }
+    return false;
+  };
+  const bool still = stillIfAllBut();
+  const Vec3 u = still ? Vec3::Zero() : slip(r, v, w);
   const double u_norm = u.norm();
   const double scale = speeds(r, v, w);
   FrictionPhase phase;
@@ -168,8 +187,11 @@ FrictionPhase FrictionLaw::start(double k, double r, Vec3& v, Vec3& w) const
     return phase;
   }
   if (u_norm > 0 && mu_.sliding * g_n_ > 0)
+  {
     stick(k, r, v, w);
-  w = normal_.cross(v) / r + wn * normal_;  // rolling's spin, exactly
+    stillIfAllBut();  // (the slip it took was round-off of a ball at rest)
+  }
+  w = rollingSpin(r, v, w, wn);
   const Vec3 moving = along(v);  // (the direction of rolling is along the floor)
   const double speed = moving.norm();
   const double pull = g_t_.norm();

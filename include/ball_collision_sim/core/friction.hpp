@@ -90,20 +90,21 @@ public:
   ConstrainedSpin constrained(double k, double r, const Vec3& v, Vec3& w) const;
   /// The kind of a ball whose contacts decide its motion, from its velocity and spin.
   MotionKind constrainedKind(double r, const Vec3& v, const Vec3& w) const;
+  /// Rolling's spin for velocity v: n x v / r, and about n the spin wn, cut where it would
+  /// make |w| larger than the spin w it replaces.
+  Vec3 rollingSpin(double r, const Vec3& v, const Vec3& w, double wn) const;
   /// The motion kind start() would give, without changing anything.
   MotionKind kindOf(double k, double r, const Vec3& v, const Vec3& w) const;
   /// The state at a phase's end made exact: slip 0 by the impulse at the contact point
   /// that stops it (which keeps the angular momentum about that point and loses energy),
   /// velocity 0 (and the spin of rolling with it), spin about n 0, as `ends` says. A
   /// velocity left by the sticking impulse below slip_tolerance of `speeds`, the ball's
-  /// speeds at the phase's start (|v| + r |w along the floor|), is round-off of a ball
+  /// speeds at the phase's start (speeds()), is round-off of a ball
   /// stopping dead (a stop shot): it is 0.
   void finish(std::uint8_t ends, double k, double r, double speeds, Vec3& v, Vec3& w) const;
-  /// |v| + r |w along the floor|: what slip_tolerance is a part of [m/s].
-  double speeds(double r, const Vec3& v, const Vec3& w) const
-  {
-    return v.norm() + r * (w - w.dot(normal_) * normal_).norm();
-  }
+  /// |v| + r |w|: the speeds of the ball's surface, what slip_tolerance is a part of (a
+  /// spin about a normal off by round-off makes a slip of round-off of r |w|) [m/s].
+  double speeds(double r, const Vec3& v, const Vec3& w) const { return v.norm() + r * w.norm(); }
   /// The contact point's slip on the floor, v + r n x w (v's part along the floor: a
   /// normal part of round-off is the floor's, not a slip).
   Vec3 slip(double r, const Vec3& v, const Vec3& w) const { return along(v) + r * normal_.cross(w); }

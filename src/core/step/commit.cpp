@@ -100,7 +100,7 @@ World::Committed World::commitBall(std::size_t i, bool settle)
     Vec3 w = spinAt(i, 1.0);
     // (on a curved floor a rolling ball rolls under the normal where it ends)
     if (ground_.bends() && sm.free && sm.kind == MotionKind::kRolling)
-      w = end.normal.cross(ball.velocity) / ball.radius + w.dot(sm.normal) * end.normal;
+      w = frictionUnder(end.normal).rollingSpin(ball.radius, ball.velocity, w, w.dot(sm.normal));
     sm.turn = (0.5 * dt_) * (spin.angular_velocity + w);
     spin.angular_velocity = w;
     if (sm.constrained)

@@ -83,7 +83,7 @@ bool World::startFriction(std::size_t i, double x, bool record, bool impact)
   // (the normal turned under it since its phase began: the discrete path's turn, not a
   // slip; its spin about the normal is carried over, so |w| and the energy stay)
   if (ground_.bends() && !impact && sm.kind == MotionKind::kRolling)
-    sm.w0 = law.normal().cross(v) / m.radius + sm.w0.dot(sm.normal) * law.normal();
+    sm.w0 = law.rollingSpin(m.radius, v, sm.w0, sm.w0.dot(sm.normal));
   const FrictionPhase phase = law.start(spin.inertia, m.radius, v, sm.w0);
   sm.normal = law.normal();
 
@@ -182,7 +182,8 @@ void World::resolveTransition(const Event& event)
   const Vec3 p = positionAt(i, event.x);
   Vec3 v = onFloorVelocity(i, event.x, p, floorNormalAt(i, p));
   Vec3 w = spinAt(i, event.x);
-  const FrictionLaw law = frictionUnder(sm.normal);
+  // (under the normal where it is now: its velocity there lies along that floor)
+  const FrictionLaw law = frictionUnder(floorNormalAt(i, p));
   const double speeds = law.speeds(m.radius, startVelocity(i), sm.w0);
   law.finish(sm.ends, spins_[order_[i]].inertia, m.radius, speeds, v, w);
   sm.w0 = w;
