@@ -314,17 +314,18 @@ private:
   /// Records a transition at x where ball i's kind is not the one last reported.
   void recordKind(std::size_t i, double x);
   Vec3 spinAt(std::size_t i, double x) const;
+  /// Ball i's spin at an event at x where its velocity is v on the floor with this normal:
+  /// spinAt(), and on a curved floor a rolling ball's rolling with v (never more energy).
+  Vec3 spinAtEvent(std::size_t i, double x, const Vec3& normal, const Vec3& v) const;
   /// Queues the end of ball i's phase when it falls within the step.
   void queueTransition(std::size_t i);
   void resolveTransition(const Event& event);
-  /// An impact at x with friction: the balls' spins there, and the tangential impulse
-  /// (ball_ball and wall friction) opposing the slip of the touching points, at most mu
-  /// times the normal impulse (0 for a resting contact), never reversing the slip; the
-  /// spins become the new motions' (SpinMotion::w0).
-  void ballBallFriction(const PairContact& c, double x, double normal_impulse, Vec3& va, Vec3& vb);
+  /// An impact with friction, the balls' spins at it in SpinMotion::w0: the tangential
+  /// impulse (ball_ball and wall friction) opposing the slip of the touching points, at
+  /// most mu times the normal impulse (0 for a resting contact), never reversing the slip.
+  void ballBallFriction(const PairContact& c, double normal_impulse, Vec3& va, Vec3& vb);
   /// The same at a wall; n is the contact normal toward the wall.
-  void ballWallFriction(std::size_t i, double x, const Vec3& n, const Vec3& floor_normal, double normal_impulse,
-                        Vec3& v);
+  void ballWallFriction(std::size_t i, const Vec3& n, const Vec3& floor_normal, double normal_impulse, Vec3& v);
   /// The friction laws under the floor's normal n (the plane's, or on a curved floor the
   /// local one).
   FrictionLaw frictionUnder(const Vec3& n) const;

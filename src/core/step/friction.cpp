@@ -155,6 +155,16 @@ void World::constrainSpin(std::size_t i)
   sm.constrained = true;
 }
 
+Vec3 World::spinAtEvent(std::size_t i, double x, const Vec3& normal, const Vec3& v) const
+{
+  const SpinMotion& sm = spin_motions_[i];
+  const Vec3 w = spinAt(i, x);
+  // (a rolling ball on a curved floor rolls with the velocity its energy gives it there)
+  if (!ground_.bends() || !sm.free || sm.conservative || sm.kind != MotionKind::kRolling)
+    return w;
+  return frictionUnder(normal).rollingSpin(motions_[i].radius, v, w, w.dot(sm.normal));
+}
+
 Vec3 World::spinAt(std::size_t i, double x) const
 {
   const SpinMotion& sm = spin_motions_[i];
@@ -181,7 +191,7 @@ void World::resolveTransition(const Event& event)
   SpinMotion& sm = spin_motions_[i];
   const Vec3 p = positionAt(i, event.x);
   Vec3 v = onFloorVelocity(i, event.x, p, floorNormalAt(i, p));
-  Vec3 w = spinAt(i, event.x);
+  Vec3 w = spinAtEvent(i, event.x, floorNormalAt(i, p), v);
   // (under the normal where it is now: its velocity there lies along that floor)
   const FrictionLaw law = frictionUnder(floorNormalAt(i, p));
   const double speeds = law.speeds(m.radius, startVelocity(i), sm.w0);
@@ -194,12 +204,10 @@ void World::resolveTransition(const Event& event)
   detect(i);
 }
 
-void World::ballBallFriction(const PairContact& c, double x, double normal_impulse, Vec3& va, Vec3& vb)
+void World::ballBallFriction(const PairContact& c, double normal_impulse, Vec3& va, Vec3& vb)
 {
   Vec3& wa = spin_motions_[c.i].w0;
   Vec3& wb = spin_motions_[c.j].w0;
-  wa = spinAt(c.i, x);
-  wb = spinAt(c.j, x);
   const double mu = scene_.friction->ball_ball;
   // Friction acts along the one line both in the contact's tangent plane and along the
   // floor: the floor takes pushes into it, and a push along the normal would press the
@@ -227,11 +235,9 @@ void World::ballBallFriction(const PairContact& c, double x, double normal_impul
   wb += (c.inv_b / (kb * rb)) * c.n.cross(impulse);
 }
 
-void World::ballWallFriction(std::size_t i, double x, const Vec3& n, const Vec3& floor_normal, double normal_impulse,
-                             Vec3& v)
+void World::ballWallFriction(std::size_t i, const Vec3& n, const Vec3& floor_normal, double normal_impulse, Vec3& v)
 {
   Vec3& w = spin_motions_[i].w0;
-  w = spinAt(i, x);
   const double mu = scene_.friction->wall;
   // (along the line both along the wall and along the floor, as between balls)
   Vec3 e = floor_normal.cross(n);

@@ -52,6 +52,8 @@ void World::resolveBallWall(const Event& event)
   const Vec3 p = positionAt(i, event.x);
   const Vec3 floor_normal = floorNormalAt(i, p);
   Vec3 v = onFloorVelocity(i, event.x, p, floor_normal);
+  if (friction_)
+    spin_motions_[i].w0 = spinAtEvent(i, event.x, floor_normal, v);
 
   const Vec3 n = -event.normal;  // from the ball toward the wall
   Vec3 dir = ground_.along(n, floor_normal);
@@ -65,7 +67,7 @@ void World::resolveBallWall(const Event& event)
       collisionImpulse(std::max(closing, 0.0), inv_mass, dir, 0.0, dir, resting ? 0.0 : wall.restitution);
   v -= (impulse * inv_mass) * dir;
   if (friction_)
-    ballWallFriction(i, event.x, n, floor_normal, resting ? 0.0 : impulse, v);
+    ballWallFriction(i, n, floor_normal, resting ? 0.0 : impulse, v);
 
   if (resting)
   {
@@ -97,6 +99,14 @@ void World::resolveBallBall(const Event& event)
     va = Vec3::Zero();
   if (states_[j].frozen)
     vb = Vec3::Zero();
+  if (friction_)
+  {
+    // (the spins there, before the impact changes the velocities; they become the new
+    // motions' w0)
+    const Vec3 wa = spinAtEvent(i, event.x, na, va), wb = spinAtEvent(j, event.x, nb, vb);
+    spin_motions_[i].w0 = wa;
+    spin_motions_[j].w0 = wb;
+  }
 
   Vec3 n = pb - pa;
   const double dist = n.norm();
@@ -126,7 +136,7 @@ void World::resolveBallBall(const Event& event)
 
   const PairContact pair{i, j, n, na, nb, along_a, along_b, ta, tb, inv_a, inv_b};
   if (friction_)
-    ballBallFriction(pair, event.x, resting ? 0.0 : impulse, va, vb);
+    ballBallFriction(pair, resting ? 0.0 : impulse, va, vb);
   const bool both_still = resting && blockAtRest(pair, va, vb);
   startMotion(i, event.x, pa, va, !resting);
   startMotion(j, event.x, pb, vb, !resting);
