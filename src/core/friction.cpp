@@ -158,7 +158,9 @@ Vec3 FrictionLaw::rollingSpin(double r, const Vec3& v, const Vec3& w, double wn)
   if (!(rolling.squaredNorm() > w.squaredNorm()))
     return rolling;
   const double room = w.squaredNorm() - along_floor.squaredNorm();
-  return along_floor + std::copysign(std::sqrt(std::max(0.0, room)), wn) * normal_;
+  if (room < 0)
+    return w;  // (the velocity changed since the spin was rolling's: a real slip, friction's to take)
+  return along_floor + std::copysign(std::sqrt(room), wn) * normal_;
 }
 
 FrictionPhase FrictionLaw::start(double k, double r, Vec3& v, Vec3& w) const
@@ -191,7 +193,7 @@ FrictionPhase FrictionLaw::start(double k, double r, Vec3& v, Vec3& w) const
     stick(k, r, v, w);
     stillIfAllBut();  // (the slip it took was round-off of a ball at rest)
   }
-  w = rollingSpin(r, v, w, wn);
+  w = normal_.cross(v) / r + wn * normal_;  // rolling's spin, exactly
   const Vec3 moving = along(v);  // (the direction of rolling is along the floor)
   const double speed = moving.norm();
   const double pull = g_t_.norm();

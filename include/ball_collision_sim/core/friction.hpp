@@ -91,7 +91,8 @@ public:
   /// The kind of a ball whose contacts decide its motion, from its velocity and spin.
   MotionKind constrainedKind(double r, const Vec3& v, const Vec3& w) const;
   /// Rolling's spin for velocity v: n x v / r, and about n the spin wn, cut where it would
-  /// make |w| larger than the spin w it replaces.
+  /// make |w| larger than the spin w it replaces; w itself where n x v / r alone would
+  /// (the velocity changed since w was rolling's: a slip).
   Vec3 rollingSpin(double r, const Vec3& v, const Vec3& w, double wn) const;
   /// The motion kind start() would give, without changing anything.
   MotionKind kindOf(double k, double r, const Vec3& v, const Vec3& w) const;
