@@ -1,0 +1,196 @@
+// Edits between steps: adding, moving, striking and removing balls, adding and removing
+// walls. Each checks its input first and changes nothing when it refuses. Reads and
+// writes balls_, spins_, feet_, walls_; an edit forgets the step's visiting order and
+// wakes sleeping balls where what held them may have changed.
+#include "ball_collision_sim/core/world.hpp"
+
+#include "ball_collision_sim/core/format.hpp"
+#include "ball_collision_sim/core/placement.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace ball_collision_sim::core
+{
+
+std::string World::place(BallDef& def, Landing landing, int ignore_id, Vec2& foot) const
+{
+  const std::vector<SceneIssue> issues = validateBall(def, "");
+  if (!issues.empty())
+    return joinIssues(issues);
+  const std::string why = placeAmongWalls(def, ground_.floor(), walls_, landing, &foot, [&](std::size_t k) {
+    return "wall " + std::to_string(walls_[k].id);
+  });
+  if (!why.empty())
+    return "position: " + why;
+  for (const Ball& other : balls_)
+  {
+    const double depth = def.radius + other.radius - (def.position - other.position).norm();
+    if (other.id != ignore_id && depth > kContactTolerance)
+      return "position: " + overlapMessage("ball " + std::to_string(other.id), depth);
+  }
+  return "";
+}
+
+AddResult World::addBall(const BallDef& def, Landing landing)
+{
+  AddResult result;
+  BallDef placed = def;
+  Vec2 foot(0.5, 0.5);
+  result.error = place(placed, landing, -1, foot);
+  if (!result.error.empty())
+    return result;
+  result.ok = true;
+  // (room first, so that the two lists stay in step: the last push cannot throw)
+  if (balls_.size() == balls_.capacity())
+    balls_.reserve(2 * balls_.size() + 1);
+  if (friction_ && spins_.size() == spins_.capacity())
+    spins_.reserve(2 * spins_.size() + 1);
+  if (ground_.bends())
+    feet_.push_back(foot);
+  if (friction_)
+    spins_.push_back(makeSpin(placed, foot));
+  balls_.push_back(makeBall(next_ball_id_, placed));
+  result.id = next_ball_id_++;
+  forgetOrder();
+  return result;
+}
+
+namespace
+{
+AddResult refused(int id, std::string error)
+{
+  AddResult result;
+  result.id = id;
+  result.error = std::move(error);
+  return result;
+}
+}  // namespace
+
+AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing,
+                               const std::optional<Vec3>& angular_velocity, const std::optional<double>& inertia)
+{
+  const std::size_t k = indexOf(id);
+  if (k == balls_.size())
+    return refused(id, "id: no ball has id " + std::to_string(id));
+  AddResult result;
+  result.id = id;
+  BallDef def;
+  def.position = position;
+  def.velocity = velocity;
+  def.radius = balls_[k].radius;
+  def.mass = balls_[k].mass;
+  def.angular_velocity = angular_velocity;
+  def.inertia = inertia ? *inertia : this->inertia(k);
+  Vec2 foot(0.5, 0.5);
+  result.error = place(def, landing, id, foot);
+  if (!result.error.empty())
+    return result;
+  balls_[k].position = def.position;
+  balls_[k].velocity = def.velocity;
+  if (friction_)
+    spins_[k] = makeSpin(def, foot);
+  if (ground_.bends())
+    feet_[k] = foot;
+  forgetOrder();
+  result.ok = true;
+  return result;
+}
+
+AddResult World::applyImpulse(int id, const Vec3& impulse)
+{
+  return strike(id, impulse, Vec3::Zero());
+}
+
+AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
+{
+  const std::size_t k = indexOf(id);
+  if (k == balls_.size())
+    return refused(id, "id: no ball has id " + std::to_string(id));
+  if (!impulse.allFinite())
+    return refused(id, "impulse: must be finite");
+  if (!offset.allFinite())
+    return refused(id, "offset: must be finite");
+  // (within kContactTolerance of the surface is on it)
+  if (offset.norm() > balls_[k].radius + kContactTolerance)
+    return refused(id, "offset: must be at most the ball's radius " + formatNumber(balls_[k].radius) + " m from its centre (got " +
+                           formatNumber(offset.norm()) + " m)");
+  AddResult result;
+  result.id = id;
+  Ball& ball = balls_[k];
+  Vec3 velocity = ball.velocity + impulse / ball.mass;
+  velocity = ground_.along(velocity, ground_.normalUnder(footOf(k)));  // the floor takes the rest
+  if (!(velocity.stableNorm() <= kMaxSpeed))
+  {
+    result.error = "impulse: would give ball " + std::to_string(id) + " a speed of " +
+                   formatNumber(velocity.stableNorm()) + " m/s, past the limit of " + formatNumber(kMaxSpeed) + " m/s";
+    return result;
+  }
+  if (friction_)
+  {
+    BallSpin& spin = spins_[k];
+    const Vec3 w = spin.angular_velocity + offset.cross(impulse) / (spin.inertia * ball.mass * ball.radius * ball.radius);
+    if (!(w.stableNorm() <= kMaxSpin))
+    {
+      result.error = "impulse: would give ball " + std::to_string(id) + " a spin of " + formatNumber(w.stableNorm()) +
+                     " rad/s, past the limit of " + formatNumber(kMaxSpin) + " rad/s";
+      return result;
+    }
+    spin.angular_velocity = w;
+    spin.kind = frictionUnder(ground_.normalUnder(footOf(k))).kindOf(spin.inertia, ball.radius, velocity, w);
+  }
+  ball.velocity = velocity;
+  forgetOrder();
+  result.ok = true;
+  return result;
+}
+
+AddResult World::addWall(const WallDef& def)
+{
+  AddResult result;
+  result.error = joinIssues(validateWall(def, ""));
+  if (!result.error.empty())
+    return result;
+  const Wall wall(next_wall_id_, def, scene_.restitution);
+  for (const Ball& ball : balls_)
+  {
+    const double depth = ball.radius - wall.distance(ball.position);
+    if (depth > kContactTolerance)
+    {
+      result.error = "point: the wall cuts through ball " + std::to_string(ball.id) + " (by " + formatNumber(depth) + " m)";
+      return result;
+    }
+  }
+  ++next_wall_id_;
+  walls_.push_back(wall);
+  wakeAll();
+  result.ok = true;
+  result.id = wall.id;
+  return result;
+}
+
+bool World::removeBall(int id)
+{
+  const std::size_t k = indexOf(id);
+  if (k == balls_.size())
+    return false;
+  if (!feet_.empty())
+    feet_.erase(feet_.begin() + static_cast<std::ptrdiff_t>(k));
+  if (!spins_.empty())
+    spins_.erase(spins_.begin() + static_cast<std::ptrdiff_t>(k));
+  balls_.erase(balls_.begin() + static_cast<std::ptrdiff_t>(k));
+  forgetOrder();
+  return true;
+}
+
+bool World::removeWall(int id)
+{
+  const auto it = std::find_if(walls_.begin(), walls_.end(), [&](const Wall& w) { return w.id == id; });
+  if (it == walls_.end())
+    return false;
+  walls_.erase(it);
+  wakeAll();  // what leaned on it
+  return true;
+}
+}  // namespace ball_collision_sim::core
