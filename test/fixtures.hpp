@@ -162,7 +162,8 @@ inline double largestEnergyRise(core::World& world, int steps)
 }
 
 /// Deepest overlap between any two balls [m] (<= 0 when none overlap), by a sweep in x.
-inline double deepestOverlap(const std::vector<core::Ball>& balls)
+template <class Balls>
+double deepestOverlap(const Balls& balls)
 {
   std::vector<std::size_t> order(balls.size());
   for (std::size_t i = 0; i < order.size(); ++i)

@@ -22,14 +22,24 @@ StepEvent wallEvent(double x, std::uint32_t i, std::uint32_t wall)
 {
   return StepEvent{x, i, wall, 0, 0, true, WallFeature::kFace, false, Vec3::UnitX()};
 }
+
+/// The balls by visiting index k, ball k having id order[k] + 1 (ids start at 1).
+std::vector<Ball> ballsWithIds(const std::vector<std::uint32_t>& order)
+{
+  std::vector<Ball> balls(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k)
+    balls[k].id = static_cast<int>(order[k]) + 1;
+  return balls;
+}
 }  // namespace
 
 TEST(EventQueue, EarliestFirstAndTiesByTheBallsIdsNotTheVisitingOrder)
 {
-  // visiting index k is ball order[k] of the world's list
+  // visiting index k is ball order[k] of the world's list, in id order
   const std::vector<std::uint32_t> order{3, 0, 4, 1, 2};
+  const std::vector<Ball> balls = ballsWithIds(order);
   EventQueue queue;
-  queue.start(&order);
+  queue.start(&balls);
   queue.push(ballEvent(0.7, 0, 1));   // balls 3 and 0
   queue.push(ballEvent(0.5, 2, 3));   // balls 4 and 1
   queue.push(wallEvent(0.5, 2, 7));   // ball 4, wall 7
@@ -64,8 +74,9 @@ TEST(EventQueue, DrainsInOrderWithSlotsReused)
   std::mt19937_64 rng(7);
   std::uniform_int_distribution<std::uint32_t> ball(0, 49);
   std::uniform_int_distribution<int> time(0, 20);  // few distinct times: many ties
+  const std::vector<Ball> balls = ballsWithIds(order);
   EventQueue queue;
-  queue.start(&order);
+  queue.start(&balls);
   std::size_t pushed = 0, popped = 0;
   for (int k = 0; k < 2000; ++k)
   {

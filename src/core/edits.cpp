@@ -24,7 +24,7 @@ std::string World::place(BallDef& def, Landing landing, int ignore_id, Vec2& foo
   });
   if (!why.empty())
     return "position: " + why;
-  for (const Ball& other : balls_)
+  for (const Ball& other : balls())  // (the first in id order is named)
   {
     const double depth = def.radius + other.radius - (def.position - other.position).norm();
     if (other.id != ignore_id && depth > kContactTolerance)
@@ -42,15 +42,18 @@ AddResult World::addBall(const BallDef& def, Landing landing)
   if (!result.error.empty())
     return result;
   result.ok = true;
-  // (room first, so that the two lists stay in step: the last push cannot throw)
+  // (room first, so that the lists stay in step: the last pushes cannot throw)
   if (balls_.size() == balls_.capacity())
     balls_.reserve(2 * balls_.size() + 1);
+  if (by_id_.size() == by_id_.capacity())
+    by_id_.reserve(2 * by_id_.size() + 1);
   if (friction_ && spins_.size() == spins_.capacity())
     spins_.reserve(2 * spins_.size() + 1);
   if (ground_.bends())
     feet_.push_back(foot);
   if (friction_)
     spins_.push_back(makeSpin(placed, foot));
+  by_id_.push_back(static_cast<std::uint32_t>(balls_.size()));  // (the highest id yet)
   balls_.push_back(makeBall(next_ball_id_, placed));
   result.id = next_ball_id_++;
   forgetOrder();
@@ -72,27 +75,28 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
                                const std::optional<Vec3>& angular_velocity, const std::optional<double>& inertia)
 {
   const std::size_t k = indexOf(id);
-  if (k == balls_.size())
+  if (k == by_id_.size())
     return refused(id, "id: no ball has id " + std::to_string(id));
+  const std::size_t s = by_id_[k];
   AddResult result;
   result.id = id;
   BallDef def;
   def.position = position;
   def.velocity = velocity;
-  def.radius = balls_[k].radius;
-  def.mass = balls_[k].mass;
+  def.radius = balls_[s].radius;
+  def.mass = balls_[s].mass;
   def.angular_velocity = angular_velocity;
   def.inertia = inertia ? *inertia : this->inertia(k);
   Vec2 foot(0.5, 0.5);
   result.error = place(def, landing, id, foot);
   if (!result.error.empty())
     return result;
-  balls_[k].position = def.position;
-  balls_[k].velocity = def.velocity;
+  balls_[s].position = def.position;
+  balls_[s].velocity = def.velocity;
   if (friction_)
-    spins_[k] = makeSpin(def, foot);
+    spins_[s] = makeSpin(def, foot);
   if (ground_.bends())
-    feet_[k] = foot;
+    feet_[s] = foot;
   forgetOrder();
   result.ok = true;
   return result;
@@ -105,22 +109,22 @@ AddResult World::applyImpulse(int id, const Vec3& impulse)
 
 AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
 {
-  const std::size_t k = indexOf(id);
-  if (k == balls_.size())
+  const std::size_t s = slotOf(id);
+  if (s == balls_.size())
     return refused(id, "id: no ball has id " + std::to_string(id));
   if (!impulse.allFinite())
     return refused(id, "impulse: must be finite");
   if (!offset.allFinite())
     return refused(id, "offset: must be finite");
   // (within kContactTolerance of the surface is on it)
-  if (offset.norm() > balls_[k].radius + kContactTolerance)
-    return refused(id, "offset: must be at most the ball's radius " + formatNumber(balls_[k].radius) + " m from its centre (got " +
+  if (offset.norm() > balls_[s].radius + kContactTolerance)
+    return refused(id, "offset: must be at most the ball's radius " + formatNumber(balls_[s].radius) + " m from its centre (got " +
                            formatNumber(offset.norm()) + " m)");
   AddResult result;
   result.id = id;
-  Ball& ball = balls_[k];
+  Ball& ball = balls_[s];
   Vec3 velocity = ball.velocity + impulse / ball.mass;
-  velocity = ground_.along(velocity, ground_.normalUnder(footOf(k)));  // the floor takes the rest
+  velocity = ground_.along(velocity, ground_.normalUnder(footOf(s)));  // the floor takes the rest
   if (!(velocity.stableNorm() <= kMaxSpeed))
   {
     result.error = "impulse: would give ball " + std::to_string(id) + " a speed of " +
@@ -129,7 +133,7 @@ AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
   }
   if (friction_)
   {
-    BallSpin& spin = spins_[k];
+    BallSpin& spin = spins_[s];
     const Vec3 w = spin.angular_velocity + offset.cross(impulse) / (spin.inertia * ball.mass * ball.radius * ball.radius);
     if (!(w.stableNorm() <= kMaxSpin))
     {
@@ -138,7 +142,7 @@ AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
       return result;
     }
     spin.angular_velocity = w;
-    spin.kind = frictionUnder(ground_.normalUnder(footOf(k))).kindOf(spin.inertia, ball.radius, velocity, w);
+    spin.kind = frictionUnder(ground_.normalUnder(footOf(s))).kindOf(spin.inertia, ball.radius, velocity, w);
   }
   ball.velocity = velocity;
   forgetOrder();
@@ -153,7 +157,7 @@ AddResult World::addWall(const WallDef& def)
   if (!result.error.empty())
     return result;
   const Wall wall(next_wall_id_, def, scene_.restitution);
-  for (const Ball& ball : balls_)
+  for (const Ball& ball : balls())  // (the first in id order is named)
   {
     const double depth = ball.radius - wall.distance(ball.position);
     if (depth > kContactTolerance)
@@ -172,14 +176,16 @@ AddResult World::addWall(const WallDef& def)
 
 bool World::removeBall(int id)
 {
-  const std::size_t k = indexOf(id);
-  if (k == balls_.size())
+  if (slotOf(id) == balls_.size())
     return false;
+  sortById();  // (then its slot is its place in balls())
+  const std::size_t k = indexOf(id);
   if (!feet_.empty())
     feet_.erase(feet_.begin() + static_cast<std::ptrdiff_t>(k));
   if (!spins_.empty())
     spins_.erase(spins_.begin() + static_cast<std::ptrdiff_t>(k));
   balls_.erase(balls_.begin() + static_cast<std::ptrdiff_t>(k));
+  by_id_.pop_back();  // (in id order, slot k holds the k-th)
   forgetOrder();
   return true;
 }

@@ -6,9 +6,9 @@
 
 namespace ball_collision_sim::core
 {
-void EventQueue::start(const std::vector<std::uint32_t>* order)
+void EventQueue::start(const std::vector<Ball>* balls)
 {
-  order_ = order;
+  balls_ = balls;
   heap_.clear();
   pool_.clear();
   free_slots_.clear();
@@ -21,8 +21,9 @@ bool EventQueue::later(const Entry& qa, const Entry& qb) const
   const StepEvent& a = pool_[qa.slot];
   const StepEvent& b = pool_[qb.slot];
   const auto key = [&](const StepEvent& e) {
-    const std::uint32_t i = (*order_)[e.i];
-    const std::uint32_t j = e.wall ? e.j : (*order_)[e.j];
+    // (ids are positive)
+    const auto i = static_cast<std::uint32_t>((*balls_)[e.i].id);
+    const auto j = e.wall ? e.j : static_cast<std::uint32_t>((*balls_)[e.j].id);
     using Key = std::array<std::uint32_t, 3>;
     if (e.transition)
       return Key{i, 0, std::numeric_limits<std::uint32_t>::max()};  // after the ball's wall events

@@ -1,6 +1,6 @@
 // Balls that left the world: off the floor (their foot point outside it) or, without a
 // floor, outside the box the walls span. Reads balls_, feet_, walls_; removeLostBalls()
-// takes them out of balls_ and feet_.
+// takes them out of balls_, feet_ and spins_.
 #include "ball_collision_sim/core/world.hpp"
 
 #include "ball_collision_sim/core/format.hpp"
@@ -21,12 +21,12 @@ World::Bounds World::wallBounds() const
   return bounds;
 }
 
-std::string World::whyLost(std::size_t k, const Bounds& bounds) const
+std::string World::whyLost(std::size_t s, const Bounds& bounds) const
 {
-  const Ball& ball = balls_[k];
+  const Ball& ball = balls_[s];
   if (ground_.floor())
   {
-    const Vec2 uv = ground_.footParameters(ball.position, footOf(k));
+    const Vec2 uv = ground_.footParameters(ball.position, footOf(s));
     if (Floor::inside(uv))
       return "";
     return "left the floor (its foot point at u = " + formatNumber(uv.x()) + ", v = " + formatNumber(uv.y()) +
@@ -42,8 +42,8 @@ int World::lostBalls() const
 {
   const Bounds bounds = wallBounds();
   int lost = 0;
-  for (std::size_t k = 0; k < balls_.size(); ++k)
-    lost += whyLost(k, bounds).empty() ? 0 : 1;
+  for (std::size_t s = 0; s < balls_.size(); ++s)
+    lost += whyLost(s, bounds).empty() ? 0 : 1;
   return lost;
 }
 
@@ -53,6 +53,12 @@ std::vector<LostBall> World::removeLostBalls()
   if (!ground_.floor() && walls_.empty())
     return lost;
   const Bounds bounds = wallBounds();
+  bool any = false;
+  for (std::size_t s = 0; s < balls_.size() && !any; ++s)
+    any = !whyLost(s, bounds).empty();
+  if (!any)
+    return lost;
+  sortById();  // (then a ball's slot is its place in balls(), and the lost come in id order)
   std::size_t kept = 0;
   for (std::size_t k = 0; k < balls_.size(); ++k)
   {
@@ -72,9 +78,8 @@ std::vector<LostBall> World::removeLostBalls()
     }
     ++kept;
   }
-  if (lost.empty())
-    return lost;
   balls_.resize(kept);
+  by_id_.resize(kept);  // (in id order, slot k holds the k-th)
   if (!feet_.empty())
     feet_.resize(kept);
   if (!spins_.empty())

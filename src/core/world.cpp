@@ -54,16 +54,19 @@ void World::load(const std::vector<PlacedBall>& balls)
   for (const WallDef& def : scene_.walls)
     walls_.emplace_back(next_wall_id_++, def, scene_.restitution);
   balls_.clear();
+  by_id_.clear();
   feet_.clear();
   spins_.clear();
   next_ball_id_ = kFirstId;
   balls_.reserve(balls.size());
+  by_id_.reserve(balls.size());
   if (friction_)
     spins_.reserve(balls.size());
   if (ground_.bends())
     feet_.reserve(balls.size());
   for (const PlacedBall& ball : balls)
   {
+    by_id_.push_back(static_cast<std::uint32_t>(balls_.size()));
     balls_.push_back(makeBall(next_ball_id_++, ball.def));
     if (ground_.bends())
       feet_.push_back(ball.foot);
@@ -84,9 +87,61 @@ void World::reset()
 void World::forgetOrder()
 {
   wakeAll();
-  order_.clear();
+  sortById();
   order_age_ = 0;
   motions_ready_ = false;
+}
+
+void World::sortById()
+{
+  bool sorted = true;
+  for (std::size_t k = 0; k < by_id_.size() && sorted; ++k)
+    sorted = by_id_[k] == k;
+  if (sorted)
+    return;
+  std::vector<std::uint32_t> from = by_id_;  // slot k takes the k-th by id
+  permute(from);
+}
+
+void World::permute(std::vector<std::uint32_t>& from)
+{
+  // Where each slot's record goes, for by_id_: slot from[k] -> slot k.
+  std::vector<std::uint32_t> to(from.size());
+  for (std::size_t k = 0; k < from.size(); ++k)
+    to[from[k]] = static_cast<std::uint32_t>(k);
+  for (std::uint32_t& slot : by_id_)
+    slot = to[slot];
+  to = {};
+  // In place, cycle by cycle: slot k takes from[k]'s record, and from[k] = k marks it done.
+  const auto move = [&](std::uint32_t into, std::uint32_t out) {
+    balls_[into] = balls_[out];
+    if (!feet_.empty())
+      feet_[into] = feet_[out];
+    if (!spins_.empty())
+      spins_[into] = spins_[out];
+  };
+  for (std::uint32_t k = 0; k < from.size(); ++k)
+  {
+    if (from[k] == k)
+      continue;
+    const Ball ball = balls_[k];
+    const Vec2 foot = feet_.empty() ? no_foot_ : feet_[k];
+    const BallSpin spin = spins_.empty() ? BallSpin{} : spins_[k];
+    std::uint32_t at = k;
+    while (from[at] != k)
+    {
+      const std::uint32_t next = from[at];
+      move(at, next);
+      from[at] = at;
+      at = next;
+    }
+    from[at] = at;
+    balls_[at] = ball;
+    if (!feet_.empty())
+      feet_[at] = foot;
+    if (!spins_.empty())
+      spins_[at] = spin;
+  }
 }
 
 Ball World::makeBall(int id, const BallDef& placed)
@@ -129,7 +184,13 @@ void World::step()
   const bool reorder = grid_.inCellOrder() && (order_age_ == 0 || order_age_ >= settings_.reorder_steps);
   commitToFloor(!reorder);     // every ball to the step's end, back on the floor
   if (reorder)
-    grid_.reorder(order_);
+  {
+    std::vector<std::uint32_t> from(balls_.size());
+    for (std::size_t k = 0; k < from.size(); ++k)
+      from[k] = static_cast<std::uint32_t>(k);
+    grid_.reorder(from);  // the slots in the grid's cell order
+    permute(from);
+  }
   order_age_ = reorder ? 1 : order_age_ + 1;
   motions_ready_ = !reorder;
   ++stats_.steps;
@@ -139,25 +200,28 @@ void World::step()
 
 Energy World::energy() const
 {
+  // (summed in id order: the same sums whatever order the records are in)
   Energy e;
-  for (const Ball& ball : balls_)
+  for (const std::uint32_t s : by_id_)
   {
+    const Ball& ball = balls_[s];
     e.kinetic += 0.5 * ball.mass * ball.velocity.squaredNorm();
     e.potential -= ball.mass * gravity_.dot(ball.position);
   }
-  for (std::size_t k = 0; k < spins_.size(); ++k)
-  {
-    const Ball& ball = balls_[k];
-    e.rotational += 0.5 * spins_[k].inertia * ball.mass * ball.radius * ball.radius * spins_[k].angular_velocity.squaredNorm();
-  }
+  if (!spins_.empty())
+    for (const std::uint32_t s : by_id_)
+    {
+      const Ball& ball = balls_[s];
+      e.rotational += 0.5 * spins_[s].inertia * ball.mass * ball.radius * ball.radius * spins_[s].angular_velocity.squaredNorm();
+    }
   return e;
 }
 
 Vec3 World::momentum() const
 {
   Vec3 p = Vec3::Zero();
-  for (const Ball& ball : balls_)
-    p += ball.mass * ball.velocity;
+  for (const std::uint32_t s : by_id_)
+    p += balls_[s].mass * balls_[s].velocity;
   return p;
 }
 
@@ -166,8 +230,9 @@ std::uint64_t World::stateHash() const
   Fnv1a h;
   h.add(stats_.steps);
   h.add(balls_.size());
-  for (const Ball& ball : balls_)
+  for (const std::uint32_t s : by_id_)
   {
+    const Ball& ball = balls_[s];
     h.add(ball.id);
     h.add(ball.radius);
     h.add(ball.mass);
@@ -175,8 +240,9 @@ std::uint64_t World::stateHash() const
     h.add(ball.velocity.data(), 3 * sizeof(double));
     h.add(ball.orientation.coeffs().data(), 4 * sizeof(double));
   }
-  for (const BallSpin& spin : spins_)
+  for (std::size_t k = 0; k < spins_.size(); ++k)
   {
+    const BallSpin& spin = spins_[by_id_[k]];
     h.add(spin.angular_velocity.data(), 3 * sizeof(double));
     h.add(spin.inertia);
     h.add(spin.kind);
@@ -186,35 +252,45 @@ std::uint64_t World::stateHash() const
 
 std::size_t World::indexOf(int id) const
 {
-  // Ids only grow and removal keeps order, so the list is sorted by id.
-  const auto it = std::lower_bound(balls_.begin(), balls_.end(), id, [](const Ball& b, int v) { return b.id < v; });
-  return it != balls_.end() && it->id == id ? static_cast<std::size_t>(it - balls_.begin()) : balls_.size();
+  // by_id_ lists the records in id order.
+  const auto it = std::lower_bound(by_id_.begin(), by_id_.end(), id,
+                                   [this](std::uint32_t s, int v) { return balls_[s].id < v; });
+  return it != by_id_.end() && balls_[*it].id == id ? static_cast<std::size_t>(it - by_id_.begin()) : by_id_.size();
+}
+
+std::size_t World::slotOf(int id) const
+{
+  const std::size_t k = indexOf(id);
+  return k < by_id_.size() ? by_id_[k] : balls_.size();
 }
 
 const Ball* World::findBall(int id) const
 {
-  const std::size_t k = indexOf(id);
-  return k < balls_.size() ? &balls_[k] : nullptr;
+  const std::size_t s = slotOf(id);
+  return s < balls_.size() ? &balls_[s] : nullptr;
 }
 
 Vec3 World::angularVelocity(std::size_t k) const
 {
+  const std::size_t s = by_id_.at(k);
   if (friction_)
-    return spins_.at(k).angular_velocity;
-  const Ball& ball = balls_.at(k);
-  const Vec3 normal = ground_.normalUnder(footOf(k));
+    return spins_[s].angular_velocity;
+  const Ball& ball = balls_[s];
+  const Vec3 normal = ground_.normalUnder(footOf(s));
   return normal.cross(ball.velocity) / ball.radius;
 }
 
 MotionKind World::motionKind(std::size_t k) const
 {
+  const std::size_t s = by_id_.at(k);
   if (friction_)
-    return spins_.at(k).kind;
-  return balls_.at(k).velocity == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling;
+    return spins_[s].kind;
+  return balls_[s].velocity == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling;
 }
 
 double World::inertia(std::size_t k) const
 {
-  return friction_ ? spins_.at(k).inertia : kSolidInertia;
+  const std::size_t s = by_id_.at(k);
+  return friction_ ? spins_[s].inertia : kSolidInertia;
 }
 }  // namespace ball_collision_sim::core

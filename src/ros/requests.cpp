@@ -146,9 +146,7 @@ LostBall lostBallMessage(const core::LostBall& gone, const std::string& frame_id
 
 BallState ballState(const core::World& world, int id)
 {
-  const core::Ball* ball = world.findBall(id);
-  const auto k = static_cast<std::size_t>(ball - world.balls().data());
-  return toMsg(world, k);
+  return toMsg(world, world.indexOf(id));
 }
 
 void answerGetState(const core::World& world, bool paused, const std::string& frame_prefix, GetState::Response& res)

@@ -352,7 +352,7 @@ std::string checkStepping(const std::uint8_t* data, std::size_t size)
     const std::string at = "step " + std::to_string(k) + ": ";
     if (const std::string bad = nonFinite(world); !bad.empty())
       return at + bad;
-    const std::vector<core::Ball>& balls = world.balls();
+    const core::BallList balls = world.balls();
     if (balls.size() != count)
       return at + "the ball count changed";
     for (std::size_t i = 0; i < balls.size(); ++i)

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "ball_collision_sim/core/ball.hpp"
 #include "ball_collision_sim/core/types.hpp"
 #include "ball_collision_sim/core/wall.hpp"
 
@@ -24,17 +25,16 @@ struct StepEvent
   Vec3 normal;               ///< ball-wall: unit, from the wall toward the ball
 };
 
-/// The step's pending events, earliest first. Ties go by the balls' places in the world's
-/// list (their ids' order), not by the order the step visits them in, so that a run is
-/// the same whatever that order is: a ball's wall events before its ball events, and
-/// pairs by their lower, then higher, ball. Events live in a pool and the heap holds
+/// The step's pending events, earliest first. Ties go by the balls' ids, not by the order
+/// the step visits them in, so that a run is the same whatever that order is: a ball's
+/// wall events before its ball events, and pairs by their lower, then higher, ball. Events live in a pool and the heap holds
 /// their times and slots, so that sifting moves 16 bytes, not an event.
 class EventQueue
 {
 public:
-  /// Empties the queue; `order` maps visiting indices to places in the world's list and
+  /// Empties the queue; `balls` are the balls by visiting index, whose ids break ties, and
   /// must outlive the queue's use until the next start().
-  void start(const std::vector<std::uint32_t>* order);
+  void start(const std::vector<Ball>* balls);
   void push(const StepEvent& event);
   bool empty() const { return heap_.empty(); }
   std::size_t size() const { return heap_.size(); }
@@ -52,7 +52,7 @@ private:
   /// Whether a comes after b.
   bool later(const Entry& a, const Entry& b) const;
 
-  const std::vector<std::uint32_t>* order_ = nullptr;
+  const std::vector<Ball>* balls_ = nullptr;
   std::vector<Entry> heap_;
   std::vector<StepEvent> pool_;
   std::vector<std::uint32_t> free_slots_;

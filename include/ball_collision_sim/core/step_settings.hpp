@@ -105,11 +105,8 @@ struct StepSettings
   double grid_dense_extra_cells = 1024.0;
 
   // ---- memory order -------------------------------------------------------------------
-  /// A ball's record is fetched this many balls ahead of its use in the visiting order
-  /// [balls].
-  std::size_t prefetch_ahead = 8;
-  /// The visiting order follows the grid's cell order anew every this many steps: balls
-  /// move less than a cell in a step [steps].
+  /// The balls' records are put in the grid's cell order (the step's visiting order)
+  /// anew every this many steps: balls move less than a cell in a step [steps].
   std::uint32_t reorder_steps = 8;
 };
 }  // namespace ball_collision_sim::core

@@ -13,7 +13,9 @@
 #include "ball_collision_sim/core/types.hpp"
 #include "ball_collision_sim/core/wall.hpp"
 
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <optional>
 #include <string>
 #include <utility>
@@ -86,6 +88,71 @@ struct LostBall
 /// names no object.
 constexpr int kFirstId = 1;
 
+/// The balls in id order: a view of the world's records, which the step keeps in the
+/// order it visits them in (neighbours in space are neighbours in memory). Valid until
+/// the world steps or is edited.
+class BallList
+{
+public:
+  class Iterator
+  {
+  public:
+    using iterator_category = std::random_access_iterator_tag;
+    using value_type = Ball;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const Ball*;
+    using reference = const Ball&;
+    Iterator() = default;
+    Iterator(const BallList* list, std::size_t k) : list_(list), k_(k) {}
+    reference operator*() const { return (*list_)[k_]; }
+    pointer operator->() const { return &(*list_)[k_]; }
+    reference operator[](difference_type d) const { return (*list_)[k_ + d]; }
+    Iterator& operator++() { ++k_; return *this; }
+    Iterator operator++(int) { Iterator old = *this; ++k_; return old; }
+    Iterator& operator--() { --k_; return *this; }
+    Iterator operator--(int) { Iterator old = *this; --k_; return old; }
+    Iterator& operator+=(difference_type d) { k_ += d; return *this; }
+    Iterator& operator-=(difference_type d) { k_ -= d; return *this; }
+    Iterator operator+(difference_type d) const { return Iterator(list_, k_ + d); }
+    Iterator operator-(difference_type d) const { return Iterator(list_, k_ - d); }
+    difference_type operator-(const Iterator& o) const
+    {
+      return static_cast<difference_type>(k_) - static_cast<difference_type>(o.k_);
+    }
+    bool operator==(const Iterator& o) const { return k_ == o.k_; }
+    bool operator!=(const Iterator& o) const { return k_ != o.k_; }
+    bool operator<(const Iterator& o) const { return k_ < o.k_; }
+    bool operator>(const Iterator& o) const { return k_ > o.k_; }
+    bool operator<=(const Iterator& o) const { return k_ <= o.k_; }
+    bool operator>=(const Iterator& o) const { return k_ >= o.k_; }
+
+  private:
+    const BallList* list_ = nullptr;
+    std::size_t k_ = 0;
+  };
+
+  BallList(const std::vector<Ball>& records, const std::vector<std::uint32_t>& by_id)
+      : records_(&records), by_id_(&by_id)
+  {
+  }
+  std::size_t size() const { return by_id_->size(); }
+  bool empty() const { return by_id_->empty(); }
+  /// The ball with the k-th lowest id.
+  const Ball& operator[](std::size_t k) const { return (*records_)[(*by_id_)[k]]; }
+  /// ... or std::out_of_range past the end.
+  const Ball& at(std::size_t k) const { return (*records_)[by_id_->at(k)]; }
+  const Ball& front() const { return (*this)[0]; }
+  const Ball& back() const { return (*this)[size() - 1]; }
+  Iterator begin() const { return Iterator(this, 0); }
+  Iterator end() const { return Iterator(this, size()); }
+  /// A copy of the balls, in id order.
+  std::vector<Ball> copy() const { return std::vector<Ball>(begin(), end()); }
+
+private:
+  const std::vector<Ball>* records_;
+  const std::vector<std::uint32_t>* by_id_;
+};
+
 /// The balls, walls and floor, advanced in fixed steps with exact continuous collision
 /// detection: every impact inside a step is found at its exact time and handled in
 /// time order.
@@ -113,7 +180,8 @@ public:
   const Vec3& gravity() const { return gravity_; }
   const Scene& scene() const { return scene_; }
   const StepSettings& stepSettings() const { return settings_; }
-  const std::vector<Ball>& balls() const { return balls_; }
+  /// The balls in id order (ids only grow, so also the order they were added in).
+  BallList balls() const { return BallList(balls_, by_id_); }
   const std::vector<Wall>& walls() const { return walls_; }
   const std::optional<Floor>& floor() const { return ground_.floor(); }
   /// The collisions handled in the last step, in the order they were handled; empty
@@ -140,8 +208,10 @@ public:
   std::vector<LostBall> removeLostBalls();
   /// FNV-1a of the exact bits of time and every ball's state.
   std::uint64_t stateHash() const;
-  /// The ball with this id, or nullptr.
+  /// The ball with this id, or nullptr; valid until the world steps or is edited.
   const Ball* findBall(int id) const;
+  /// The place of the ball with this id in balls(), or balls().size().
+  std::size_t indexOf(int id) const;
   /// The angular velocity of balls()[k]: its own where the world has friction; else that
   /// of rolling without slip, n x v / r, n the floor's normal under it (up without a
   /// floor) [rad/s].
@@ -212,22 +282,24 @@ private:
   Bounds wallBounds() const;
   /// Why ball k is out of the world (off the floor, or outside `bounds`), or "".
   std::string whyLost(std::size_t k, const Bounds& bounds) const;
-  /// The index of the ball with this id in balls_, or balls_.size().
-  std::size_t indexOf(int id) const;
+  /// The record of the ball with this id in balls_, or balls_.size().
+  std::size_t slotOf(int id) const;
+  /// The records in id order again, as an edit leaves them (the next step visits them so).
+  void sortById();
+  /// Moves the records (balls_, feet_, spins_) so that slot k holds the one that was in
+  /// slot from[k]; `from` is used up.
+  void permute(std::vector<std::uint32_t>& from);
   /// Ball i's foot point guess in this step (curved floors), or a value the ground does
   /// not read.
   const Vec2& guessOf(std::size_t i) const { return floor_uv_.empty() ? no_foot_ : floor_uv_[i]; }
   Vec2& guessOf(std::size_t i) { return floor_uv_.empty() ? no_foot_ : floor_uv_[i]; }
-  /// balls_[k]'s foot point (curved floors), or a value the ground does not read.
-  const Vec2& footOf(std::size_t k) const { return feet_.empty() ? no_foot_ : feet_[k]; }
+  /// The foot point of the record in slot s (curved floors), or a value the ground does not read.
+  const Vec2& footOf(std::size_t s) const { return feet_.empty() ? no_foot_ : feet_[s]; }
 
   // The stages of a step, in order.
   void predictMotions();
   /// Ball i's free motion over the next step from its record, and its swept box.
   void predictMotion(std::size_t i);
-  /// Asks for the k-th visited ball's record ahead of its use: the visiting order is
-  /// known, but it reaches `balls_` out of memory order.
-  void prefetchBall(std::size_t k, bool write) const;
   void buildBroadPhase();
   void findFirstImpacts();
   void resolveEventsInTimeOrder();
@@ -352,8 +424,8 @@ private:
   /// Ball i may not move along `direction` for the rest of the step: it leans on a contact of this restitution.
   void addBlocked(std::size_t i, const Vec3& direction, double restitution);
   /// While the step runs, a ball's velocity is the one at the start of its motion.
-  Vec3& startVelocity(std::size_t i) { return balls_[order_[i]].velocity; }
-  const Vec3& startVelocity(std::size_t i) const { return balls_[order_[i]].velocity; }
+  Vec3& startVelocity(std::size_t i) { return balls_[i].velocity; }
+  const Vec3& startVelocity(std::size_t i) const { return balls_[i].velocity; }
   Vec3 floorNormalAt(std::size_t i, const Vec3& position) const;
   /// Where the ball i centred at q is put back on the floor (q itself without a floor).
   Vec3 onFloor(std::size_t i, const Vec3& q) const;
@@ -407,18 +479,20 @@ private:
   /// ball's phase has its own (SpinMotion::c).
   bool parabolas_ = false;
   std::vector<Wall> walls_;
+  /// The balls' records in the order the step visits them (its work space is indexed the
+  /// same way): a recent step's cell order, so that neighbours in space are neighbours in
+  /// memory; in id order after an edit.
   std::vector<Ball> balls_;
+  /// The slot in balls_ of the ball with the k-th lowest id (balls() lists them so).
+  std::vector<std::uint32_t> by_id_;
   /// Curved floors: each ball's foot point (u, v), beside balls_ (empty otherwise).
   std::vector<Vec2> feet_;
   int next_ball_id_ = 0;
   int next_wall_id_ = 0;
   WorldStats stats_;
 
-  /// The step visits ball balls_[order_[k]] as its k-th: the balls in a recent step's
-  /// cell order (the step's work space is indexed by k). Reset when a ball is added or
-  /// removed (walls do not enter the prediction).
-  std::vector<std::uint32_t> order_;
-  /// Steps since order_ was set; it is set anew every settings_.reorder_steps steps.
+  /// Steps since the records were put in cell order; they are so anew every
+  /// settings_.reorder_steps steps.
   std::uint32_t order_age_ = 0;
   /// motions_ (and states_, the grid's boxes) hold the next step's predicted motions.
   bool motions_ready_ = false;
@@ -436,8 +510,8 @@ private:
   std::vector<RestingContact> resting_;
   std::vector<BlockedSet> blocked_sets_;
 
-  /// With friction (a plane floor): the laws under its normal, each ball's spin beside
-  /// balls_, the step's phases by visiting index, and the step's changes of kind.
+  /// With friction: the laws under the plane's normal, each ball's spin beside balls_,
+  /// the step's phases by visiting index, and the step's changes of kind.
   std::optional<FrictionLaw> friction_;
   std::vector<BallSpin> spins_;
   std::vector<SpinMotion> spin_motions_;

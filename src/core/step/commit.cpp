@@ -50,11 +50,10 @@ void World::commitToFloor(bool predict_next)
     floor_normals_.resize(balls_.size());
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
-    prefetchBall(i + settings_.prefetch_ahead, true);
     const Committed done = commitBall(i, settle);
     if (!settle)
     {
-      Ball& ball = balls_[order_[i]];
+      Ball& ball = balls_[i];
       ball.quiet_steps = 0;  // it leaned on nothing
       asleep += ball.asleep ? 1 : 0;
       roll(i, done.normal, done.moved);
@@ -83,10 +82,10 @@ void World::commitToFloor(bool predict_next)
 
 World::Committed World::commitBall(std::size_t i, bool settle)
 {
-  Ball& ball = balls_[order_[i]];
+  Ball& ball = balls_[i];
   const Ground::End end = ground_.end(positionAt(i, 1.0), motions_[i].radius, guessOf(i));
   if (!feet_.empty())
-    feet_[order_[i]] = end.foot;
+    feet_[i] = end.foot;
   if (settle)
     floor_normals_[i] = end.normal;
   const Vec3 moved = end.centre - ball.position;
@@ -96,7 +95,7 @@ World::Committed World::commitBall(std::size_t i, bool settle)
   {
     // its own spin at the end, and its turn over the step by the mean of its spins
     SpinMotion& sm = spin_motions_[i];
-    BallSpin& spin = spins_[order_[i]];
+    BallSpin& spin = spins_[i];
     Vec3 w = spinAt(i, 1.0);
     // (on a curved floor a rolling ball rolls under the normal where it ends)
     if (ground_.bends() && sm.free && sm.kind == MotionKind::kRolling)
@@ -115,11 +114,11 @@ void World::settleRestingVelocities()
 {
   // Resting contacts keep no closing speed into the step that follows.
   for (std::size_t i = 0; i < balls_.size(); ++i)
-    balls_[order_[i]].velocity = redirected(i, balls_[order_[i]].velocity);
+    balls_[i].velocity = redirected(i, balls_[i].velocity);
   for (const RestingContact& contact : resting_)
   {
-    Ball& a = balls_[order_[contact.ball]];
-    Ball& b = balls_[order_[contact.other]];
+    Ball& a = balls_[contact.ball];
+    Ball& b = balls_[contact.other];
     const double inv_a = states_[contact.ball].frozen ? 0.0 : 1.0 / a.mass;
     const double inv_b = states_[contact.other].frozen ? 0.0 : 1.0 / b.mass;
     const double closing = a.velocity.dot(contact.dir_ball) - b.velocity.dot(contact.dir_other);
@@ -142,7 +141,7 @@ void World::settleRestingVelocities()
   {
     // the impulses across the contacts may leave a velocity a part along the floor's
     // normal, which the floor takes (where speeds are the energy's, it keeps the speed)
-    Ball& ball = balls_[order_[i]];
+    Ball& ball = balls_[i];
     ball.velocity = ground_.turned(ball.velocity, ground_.along(ball.velocity, floor_normals_[i]));
   }
 }
@@ -156,7 +155,7 @@ void World::roll(std::size_t i, const Vec3& normal, const Vec3& d)
   }
   // Rolling without slip: turned by |d| / r about n x d, d the move along the floor
   // (|n x d| is its length). Its angular velocity follows from n and v when asked for.
-  Ball& ball = balls_[order_[i]];
+  Ball& ball = balls_[i];
   const double half_inv_radius = 0.5 / ball.radius;
   const Vec3 axis = normal.cross(d);
   const double axis_squared = axis.squaredNorm();

@@ -56,12 +56,12 @@ void World::wakeGroup(std::size_t first)
     if (!states_[k].asleep)
       continue;
     states_[k].frozen = states_[k].asleep = false;
-    Ball& ball = balls_[order_[k]];
+    Ball& ball = balls_[k];
     ball.asleep = false;
     ball.quiet_steps = 0;
     ++stats_.woken_balls;
     grid_.query(static_cast<std::uint32_t>(k), [&](std::uint32_t other) {
-      const Ball& b = balls_[order_[other]];
+      const Ball& b = balls_[other];
       if (states_[other].asleep && (b.position - ball.position).norm() <= b.radius + ball.radius + settings_.touch_slack &&
           !wallBetween(ball, b))
         todo.push_back(other);
@@ -114,7 +114,7 @@ void World::sleepStillGroups()
   std::vector<char> restless(n, 0);
   for (std::size_t k = 0; k < n; ++k)
   {
-    Ball& ball = balls_[order_[k]];
+    Ball& ball = balls_[k];
     if (ball.asleep)
       continue;
     const bool still = (leans[k] || states_[k].blocked >= 0) && ball.velocity.norm() <= settings_.sleep_speed;
@@ -125,7 +125,7 @@ void World::sleepStillGroups()
   std::uint64_t asleep = 0;
   for (std::size_t k = 0; k < n; ++k)
   {
-    Ball& ball = balls_[order_[k]];
+    Ball& ball = balls_[k];
     if (!ball.asleep && ball.quiet_steps >= sleep_steps_ && !restless[root(k)])
     {
       ball.asleep = true;

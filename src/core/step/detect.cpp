@@ -13,7 +13,7 @@ using namespace step;
 
 void World::buildBroadPhase()
 {
-  queue_.start(&order_);
+  queue_.start(&balls_);
   grid_.build();  // on the swept boxes of the predicted motions
   wall_boxes_.resize(walls_.size());
   for (std::size_t w = 0; w < walls_.size(); ++w)

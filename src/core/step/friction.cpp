@@ -30,7 +30,7 @@ void World::recordKind(std::size_t i, double x)
   if (sm.kind == sm.reported)
     return;
   ++stats_.transitions;
-  transitions_.push_back({(static_cast<double>(stats_.steps) + x) * dt_, balls_[order_[i]].id, sm.reported, sm.kind});
+  transitions_.push_back({(static_cast<double>(stats_.steps) + x) * dt_, balls_[i].id, sm.reported, sm.kind});
   sm.reported = sm.kind;
 }
 
@@ -55,11 +55,11 @@ double World::speedSquaredAt(std::size_t i, double x, const Vec3& p) const
     // d(v^2 / 2) = <g, dp> / (1 + k) - mu_r g_n ds: the chord's length for the path's (no
     // longer than it), so rolling resistance never gives energy, also where the ball
     // turns within the chord
-    const double k = spins_[order_[i]].inertia;
+    const double k = spins_[i].inertia;
     return v0.squaredNorm() + 2 * (gravity_.dot(p - m.p0) / (1 + k) - sm.roll_resistance * (p - m.p0).norm());
   }
   const double t = std::min((x - m.x0) * dt_, std::max(sm.x_end - m.x0, 0.0) * dt_);
-  const double k = spins_[order_[i]].inertia;
+  const double k = spins_[i].inertia;
   const Vec3 w = sm.w0 + t * sm.alpha;
   const double spin_change = k * m.radius * m.radius * (w.squaredNorm() - sm.w0.squaredNorm());
   const double loss = sm.slip_force * (sm.slip0 * t - 0.5 * sm.slip_rate * t * t);
@@ -77,7 +77,7 @@ bool World::startFriction(std::size_t i, double x, bool record, bool impact)
 {
   Motion& m = motions_[i];
   SpinMotion& sm = spin_motions_[i];
-  const BallSpin& spin = spins_[order_[i]];
+  const BallSpin& spin = spins_[i];
   Vec3& v = startVelocity(i);
   const FrictionLaw law = frictionUnder(floorNormalAt(i, m.p0));
   // (the normal turned under it since its phase began: the discrete path's turn, not a
@@ -147,7 +147,7 @@ void World::constrainSpin(std::size_t i)
   const FrictionLaw law = frictionUnder(floorNormalAt(i, motions_[i].p0));
   sm.normal = law.normal();
   const FrictionLaw::ConstrainedSpin spin =
-      law.constrained(spins_[order_[i]].inertia, motions_[i].radius, startVelocity(i), sm.w0);
+      law.constrained(spins_[i].inertia, motions_[i].radius, startVelocity(i), sm.w0);
   sm.alpha = spin.along_rate;
   sm.along_time = spin.along_time;
   sm.normal_rate = spin.normal_rate;
@@ -195,7 +195,7 @@ void World::resolveTransition(const Event& event)
   // (under the normal where it is now: its velocity there lies along that floor)
   const FrictionLaw law = frictionUnder(floorNormalAt(i, p));
   const double speeds = law.speeds(m.radius, startVelocity(i), sm.w0);
-  law.finish(sm.ends, spins_[order_[i]].inertia, m.radius, speeds, v, w);
+  law.finish(sm.ends, spins_[i].inertia, m.radius, speeds, v, w);
   sm.w0 = w;
   if (sm.ends & kSlipStops)
     sm.kind = MotionKind::kRolling;  // (its slip is gone: it rolls, or finds it cannot)
@@ -218,7 +218,7 @@ void World::ballBallFriction(const PairContact& c, double normal_impulse, Vec3& 
     return;
   e /= e_norm;
   const double ra = motions_[c.i].radius, rb = motions_[c.j].radius;
-  const double ka = spins_[order_[c.i]].inertia, kb = spins_[order_[c.j]].inertia;
+  const double ka = spins_[c.i].inertia, kb = spins_[c.j].inertia;
   // the touching points' velocities: a's at ra n from its centre, b's at -rb n from its
   // (a ball without motion, asleep or stopped by the cap, is still: its surface too,
   // else it would drive the other like a belt)
@@ -246,8 +246,8 @@ void World::ballWallFriction(std::size_t i, const Vec3& n, const Vec3& floor_nor
     return;
   e /= e_norm;
   const double r = motions_[i].radius;
-  const double k = spins_[order_[i]].inertia;
-  const double inv = 1.0 / balls_[order_[i]].mass;
+  const double k = spins_[i].inertia;
+  const double inv = 1.0 / balls_[i].mass;
   const double slip = (v + w.cross(r * n)).dot(e);  // the touching point's, n toward the wall
   const double jt = tangentialImpulse(slip * e, mu, normal_impulse, inv * (1 + 1 / k));
   if (jt == 0)
@@ -262,7 +262,7 @@ void World::turn(std::size_t i, const Vec3& angle)
   const double a = angle.norm();
   if (!(a > 0))
     return;
-  Ball& ball = balls_[order_[i]];
+  Ball& ball = balls_[i];
   const Quat q = Quat(Eigen::AngleAxisd(a, angle / a)) * ball.orientation;
   ball.orientation = q.normalized();
 }

@@ -1,6 +1,6 @@
 // Stage 1, predict: each ball's free motion over the step, from its record (position,
 // velocity) and the floor, and its swept box in the grid.
-// Reads balls_, feet_; writes order_ (after an edit), motions_, states_, floor_uv_ and
+// Reads balls_, feet_, spins_; writes motions_, states_, spin_motions_, floor_uv_ and
 // the grid's boxes.
 #include "step_types.hpp"
 
@@ -10,34 +10,9 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-void World::prefetchBall(std::size_t k, bool write) const
-{
-  if (k >= order_.size())
-    return;
-  const char* at = reinterpret_cast<const char*>(&balls_[order_[k]]);
-  if (write)
-  {
-    __builtin_prefetch(at, 1);
-    __builtin_prefetch(at + 64, 1);
-    __builtin_prefetch(at + sizeof(Ball) - 1, 1);
-  }
-  else
-  {
-    __builtin_prefetch(at);
-    __builtin_prefetch(at + 64);
-  }
-}
-
 void World::predictMotions()
 {
   static_assert(sizeof(Motion) == 64, "a Motion fills one cache line");
-  if (order_.size() != balls_.size())
-  {
-    // (balls added or removed since the last step: visited in id order)
-    order_.resize(balls_.size());
-    for (std::size_t k = 0; k < order_.size(); ++k)
-      order_[k] = static_cast<std::uint32_t>(k);
-  }
   grid_.start(balls_.size(), ground_.up(), settings_);
   // (taken back at once, so that a step cut short by an exception leaves none ready)
   if (std::exchange(motions_ready_, false))
@@ -47,29 +22,26 @@ void World::predictMotions()
   spin_motions_.resize(friction_ ? balls_.size() : 0);
   floor_uv_.resize(feet_.empty() ? 0 : balls_.size());  // where balls keep foot points
   for (std::size_t i = 0; i < balls_.size(); ++i)
-  {
-    prefetchBall(i + settings_.prefetch_ahead, false);
     predictMotion(i);
-  }
 }
 
 void World::predictMotion(std::size_t i)
 {
-  const Ball& ball = balls_[order_[i]];
+  const Ball& ball = balls_[i];
   Motion& m = motions_[i];
   m = Motion{};
   states_[i] = MotionState{};
   m.radius = ball.radius;
   m.p0 = ball.position;
   if (!floor_uv_.empty())
-    floor_uv_[i] = feet_[order_[i]];
+    floor_uv_[i] = feet_[i];
   if (ball.asleep)
   {
     states_[i].frozen = states_[i].asleep = true;  // where it is, an obstacle, until woken
     if (friction_)
     {
-      spin_motions_[i].w0 = spins_[order_[i]].angular_velocity;
-      spin_motions_[i].kind = spin_motions_[i].reported = spins_[order_[i]].kind;
+      spin_motions_[i].w0 = spins_[i].angular_velocity;
+      spin_motions_[i].kind = spin_motions_[i].reported = spins_[i].kind;
       keepSpin(i);
     }
     grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, m.p0, ball.radius));
@@ -78,8 +50,8 @@ void World::predictMotion(std::size_t i)
   if (friction_)
   {
     SpinMotion& sm = spin_motions_[i];
-    sm.w0 = spins_[order_[i]].angular_velocity;
-    sm.kind = sm.reported = spins_[order_[i]].kind;
+    sm.w0 = spins_[i].angular_velocity;
+    sm.kind = sm.reported = spins_[i].kind;
     sm.normal = floorNormalAt(i, m.p0);  // (where its last step put it)
     // (a change of kind was recorded where the last phase ended)
     if (!startFriction(i, 0.0, false, false))

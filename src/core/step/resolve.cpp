@@ -22,7 +22,7 @@ void World::resolveEventsInTimeOrder()
       const auto fetch = [&](std::uint32_t k) {
         __builtin_prefetch(&states_[k]);
         __builtin_prefetch(&motions_[k]);
-        __builtin_prefetch(&order_[k]);
+        __builtin_prefetch(&balls_[k]);
       };
       const Event& next = queue_.top();
       fetch(next.i);
@@ -48,7 +48,7 @@ void World::resolveBallWall(const Event& event)
 {
   const std::size_t i = event.i;
   const Wall& wall = walls_[event.j];
-  const Ball& ball = balls_[order_[i]];
+  const Ball& ball = balls_[i];
   const Vec3 p = positionAt(i, event.x);
   const Vec3 floor_normal = floorNormalAt(i, p);
   Vec3 v = onFloorVelocity(i, event.x, p, floor_normal);
@@ -87,8 +87,8 @@ void World::resolveBallWall(const Event& event)
 void World::resolveBallBall(const Event& event)
 {
   const std::size_t i = event.i, j = event.j;
-  const Ball& a = balls_[order_[i]];
-  const Ball& b = balls_[order_[j]];
+  const Ball& a = balls_[i];
+  const Ball& b = balls_[j];
   const Vec3 pa = positionAt(i, event.x);
   const Vec3 pb = positionAt(j, event.x);
   const Vec3 na = floorNormalAt(i, pa);
