@@ -2,6 +2,8 @@
 #include "ball_collision_sim/ros/simulator_node.hpp"
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
 
+#include <exception>
+
 int main(int argc, char** argv)
 {
   ros::init(argc, argv, "ball_sim");
@@ -16,6 +18,12 @@ int main(int argc, char** argv)
   catch (const ball_collision_sim::yaml::SceneError& e)
   {
     ROS_FATAL("%s", e.what());
+    return 1;
+  }
+  catch (const std::exception& e)
+  {
+    // (what the scene's checks let through and the world refused, or no memory)
+    ROS_FATAL("cannot start: %s", e.what());
     return 1;
   }
   return 0;

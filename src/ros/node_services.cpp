@@ -10,6 +10,7 @@
 #include <std_msgs/String.h>
 
 #include <algorithm>
+#include <optional>
 #include <utility>
 
 namespace ball_collision_sim::bridge
@@ -116,6 +117,19 @@ bool SimulatorNode::onLoadScene(LoadScene::Request& req, LoadScene::Response& re
     res.message = e.what();
     return true;
   }
+  // The new world is built before anything changes: should that throw, nothing has.
+  std::optional<core::World> built;
+  try
+  {
+    built.emplace(requested.scene, std::move(requested.checked));
+  }
+  catch (const std::exception& e)
+  {
+    res.success = false;
+    res.message = e.what();
+    return true;
+  }
+  core::World& fresh = *built;
   NodeSettings in_use;
   {
     const Lock guard = lock();
@@ -125,7 +139,7 @@ bool SimulatorNode::onLoadScene(LoadScene::Request& req, LoadScene::Response& re
     const auto& keys = requested.node_keys;
     if (std::find(keys.begin(), keys.end(), "start_paused") != keys.end())
       paused_ = node.start_paused;
-    world_ = core::World(requested.scene, std::move(requested.checked));
+    world_ = std::move(fresh);
     frame_id_ = world_.scene().frame_id;
     scene_source_ = req.path.empty() ? "load_scene's yaml" : req.path;
     applyWiring(resolve(node, nh_.getNamespace()));
