@@ -15,12 +15,12 @@ namespace
 {
 StepEvent ballEvent(double x, std::uint32_t i, std::uint32_t j)
 {
-  return StepEvent{x, i, j, 0, 0, false, WallFeature::kFace, false, Vec3::Zero()};
+  return StepEvent{x, i, j, 0, 0, false, WallFeature::kFace, false, false, Vec3::Zero()};
 }
 
 StepEvent wallEvent(double x, std::uint32_t i, std::uint32_t wall)
 {
-  return StepEvent{x, i, wall, 0, 0, true, WallFeature::kFace, false, Vec3::UnitX()};
+  return StepEvent{x, i, wall, 0, 0, true, WallFeature::kFace, false, false, Vec3::UnitX()};
 }
 
 /// The balls by visiting index k, ball k having id order[k] + 1 (ids start at 1).

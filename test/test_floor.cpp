@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 using namespace ball_collision_sim::core;
@@ -327,4 +328,69 @@ TEST(Bowl, SmallOscillationPeriod)
   ASSERT_EQ(crossings.size(), 4u);
   const double period = (crossings[3] - crossings[0]) / 3;
   EXPECT_NEAR(period, expected, 2e-3 * expected);
+}
+
+// The bowl z = x^2 + y^2 (1 m square) has curvature 2/m at its bottom, its largest: its
+// chords are at most chord_turn / 2 = 0.125 m long.
+TEST(Bowl, LargestCurvatureGivesTheLongestChord)
+{
+  Scene scene;
+  scene.floor = bowl(1, 0.25);
+  const World world(scene);
+  EXPECT_NEAR(world.floor()->maxCurvature(), 2.0, 1e-12);
+  Scene plane;
+  plane.floor = FloorDef{};
+  EXPECT_EQ(World(plane).floor()->maxCurvature(), 0.0);
+}
+
+// A ball at 100 m/s in that bowl, walled, crosses it once a step. One chord a step would
+// run far off the surface (its end put back on the floor beyond the walls, where the
+// paraboloid rises): it met the walls up to 8.6 cm above where the ball touches the
+// floor. Cut into chords of at most 0.125 m, the ball meets them within what such a chord
+// strays (k L^2 / 8 for the surface its centre keeps to, 4.4 mm), ends every step on the
+// floor, and keeps its energy.
+TEST(Bowl, AFastBallsChordsAreCutToStayOnTheFloor)
+{
+  Scene scene;
+  scene.floor = bowl(1, 0.25);
+  scene.dt = 0.01;
+  const Vec3 up(0, 0, 4);
+  scene.walls = {WallDef{Vec3(-0.5, -0.5, -2), Vec3(1, 0, 0), up, {}}, WallDef{Vec3(-0.5, 0.5, -2), Vec3(1, 0, 0), up, {}},
+                 WallDef{Vec3(-0.5, -0.5, -2), Vec3(0, 1, 0), up, {}}, WallDef{Vec3(0.5, -0.5, -2), Vec3(0, 1, 0), up, {}}};
+  BallDef b;
+  b.radius = 0.05;
+  b.position = Vec3(0.1, 0.05, 0.0125 + 0.075);  // (put on the floor from there)
+  b.velocity = Vec3(100, 37, 0);
+  scene.balls = {b};
+  // the farthest off the floor it meets a wall, over 300 steps
+  const auto worstImpact = [&](World& world) {
+    double worst = 0;
+    std::size_t impacts = 0;
+    for (int k = 0; k < 300; ++k)
+    {
+      world.step();
+      const Ball& ball = world.balls()[0];
+      EXPECT_NEAR(world.floor()->project(ball.position, Vec2(0.5, 0.5)).height, b.radius, 1e-9) << "step " << k;
+      for (const CollisionEvent& e : world.lastEvents())
+      {
+        const Vec3 centre = e.point - b.radius * e.normal;
+        worst = std::max(worst, std::abs(world.floor()->project(centre, Vec2(0.5, 0.5)).height - b.radius));
+        ++impacts;
+      }
+    }
+    EXPECT_GT(impacts, 250u);  // (it does cross the bowl about once a step)
+    return worst;
+  };
+  World world(scene);
+  const double e0 = world.energy().total();
+  const double radius_of_centres = 1 / 2.0 - b.radius;  // the surface the centre keeps to
+  const double longest = world.stepSettings().chord_turn / world.floor()->maxCurvature();
+  EXPECT_LT(worstImpact(world), longest * longest / (8 * radius_of_centres));
+  EXPECT_LT(std::abs(world.energy().total() - e0), 1e-9 * e0);
+  EXPECT_EQ(world.lostBalls(), 0);
+  // one chord a step
+  StepSettings uncut;
+  uncut.chord_turn = std::numeric_limits<double>::infinity();
+  World whole(scene, uncut);
+  EXPECT_GT(worstImpact(whole), 0.05);
 }

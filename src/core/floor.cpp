@@ -57,6 +57,32 @@ Floor::Floor(const FloorDef& def, const Vec3& gravity) : def_(def)
   }
   if (isPlane())
     plane_normal_ = orient(plane_normal_);
+  else
+    max_curvature_ = sampledCurvature();
+}
+
+double Floor::sampledCurvature() const
+{
+  // The larger principal curvature |H| + sqrt(H^2 - K) from the first and second
+  // fundamental forms, at the points of a grid over the floor.
+  constexpr int kSamples = 16;
+  double largest = 0.0;
+  for (int a = 0; a <= kSamples; ++a)
+    for (int b = 0; b <= kSamples; ++b)
+    {
+      Vec3 s, su, sv, suu, suv, svv;
+      derivatives(Vec2(static_cast<double>(a) / kSamples, static_cast<double>(b) / kSamples), s, su, sv, suu, suv, svv);
+      const Vec3 n = su.cross(sv).normalized();
+      const double e = su.dot(su), f = su.dot(sv), g = sv.dot(sv);
+      const double l = suu.dot(n), m = suv.dot(n), k = svv.dot(n);
+      const double det = e * g - f * f;
+      if (!(det > 0))
+        continue;
+      const double mean = (l * g - 2 * m * f + k * e) / (2 * det);
+      const double gauss = (l * k - m * m) / det;
+      largest = std::max(largest, std::abs(mean) + std::sqrt(std::max(0.0, mean * mean - gauss)));
+    }
+  return largest;
 }
 
 Vec3 Floor::orient(Vec3 n) const

@@ -22,6 +22,8 @@ Ground::Ground(const std::optional<FloorDef>& floor, const Vec3& gravity, const 
   const Vec3 along = plane_ ? tangentPart(gravity, plane_normal_) : gravity;
   plane_gravity_along_ = plane_ ? along.norm() : 0.0;
   straight_ = !bends() && along.norm() <= settings.straight_gravity_ratio * g;
+  if (bends() && floor_->maxCurvature() > 0)
+    longest_chord_ = settings.chord_turn / floor_->maxCurvature();
 }
 
 Vec3 Ground::land(const Vec3& q, double radius, const Vec2& guess) const

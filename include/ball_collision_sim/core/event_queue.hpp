@@ -20,8 +20,10 @@ struct StepEvent
   std::uint32_t epoch_j;
   bool wall;
   WallFeature feature;
-  /// Not an impact: ball i's friction phase ends (j = i, `wall` false).
+  /// Not an impact: ball i's motion ends (j = i, `wall` false): its friction phase, or
+  /// where `cut`, its chord at the longest a curved floor allows.
   bool transition;
+  bool cut;
   Vec3 normal;               ///< ball-wall: unit, from the wall toward the ball
 };
 

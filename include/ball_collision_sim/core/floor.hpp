@@ -54,6 +54,9 @@ public:
     const Vec3 d = q - def_.point;
     return plane_gram_inverse_ * Vec2(d.dot(def_.u), d.dot(def_.v));
   }
+  /// The largest principal curvature over the floor, from a grid of points on it (0 for a
+  /// plane) [1/m].
+  double maxCurvature() const { return max_curvature_; }
   /// Plane only: its unit normal (facing against gravity) and <normal, point on it>.
   const Vec3& planeNormal() const { return plane_normal_; }
   double planeOffset() const { return plane_normal_.dot(def_.point); }
@@ -70,5 +73,7 @@ private:
   Mat2 plane_gram_inverse_;
   /// biquadratic only: S(u, v) = sum of power_[a][b] u^a v^b
   std::array<std::array<Vec3, 3>, 3> power_{};
+  double max_curvature_ = 0.0;
+  double sampledCurvature() const;
 };
 }  // namespace ball_collision_sim::core

@@ -5,6 +5,7 @@
 #include "ball_collision_sim/core/step_settings.hpp"
 #include "ball_collision_sim/core/types.hpp"
 
+#include <limits>
 #include <optional>
 
 namespace ball_collision_sim::core
@@ -28,6 +29,11 @@ public:
   /// A chord between two points of the floor leaves it (a curved floor): a motion
   /// corrected after an impact is put back on the floor, and balls keep foot points.
   bool bends() const { return floor_ && !plane_; }
+
+  /// The longest chord a motion on the floor may take before it is cut
+  /// (StepSettings::chord_turn over the floor's largest curvature); infinite where paths
+  /// do not bend [m].
+  double longestChord() const { return longest_chord_; }
 
   /// The centre of a ball of radius r put back on the floor from q (q without a floor).
   Vec3 land(const Vec3& q, double radius, const Vec2& guess) const;
@@ -90,5 +96,6 @@ private:
   double plane_gravity_along_ = 0.0;  ///< |gravity along the plane| [m/s^2]
   Vec3 gravity_;
   bool straight_ = true;
+  double longest_chord_ = std::numeric_limits<double>::infinity();
 };
 }  // namespace ball_collision_sim::core

@@ -81,6 +81,14 @@ struct StepSettings
   double slide_longest_reach = 0.5;
   int slide_doublings = 64;
 
+  // ---- fast balls on curved floors ---------------------------------------------------
+  /// A chord on a curved floor turns through at most this angle of the floor (its length
+  /// times the floor's largest curvature): a chord of length L strays up to L^2 k / 8 from
+  /// the surface, and a fast ball's, across much of the floor in one step, may leave it.
+  /// A longer one is cut where it reaches this length, and the ball goes on from the cut,
+  /// on the floor, with the speed its energy gives there (an event) [rad].
+  double chord_turn = 0.25;
+
   // ---- friction ----------------------------------------------------------------------
   /// A slip of the contact point smaller than this part of the ball's speeds (|v| plus
   /// r times its spin along the floor) is round-off, of a transition or of the input: the

@@ -343,6 +343,14 @@ private:
   /// No approach left in the motions of a resting pair, and a pair that would close in
   /// again at once, or is jammed, held still for the rest of the step.
   void settleRestingPair(const PairContact& c, double x, const Vec3& pa, const Vec3& pb, bool both_still);
+  /// Where ball i's chord ends: 1, or on a curved floor where it was cut (cutChord()).
+  double chordEnd(std::size_t i) const { return chord_ends_.empty() ? 1.0 : chord_ends_[i]; }
+  /// A chord of ball i (from `position` with start velocity v0) longer than the floor
+  /// allows (Ground::longestChord()) is cut where it reaches that length, and ends there
+  /// on the floor; the ball goes on from there by an event (queueCut(), resolveCut()).
+  void cutChord(std::size_t i, const Vec3& position, const Vec3& v0);
+  void queueCut(std::size_t i);
+  void resolveCut(const Event& event);
   /// Ball i's new motion from x on; an impact (not a resting contact) lets a held ball
   /// go, and a ball still held after it keeps no motion for the rest of the step.
   void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact);
@@ -504,6 +512,7 @@ private:
   std::vector<Box32> wall_boxes_;
   std::vector<Vec3> floor_normals_;
   std::vector<Vec2> floor_uv_;  ///< curved floors: each ball's last foot point, Newton's guess
+  std::vector<double> chord_ends_;  ///< curved floors: where each ball's chord ends (chordEnd())
   Vec2 no_foot_ = Vec2(0.5, 0.5);  ///< the foot point where the ground keeps none
   std::vector<CollisionEvent> events_;
   bool record_events_ = true;

@@ -150,7 +150,7 @@ void World::endOnFloor(std::size_t i)
   // out the blocked directions moves the end off a curved floor; back onto it and out of
   // them again, in turn, until both hold.
   Motion& m = motions_[i];
-  const double rest = 1 - m.x0;
+  const double rest = chordEnd(i) - m.x0;
   if (!ground_.bends() || states_[i].frozen || !(rest > 0))
     return;
   const double roundoff = roundoffAt(m.p0, m.radius, settings_);
@@ -172,7 +172,7 @@ void World::endOnFloor(std::size_t i)
 double World::EnergyCheck::speedSquaredWith(const Vec3& b) const
 {
   const Motion& m = world->motions_[i];
-  return world->speedSquaredAt(i, 1.0, world->onFloor(i, m.p0 + rest * b));
+  return world->speedSquaredAt(i, world->chordEnd(i), world->onFloor(i, m.p0 + rest * b));
 }
 
 double World::EnergyCheck::speedSquared(double s) const
@@ -184,14 +184,14 @@ double World::EnergyCheck::chordSpeedSquared(const Vec3& b) const
 {
   if (world->friction_ && world->spin_motions_[i].free && !world->spin_motions_[i].conservative &&
       world->ground_.bends())
-    return world->speedSquaredAt(i, 1.0, world->motions_[i].p0 + rest * b);
+    return world->speedSquaredAt(i, world->chordEnd(i), world->motions_[i].p0 + rest * b);
   return world->startVelocity(i).squaredNorm() + 2 * rest * world->pullOf(i).dot(b);
 }
 
 void World::keepEnergy(std::size_t i)
 {
   Motion& m = motions_[i];
-  const double rest = 1 - m.x0;
+  const double rest = chordEnd(i) - m.x0;
   if (ground_.straight() || states_[i].frozen || !(rest > 0))
     return;
   const EnergyCheck energy{this, i, rest};

@@ -28,6 +28,8 @@ void World::findFirstImpacts()
   if (friction_)
     for (std::size_t i = 0; i < motions_.size(); ++i)
       queueTransition(i);
+  for (std::size_t i = 0; i < chord_ends_.size(); ++i)
+    queueCut(i);
 }
 
 void World::detect(std::size_t i)
@@ -36,6 +38,8 @@ void World::detect(std::size_t i)
   grid_.query(static_cast<std::uint32_t>(i), [&](std::uint32_t j) { detectBall(i, j); });
   if (friction_)
     queueTransition(i);
+  if (!chord_ends_.empty())
+    queueCut(i);
 }
 
 void World::detectWalls(std::size_t i)
@@ -53,7 +57,7 @@ void World::detectWalls(std::size_t i)
                                 : sweepWall(wall, m.p0, m.b, m.radius, 1 - m.x0, settings_.closing_slop);
     if (hit)
       queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), states_[i].epoch, 0,
-                      true, hit->feature, false, hit->normal});
+                      true, hit->feature, false, false, hit->normal});
   }
 }
 
@@ -82,6 +86,6 @@ void World::detectBall(std::size_t i, std::size_t j)
   }
   if (t)
     queue_.push(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), states_[a].epoch, states_[b].epoch,
-                    false, WallFeature::kFace, false, Vec3::Zero()});
+                    false, WallFeature::kFace, false, false, Vec3::Zero()});
 }
 }  // namespace ball_collision_sim::core

@@ -181,7 +181,8 @@ void World::queueTransition(std::size_t i)
   if (!sm.free || states_[i].frozen || !(sm.x_end <= 1))
     return;
   const auto k = static_cast<std::uint32_t>(i);
-  queue_.push(Event{sm.x_end, k, k, states_[i].epoch, states_[i].epoch, false, WallFeature::kFace, true, Vec3::Zero()});
+  queue_.push(Event{sm.x_end, k, k, states_[i].epoch, states_[i].epoch, false, WallFeature::kFace, true, false,
+                     Vec3::Zero()});
 }
 
 void World::resolveTransition(const Event& event)

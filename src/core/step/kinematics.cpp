@@ -1,6 +1,8 @@
 // A ball's motion on the floor within the step: where it is, the floor's normal under
-// it, its velocity there, the resting speed, and starting a new motion at an event.
-// Reads motions_, states_, the floor; writes motions_ and the start velocity.
+// it, its velocity there, the resting speed, starting a new motion at an event, and a
+// curved floor's chords cut to the longest it allows (an event at the cut).
+// Reads motions_, states_, the floor; writes motions_, chord_ends_, the start velocity
+// and, at a cut, the queue.
 #include "step_types.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
@@ -102,6 +104,8 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   states_[i].accelerates = false;
   m.x0 = x;
   m.p0 = position;
+  if (!chord_ends_.empty())
+    chord_ends_[i] = 1.0;
   if (states_[i].frozen)
   {
     v0 = m.b = Vec3::Zero();
@@ -133,6 +137,7 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   }
   const double rest = 1 - x;
   m.b = rest > 0 ? Vec3((predictedEnd(i, position, v0, rest * dt_) - position) / rest) : Vec3(dt_ * v0);
+  cutChord(i, position, v0);
   m.b = allowed(i, m.b);
   endOnFloor(i);
   keepEnergy(i);
@@ -140,6 +145,43 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
     m.b = Vec3::Zero();
 }
 
+void World::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)
+{
+  Motion& m = motions_[i];
+  // (the path's length, or the chord's where that is longer: the chord's end is the
+  // path's put back on the floor, which can lie far from it)
+  const double rest = 1 - m.x0;
+  const double length = rest * std::max(m.b.norm(), dt_ * v0.norm());
+  if (chord_ends_.empty() || !(length > ground_.longestChord()))
+    return;
+  // (the path beyond the cut is not the chord's: the cut's event makes the chord after it)
+  const double span = rest * (ground_.longestChord() / length);
+  chord_ends_[i] = m.x0 + span;
+  m.b = (predictedEnd(i, position, v0, span * dt_) - position) / span;
+}
+
+void World::queueCut(std::size_t i)
+{
+  const double x = chord_ends_[i];
+  if (!(x < 1) || states_[i].frozen)
+    return;
+  const auto k = static_cast<std::uint32_t>(i);
+  queue_.push(Event{x, k, k, states_[i].epoch, states_[i].epoch, false, WallFeature::kFace, true, true, Vec3::Zero()});
+}
+
+void World::resolveCut(const Event& event)
+{
+  // The ball goes on from its chord's end, on the floor, with the velocity there.
+  const std::size_t i = event.i;
+  const Vec3 p = positionAt(i, event.x);
+  const Vec3 normal = floorNormalAt(i, p);
+  const Vec3 v = onFloorVelocity(i, event.x, p, normal);
+  if (friction_)
+    spin_motions_[i].w0 = spinAtEvent(i, event.x, normal, v);
+  startMotion(i, event.x, p, v, false);
+  countEvent(i);
+  detect(i);
+}
 
 Vec3 World::onFloor(std::size_t i, const Vec3& q) const
 {

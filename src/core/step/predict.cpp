@@ -1,7 +1,7 @@
 // Stage 1, predict: each ball's free motion over the step, from its record (position,
 // velocity) and the floor, and its swept box in the grid.
-// Reads balls_, feet_, spins_; writes motions_, states_, spin_motions_, floor_uv_ and
-// the grid's boxes.
+// Reads balls_, feet_, spins_; writes motions_, states_, spin_motions_, floor_uv_,
+// chord_ends_ and the grid's boxes.
 #include "step_types.hpp"
 
 #include <utility>
@@ -21,6 +21,7 @@ void World::predictMotions()
   states_.resize(balls_.size());
   spin_motions_.resize(friction_ ? balls_.size() : 0);
   floor_uv_.resize(feet_.empty() ? 0 : balls_.size());  // where balls keep foot points
+  chord_ends_.assign(feet_.empty() ? 0 : balls_.size(), 1.0);
   for (std::size_t i = 0; i < balls_.size(); ++i)
     predictMotion(i);
 }
@@ -33,6 +34,8 @@ void World::predictMotion(std::size_t i)
   states_[i] = MotionState{};
   m.radius = ball.radius;
   m.p0 = ball.position;
+  if (!chord_ends_.empty())
+    chord_ends_[i] = 1.0;
   if (!floor_uv_.empty())
     floor_uv_[i] = feet_[i];
   if (ball.asleep)
@@ -70,7 +73,11 @@ void World::predictMotion(std::size_t i)
   const Vec3 end = predictedEnd(i, m.p0, ball.velocity, dt_);
   m.b = end - m.p0;
   if (ground_.bends())
-    keepEnergy(i);  // (a chord across the path, kept within the energy)
+  {
+    // (a chord across the path, no longer than the floor allows, kept within the energy)
+    cutChord(i, m.p0, ball.velocity);
+    keepEnergy(i);
+  }
   const Vec3 reach = m.p0 + m.b;
   grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, reach, ball.radius));
 }
@@ -87,7 +94,7 @@ Aabb World::currentBox(std::size_t i) const
   const Motion& m = motions_[i];
   const double rest = 1 - m.x0;
   if (!parabolas_ || !states_[i].accelerates)
-    return sweptBox(m.p0, m.p0 + rest * m.b, m.radius);
+    return sweptBox(m.p0, m.p0 + (chordEnd(i) - m.x0) * m.b, m.radius);
   // the parabola lies within (rest^2 / 4) |c| of its chord, along each axis
   Aabb box = sweptBox(m.p0, positionAt(i, 1.0), m.radius);
   const Vec3 sag = (0.25 * rest * rest) * pathTerm(i).cwiseAbs();

@@ -35,7 +35,9 @@ void World::resolveEventsInTimeOrder()
       ++stats_.stale_events;  // a ball involved has had an event since this was found
       continue;
     }
-    if (event.transition)
+    if (event.cut)
+      resolveCut(event);
+    else if (event.transition)
       resolveTransition(event);
     else if (event.wall)
       resolveBallWall(event);
