@@ -147,12 +147,14 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
 
 void World::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)
 {
+  if (chord_ends_.empty())
+    return;  // (paths that do not bend are not chords)
   Motion& m = motions_[i];
   // (the path's length, or the chord's where that is longer: the chord's end is the
   // path's put back on the floor, which can lie far from it)
   const double rest = 1 - m.x0;
   const double length = rest * std::max(m.b.norm(), dt_ * v0.norm());
-  if (chord_ends_.empty() || !(length > ground_.longestChord()))
+  if (!(length > ground_.longestChord()))
     return;
   // (the path beyond the cut is not the chord's: the cut's event makes the chord after it)
   const double span = rest * (ground_.longestChord() / length);
