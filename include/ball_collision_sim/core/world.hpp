@@ -380,7 +380,7 @@ private:
   // Friction (src/core/step/friction.cpp).
   /// Ball i's friction phase from x on, from its start velocity and spin_motions_[i].w0;
   /// a change of motion kind is recorded when `record`. A phase without friction force
-  /// (SpinMotion::conservative) is left for the caller to move as a frictionless ball,
+  /// (SpinMotion::Mode::kFrictionless) is left for the caller to move as a frictionless ball,
   /// and on a curved floor every moving phase to move on its chord under
   /// SpinMotion::pull: returns whether the caller is to move it. On a curved floor a ball
   /// that was rolling, and not hit (`impact`), rolls on under the normal where it is now.

@@ -98,11 +98,11 @@ World::Committed World::commitBall(std::size_t i, bool settle)
     BallSpin& spin = spins_[i];
     Vec3 w = spinAt(i, 1.0);
     // (on a curved floor a rolling ball rolls under the normal where it ends)
-    if (ground_.bends() && sm.free && sm.kind == MotionKind::kRolling)
+    if (ground_.bends() && sm.phase() && sm.kind == MotionKind::kRolling)
       w = frictionUnder(end.normal).rollingSpin(ball.radius, ball.velocity, w, w.dot(sm.normal));
     sm.turn = (0.5 * dt_) * (spin.angular_velocity + w);
     spin.angular_velocity = w;
-    if (sm.constrained)
+    if (sm.mode == SpinMotion::Mode::kConstrained)
       sm.kind = frictionUnder(end.normal).constrainedKind(motions_[i].radius, ball.velocity, w);
     recordKind(i, motions_[i].x0);  // (a kind the step's events did not report)
     spin.kind = sm.kind;

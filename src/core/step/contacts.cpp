@@ -182,8 +182,7 @@ double World::EnergyCheck::speedSquared(double s) const
 
 double World::EnergyCheck::chordSpeedSquared(const Vec3& b) const
 {
-  if (world->friction_ && world->spin_motions_[i].free && !world->spin_motions_[i].conservative &&
-      world->ground_.bends())
+  if (world->friction_ && world->spin_motions_[i].forced() && world->ground_.bends())
     return world->speedSquaredAt(i, world->chordEnd(i), world->motions_[i].p0 + rest * b);
   return world->startVelocity(i).squaredNorm() + 2 * rest * world->pullOf(i).dot(b);
 }

@@ -47,7 +47,7 @@ double World::speedSquaredAt(std::size_t i, double x, const Vec3& p) const
   const Motion& m = motions_[i];
   const Vec3& v0 = startVelocity(i);
   const SpinMotion& sm = friction_ ? spin_motions_[i] : SpinMotion{};
-  if (!friction_ || !sm.free || sm.conservative || !ground_.bends() ||
+  if (!friction_ || !sm.forced() || !ground_.bends() ||
       (sm.kind != MotionKind::kSliding && sm.kind != MotionKind::kRolling))
     return v0.squaredNorm() + 2 * pullOf(i).dot(p - m.p0);
   if (sm.kind == MotionKind::kRolling)
@@ -68,7 +68,7 @@ double World::speedSquaredAt(std::size_t i, double x, const Vec3& p) const
 
 const Vec3& World::pullOf(std::size_t i) const
 {
-  if (friction_ && spin_motions_[i].free && !spin_motions_[i].conservative)
+  if (friction_ && spin_motions_[i].forced())
     return spin_motions_[i].pull;
   return gravity_;
 }
@@ -100,20 +100,19 @@ bool World::startFriction(std::size_t i, double x, bool record, bool impact)
   sm.kind = phase.kind;
   sm.ends = phase.ends;
   sm.x_end = x + phase.duration / dt_;
-  sm.free = true;
   // (what a sliding phase's slip takes on a curved floor: speedSquaredAt())
   sm.slip0 = law.slip(m.radius, v, sm.w0).norm();
   sm.slip_force = scene_.friction->sliding * std::max(0.0, -gravity_.dot(law.normal()));
   sm.roll_resistance = scene_.friction->rolling * std::max(0.0, -gravity_.dot(law.normal()));
   sm.slip_rate = sm.slip_force * (1 + spin.inertia) / spin.inertia - law.gravityAlong().dot(phase.slip_direction);
-  sm.constrained = false;
-  sm.conservative = phase.conservative;
-  sm.still = !(phase.gravity_share > 0);
+  sm.mode = phase.conservative       ? SpinMotion::Mode::kFrictionless
+            : phase.gravity_share > 0 ? SpinMotion::Mode::kDriven
+                                      : SpinMotion::Mode::kStill;
   if (record)
     recordKind(i, x);
-  if (phase.conservative)
+  if (sm.mode == SpinMotion::Mode::kFrictionless)
     return true;  // the caller gives it a frictionless ball's motion
-  if (ground_.bends() && phase.gravity_share > 0)
+  if (ground_.bends() && sm.mode == SpinMotion::Mode::kDriven)
     return true;  // ... or a chord under sm.pull
   if (ground_.bends())
   {
@@ -137,7 +136,7 @@ void World::keepSpin(std::size_t i)
   sm.alpha = sm.a = sm.c = Vec3::Zero();
   sm.x_end = 2.0;
   sm.ends = kPhaseRuns;
-  sm.free = sm.constrained = sm.conservative = false;
+  sm.mode = SpinMotion::Mode::kKept;
 }
 
 void World::constrainSpin(std::size_t i)
@@ -152,7 +151,7 @@ void World::constrainSpin(std::size_t i)
   sm.along_time = spin.along_time;
   sm.normal_rate = spin.normal_rate;
   sm.normal_time = spin.normal_time;
-  sm.constrained = true;
+  sm.mode = SpinMotion::Mode::kConstrained;
 }
 
 Vec3 World::spinAtEvent(std::size_t i, double x, const Vec3& normal, const Vec3& v) const
@@ -160,7 +159,7 @@ Vec3 World::spinAtEvent(std::size_t i, double x, const Vec3& normal, const Vec3&
   const SpinMotion& sm = spin_motions_[i];
   const Vec3 w = spinAt(i, x);
   // (a rolling ball on a curved floor rolls with the velocity its energy gives it there)
-  if (!ground_.bends() || !sm.free || sm.conservative || sm.kind != MotionKind::kRolling)
+  if (!ground_.bends() || !sm.forced() || sm.kind != MotionKind::kRolling)
     return w;
   return frictionUnder(normal).rollingSpin(motions_[i].radius, v, w, w.dot(sm.normal));
 }
@@ -169,7 +168,7 @@ Vec3 World::spinAt(std::size_t i, double x) const
 {
   const SpinMotion& sm = spin_motions_[i];
   const double t = (x - motions_[i].x0) * dt_;
-  if (!sm.constrained)
+  if (sm.mode != SpinMotion::Mode::kConstrained)
     return sm.w0 + t * sm.alpha;
   return sm.w0 + std::min(t, sm.along_time) * sm.alpha +
          (std::min(t, sm.normal_time) * sm.normal_rate) * sm.normal;
@@ -178,7 +177,7 @@ Vec3 World::spinAt(std::size_t i, double x) const
 void World::queueTransition(std::size_t i)
 {
   const SpinMotion& sm = spin_motions_[i];
-  if (!sm.free || states_[i].frozen || !(sm.x_end <= 1))
+  if (!sm.phase() || states_[i].frozen || !(sm.x_end <= 1))
     return;
   const auto k = static_cast<std::uint32_t>(i);
   queue_.push(Event{sm.x_end, k, k, states_[i].epoch, states_[i].epoch, false, WallFeature::kFace, true, false,

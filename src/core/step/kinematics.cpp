@@ -55,9 +55,9 @@ Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
 Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
   const Motion& m = motions_[i];
-  if (friction_ && spin_motions_[i].free && !spin_motions_[i].conservative)
+  if (friction_ && spin_motions_[i].forced())
   {
-    if (!ground_.bends() || spin_motions_[i].still)
+    if (!ground_.bends() || spin_motions_[i].mode == SpinMotion::Mode::kStill)
       return startVelocity(i) + ((x - m.x0) * dt_) * spin_motions_[i].a;
     return ground_.withSpeedSquared(ground_.along(startVelocity(i) + ((x - m.x0) * dt_) * spin_motions_[i].pull, normal),
                                     speedSquaredAt(i, x, position));
