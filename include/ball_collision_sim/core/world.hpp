@@ -357,6 +357,9 @@ private:
   void countEvent(std::size_t i);
   /// Ball i stays where it is through the step's resting contacts (counted once a step).
   void hold(std::size_t i);
+  /// An impact between balls i and j closing at `closing` along their normal wakes the
+  /// group of the one asleep, where it is faster than the pair's resting speed.
+  void wakeOnImpact(std::size_t i, std::size_t j, double closing, double rest_speed);
   /// Wakes sleeping ball i, and the sleeping balls that touch it, and those that touch
   /// them: the group it rests in. Their motions start at the next step.
   void wakeGroup(std::size_t i);

@@ -86,6 +86,14 @@ void World::resolveBallWall(const Event& event)
   detect(i);
 }
 
+void World::wakeOnImpact(std::size_t i, std::size_t j, double closing, double rest_speed)
+{
+  // An impact on a sleeping ball (not one that would rest on it) wakes its group; the
+  // sleeping ball's velocity is zero.
+  if (states_[i].asleep != states_[j].asleep && closing > rest_speed)
+    wakeGroup(states_[j].asleep ? j : i);
+}
+
 void World::resolveBallBall(const Event& event)
 {
   const std::size_t i = event.i, j = event.j;
@@ -114,13 +122,7 @@ void World::resolveBallBall(const Event& event)
   const double dist = n.norm();
   n = dist > 0 ? Vec3(n / dist) : Vec3(Vec3::UnitX());
   const double rest_speed = pairRestingSpeed(na, pa, a.radius, nb, pb, b.radius);
-  // An impact on a sleeping ball (not one that would rest on it) wakes its group.
-  if (states_[i].asleep != states_[j].asleep)
-  {
-    const double hit = states_[j].asleep ? va.dot(n) : -vb.dot(n);
-    if (hit > rest_speed)
-      wakeGroup(states_[j].asleep ? j : i);
-  }
+  wakeOnImpact(i, j, n.dot(va - vb), rest_speed);
   // Each ball is pushed along the normal's part tangent to the floor under it, less any
   // part toward what it leans on (that part of the impulse goes into the wall).
   const Vec3 along_a = ground_.along(n, na);
