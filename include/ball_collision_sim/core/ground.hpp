@@ -46,6 +46,10 @@ public:
   Vec3 normalUnder(const Vec2& foot) const;
   /// w less its part along the floor's normal n; w itself without a floor.
   Vec3 along(const Vec3& w, const Vec3& n) const;
+  /// A ball's motion or velocity w kept on a plane floor: less its part along the
+  /// plane's normal (a ball on a plane moves in it); w itself elsewhere, where a chord
+  /// is put back on the floor at its end.
+  Vec3 inPlane(const Vec3& w) const { return plane_ ? Vec3(w - w.dot(plane_normal_) * plane_normal_) : w; }
   /// |gravity along the floor| where its normal is n [m/s^2].
   double gravityAlong(const Vec3& n) const;
 

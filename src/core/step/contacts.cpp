@@ -17,7 +17,12 @@ using namespace step;
 Vec3 World::allowed(std::size_t i, const Vec3& w) const
 {
   const std::int32_t blocked = states_[i].blocked;
-  return blocked < 0 ? w : blocked_sets_[static_cast<std::size_t>(blocked)].allowed(w, settings_);
+  if (blocked < 0)
+    return w;
+  // A wall's own normal is blocked beside its direction along the floor (for chords off
+  // a curved floor); on a plane it lets a motion out of the plane through (a ball in a
+  // corner of two walls would move straight up or down), which the plane takes.
+  return ground_.inPlane(blocked_sets_[static_cast<std::size_t>(blocked)].allowed(w, settings_));
 }
 
 Vec3 World::redirected(std::size_t i, const Vec3& v) const
