@@ -29,8 +29,9 @@ struct StepEvent
 
 /// The step's pending events, earliest first. Ties go by the balls' ids, not by the order
 /// the step visits them in, so that a run is the same whatever that order is: a ball's
-/// wall events before its ball events, and pairs by their lower, then higher, ball. Events live in a pool and the heap holds
-/// their times and slots, so that sifting moves 16 bytes, not an event.
+/// wall events before its ball events, and pairs by their lower, then higher, ball.
+/// Events live in a pool and the heap holds their times and slots, so that sifting moves
+/// 16 bytes, not an event.
 class EventQueue
 {
 public:

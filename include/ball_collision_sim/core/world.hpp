@@ -280,7 +280,7 @@ private:
     Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  ///< [m]
   };
   Bounds wallBounds() const;
-  /// Why ball k is out of the world (off the floor, or outside `bounds`), or "".
+  /// Why the ball in slot s is out of the world (off the floor, or outside `bounds`), or "".
   std::string whyLost(std::size_t k, const Bounds& bounds) const;
   /// The record of the ball with this id in balls_, or balls_.size().
   std::size_t slotOf(int id) const;
@@ -347,10 +347,12 @@ private:
   double chordEnd(std::size_t i) const { return chord_ends_.empty() ? 1.0 : chord_ends_[i]; }
   /// A chord of ball i (from `position` with start velocity v0) longer than the floor
   /// allows (Ground::longestChord()) is cut where it reaches that length, and ends there
-  /// on the floor; the ball goes on from there by an event (queueCut(), resolveCut()).
+  /// on the floor; the ball goes on from there by an event (queueCut(), resolveMotionEnd()).
   void cutChord(std::size_t i, const Vec3& position, const Vec3& v0);
   void queueCut(std::size_t i);
-  void resolveCut(const Event& event);
+  /// Ball i's motion ends within the step (StepEvent::transition): its friction phase's,
+  /// made exact by FrictionLaw::finish(), or its chord at a cut; a new one starts there.
+  void resolveMotionEnd(const Event& event);
   /// Ball i's new motion from x on; an impact (not a resting contact) lets a held ball
   /// go, and a ball still held after it keeps no motion for the rest of the step.
   void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact);
@@ -402,7 +404,6 @@ private:
   Vec3 spinAtEvent(std::size_t i, double x, const Vec3& normal, const Vec3& v) const;
   /// Queues the end of ball i's phase when it falls within the step.
   void queueTransition(std::size_t i);
-  void resolveTransition(const Event& event);
   /// An impact with friction, the balls' spins at it in SpinMotion::w0: the tangential
   /// impulse (ball_ball and wall friction) opposing the slip of the touching points, at
   /// most mu times the normal impulse (0 for a resting contact), never reversing the slip.

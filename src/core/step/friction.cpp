@@ -184,26 +184,6 @@ void World::queueTransition(std::size_t i)
                      Vec3::Zero()});
 }
 
-void World::resolveTransition(const Event& event)
-{
-  const std::size_t i = event.i;
-  const Motion& m = motions_[i];
-  SpinMotion& sm = spin_motions_[i];
-  const Vec3 p = positionAt(i, event.x);
-  Vec3 v = onFloorVelocity(i, event.x, p, floorNormalAt(i, p));
-  Vec3 w = spinAtEvent(i, event.x, floorNormalAt(i, p), v);
-  // (under the normal where it is now: its velocity there lies along that floor)
-  const FrictionLaw law = frictionUnder(floorNormalAt(i, p));
-  const double speeds = law.speeds(m.radius, startVelocity(i), sm.w0);
-  law.finish(sm.ends, spins_[i].inertia, m.radius, speeds, v, w);
-  sm.w0 = w;
-  if (sm.ends & kSlipStops)
-    sm.kind = MotionKind::kRolling;  // (its slip is gone: it rolls, or finds it cannot)
-  startMotion(i, event.x, p, v, false);
-  countEvent(i);
-  detect(i);
-}
-
 void World::ballBallFriction(const PairContact& c, double normal_impulse, Vec3& va, Vec3& vb)
 {
   Vec3& wa = spin_motions_[c.i].w0;

@@ -171,15 +171,29 @@ void World::queueCut(std::size_t i)
   queue_.push(Event{x, k, k, states_[i].epoch, states_[i].epoch, false, WallFeature::kFace, true, true, Vec3::Zero()});
 }
 
-void World::resolveCut(const Event& event)
+void World::resolveMotionEnd(const Event& event)
 {
-  // The ball goes on from its chord's end, on the floor, with the velocity there.
+  // The ball goes on from where it is, on the floor, with the velocity and spin there;
+  // at its friction phase's end (not a chord's cut) the phase's end is made exact first.
   const std::size_t i = event.i;
   const Vec3 p = positionAt(i, event.x);
   const Vec3 normal = floorNormalAt(i, p);
-  const Vec3 v = onFloorVelocity(i, event.x, p, normal);
+  Vec3 v = onFloorVelocity(i, event.x, p, normal);
   if (friction_)
-    spin_motions_[i].w0 = spinAtEvent(i, event.x, normal, v);
+  {
+    SpinMotion& sm = spin_motions_[i];
+    Vec3 w = spinAtEvent(i, event.x, normal, v);
+    if (!event.cut)
+    {
+      // (under the normal where it is now: its velocity there lies along that floor)
+      const FrictionLaw law = frictionUnder(normal);
+      const double speeds = law.speeds(motions_[i].radius, startVelocity(i), sm.w0);
+      law.finish(sm.ends, spins_[i].inertia, motions_[i].radius, speeds, v, w);
+      if (sm.ends & kSlipStops)
+        sm.kind = MotionKind::kRolling;  // (its slip is gone: it rolls, or finds it cannot)
+    }
+    sm.w0 = w;
+  }
   startMotion(i, event.x, p, v, false);
   countEvent(i);
   detect(i);

@@ -35,10 +35,8 @@ void World::resolveEventsInTimeOrder()
       ++stats_.stale_events;  // a ball involved has had an event since this was found
       continue;
     }
-    if (event.cut)
-      resolveCut(event);
-    else if (event.transition)
-      resolveTransition(event);
+    if (event.transition)
+      resolveMotionEnd(event);
     else if (event.wall)
       resolveBallWall(event);
     else
