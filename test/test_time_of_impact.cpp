@@ -269,6 +269,24 @@ TEST(SweepWall, UnderConstantAccelerationAtTheClosedFormTimes)
   ASSERT_TRUE(hit);
   EXPECT_EQ(hit->feature, WallFeature::kFace);
   EXPECT_NEAR(hit->t, (1 + std::sqrt(0.8)) / 2, 1e-14);
+  // beside the edge y = z = 0 (x = -0.3 < 0, clear of its corner) and within r = 0.5
+  // of its line: thrown away from the line and along it, the ball leaves reach of the
+  // line and comes back to it over the edge, where the height 0.3 + 0.6 t - t^2 / 2
+  // falls to 0.4 (0.3^2 + 0.4^2 = r^2): t = 1, at x = 0.7. (Taking the line's reach as
+  // a contact already, a sweep sees the ball touching the line and moving off it, and
+  // finds its return to where it started, t = 1.2, 0.1 deep.)
+  hit = sweepWall(w, Vec3(-0.3, -0.3, 0.3), Vec3(1, 0, 0.6), Vec3(0, 0, -0.5), 0.5, 2, kSlop);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->feature, WallFeature::kEdge);
+  EXPECT_NEAR(hit->t, 1.0, 1e-12);
+  EXPECT_NEAR((hit->normal - Vec3(0, -0.6, 0.8)).norm(), 0.0, 1e-12);
+  for (int k = 0; k <= 100; ++k)
+  {
+    // clear of the wall all the way there
+    const double t = hit->t * k / 100;
+    const Vec3 q = Vec3(-0.3, -0.3, 0.3) + t * Vec3(1, 0, 0.6) + (t * t) * Vec3(0, 0, -0.5);
+    EXPECT_GE(w.distance(q), 0.5 - 1e-12) << "t = " << t;
+  }
   // without acceleration it is the straight sweep, to the bit
   EXPECT_EQ(sweepWall(w, Vec3(1.1, 0.5, 2), Vec3(0, 0, -1), Vec3::Zero(), 0.25, 10, kSlop)->t,
             sweepWall(w, Vec3(1.1, 0.5, 2), Vec3(0, 0, -1), 0.25, 10, kSlop)->t);

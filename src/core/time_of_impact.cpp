@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <utility>
 
 namespace ball_collision_sim::core
@@ -116,6 +117,23 @@ std::optional<double> firstRoot(const std::array<double, 5>& a, double t_max)
   return std::nullopt;
 }
 
+std::optional<double> firstInwardRoot(const std::array<double, 5>& a, double t_max,
+                                      const std::function<bool(double)>& accept)
+{
+  std::array<double, 4> roots{};
+  const int found = rootsIn(a, 4, 0.0, t_max, roots, 4, false);
+  double from = 0.0;
+  for (int k = 0; k < found; ++k)
+  {
+    const double t = roots[static_cast<std::size_t>(k)];
+    // (falling through zero: positive on the way there)
+    if (evaluate(a, 4, 0.5 * (from + t)) > 0 && accept(t))
+      return t;
+    from = t;
+  }
+  return std::nullopt;
+}
+
 std::optional<double> sphereSweepAccelerated(const Vec3& d, const Vec3& e, const Vec3& c, double reach, double t_max,
                                              double slop)
 {
@@ -213,13 +231,31 @@ std::optional<WallHit> sweepEdge(const Wall& wall, int k, const Vec3& p, const V
   const auto across = [&](const Vec3& w) { return Vec3(w - (w.dot(edge) / len2) * edge); };
   const Vec3 d = p - a;
   const Vec3 d_perp = across(d), e_perp = across(e), c_perp = across(c);
-  const auto t = sphereSweepAccelerated(d_perp, e_perp, c_perp, r, t_max, slop);
-  if (!t)
+  const auto within = [&](double t) {
+    const double along = pointAt(d, e, c, t).dot(edge) / len2;
+    return along >= 0 && along <= 1;
+  };
+  const auto hit = [&](double t) { return WallHit{t, WallFeature::kEdge, pointAt(d_perp, e_perp, c_perp, t).normalized()}; };
+  const double start = d_perp.squaredNorm() - r * r;
+  if (!(start > 0) && within(0.0))
+  {
+    // touching the edge now: as two touching spheres
+    const auto t = sphereSweepAccelerated(d_perp, e_perp, c_perp, r, t_max, slop);
+    return t && within(*t) ? std::optional<WallHit>(hit(*t)) : std::nullopt;
+  }
+  const auto t = start > 0 ? sphereSweepAccelerated(d_perp, e_perp, c_perp, r, t_max, slop) : std::nullopt;
+  if (t && within(*t))
+    return hit(*t);
+  if (c_perp == Vec3::Zero() || (start > 0 && !t))
     return std::nullopt;
-  const double along = pointAt(d, e, c, *t).dot(edge) / len2;
-  if (along < 0 || along > 1)
-    return std::nullopt;
-  return WallHit{*t, WallFeature::kEdge, pointAt(d_perp, e_perp, c_perp, *t).normalized()};
+  // Under acceleration the ball can come within r of the edge's line beside the segment
+  // (or start there, beside it, leaning on a corner) and then leave and come in again
+  // along the segment: the edge is met where the distance falls through r within it.
+  const std::array<double, 5> f{start, 2 * d_perp.dot(e_perp), e_perp.squaredNorm() + 2 * d_perp.dot(c_perp),
+                                2 * e_perp.dot(c_perp), c_perp.squaredNorm()};
+  if (const auto in = firstInwardRoot(f, t_max, within))
+    return hit(*in);
+  return std::nullopt;
 }
 }  // namespace
 
