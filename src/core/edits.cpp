@@ -4,6 +4,8 @@
 // wakes sleeping balls where what held them may have changed.
 #include "ball_collision_sim/core/world.hpp"
 
+#include "step/floor_motion.hpp"
+
 #include "ball_collision_sim/core/format.hpp"
 #include "ball_collision_sim/core/placement.hpp"
 
@@ -49,7 +51,7 @@ AddResult World::addBall(const BallDef& def, Landing landing)
     by_id_.reserve(2 * by_id_.size() + 1);
   if (friction_ && spins_.size() == spins_.capacity())
     spins_.reserve(2 * spins_.size() + 1);
-  if (ground_.bends())
+  if (floor_motion_->keepsFeet())
     feet_.push_back(foot);
   if (friction_)
     spins_.push_back(makeSpin(placed, foot));
@@ -95,7 +97,7 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
   balls_[s].velocity = def.velocity;
   if (friction_)
     spins_[s] = makeSpin(def, foot);
-  if (ground_.bends())
+  if (floor_motion_->keepsFeet())
     feet_[s] = foot;
   forgetOrder();
   result.ok = true;

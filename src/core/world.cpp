@@ -2,7 +2,7 @@
 // the queries; the edits between steps are in edits.cpp.
 #include "ball_collision_sim/core/world.hpp"
 
-#include "step/step_types.hpp"
+#include "step/floor_motion.hpp"
 
 #include "ball_collision_sim/core/state_hash.hpp"
 
@@ -23,6 +23,7 @@ World::World(const Scene& scene, SceneCheck checked, const StepSettings& setting
     , dt_(scene.dt)
     , gravity_(scene.gravity)
     , ground_(scene.floor, scene.gravity, settings)
+    , floor_motion_(&FloorMotion::of(ground_))
     , path_c_((0.5 * scene.dt * scene.dt) * ground_.pathAcceleration())
     , free_parabolas_(path_c_ != Vec3::Zero())
     , parabolas_(free_parabolas_ || scene.friction.has_value())
@@ -31,7 +32,7 @@ World::World(const Scene& scene, SceneCheck checked, const StepSettings& setting
     throw std::invalid_argument(joinIssues(checked.issues));
   // (the plane's laws; on a curved floor each ball's are found under its normal)
   if (scene.friction)
-    friction_.emplace(*scene.friction, ground_.floor()->isPlane() ? ground_.floor()->planeNormal() : ground_.up(),
+    friction_.emplace(*scene.friction, ground_.flatNormal(),
                       scene.gravity, ground_.pathAcceleration(), settings_.slip_tolerance,
                       settings_.resting_speed_floor);
   // (a ball's event count is kept in 16 bits, up to one past the cap)
@@ -62,13 +63,13 @@ void World::load(const std::vector<PlacedBall>& balls)
   by_id_.reserve(balls.size());
   if (friction_)
     spins_.reserve(balls.size());
-  if (ground_.bends())
+  if (floor_motion_->keepsFeet())
     feet_.reserve(balls.size());
   for (const PlacedBall& ball : balls)
   {
     by_id_.push_back(static_cast<std::uint32_t>(balls_.size()));
     balls_.push_back(makeBall(next_ball_id_++, ball.def));
-    if (ground_.bends())
+    if (floor_motion_->keepsFeet())
       feet_.push_back(ball.foot);
     if (friction_)
       spins_.push_back(makeSpin(ball.def, ball.foot));

@@ -30,6 +30,9 @@ public:
   /// corrected after an impact is put back on the floor, and balls keep foot points.
   bool bends() const { return floor_ && !plane_; }
 
+  /// The plane's normal, or up where there is no floor (a curved floor's varies) [unit].
+  const Vec3& flatNormal() const { return plane_ ? plane_normal_ : up_; }
+
   /// The longest chord a motion on the floor may take before it is cut
   /// (StepSettings::chord_turn over the floor's largest curvature); infinite where paths
   /// do not bend [m].

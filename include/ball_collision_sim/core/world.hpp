@@ -253,6 +253,12 @@ private:
   struct MotionState;
   struct SpinMotion;
   struct BlockedSet;
+  /// How balls move on this world's ground within a step (src/core/step/floor_motion.hpp):
+  /// a type the ground provides, exact paths on a plane or without a floor, chords on a
+  /// curved floor.
+  struct FloorMotion;
+  struct ExactMotion;
+  struct ChordMotion;
   using Event = StepEvent;
   /// Two balls resting on each other: no closing speed is left at the step's end.
   struct RestingContact
@@ -421,6 +427,9 @@ private:
   /// change and the slip's loss, mu_s g_n (|u0| t - rate t^2 / 2); elsewhere |v0|^2 +
   /// 2 <pull, p - p0> [m^2/s^2].
   double speedSquaredAt(std::size_t i, double x, const Vec3& p) const;
+  /// |v0|^2 + 2 <pull, p - p0>: ball i's speed squared at p where its pull does all the
+  /// work [m^2/s^2].
+  double pulledSpeedSquared(std::size_t i, const Vec3& p) const;
   /// Turns ball i by the rotation vector `angle` [rad].
   void turn(std::size_t i, const Vec3& angle);
   /// The spin of a ball defined by `def` on the floor with normal n: its own, or rolling's.
@@ -441,9 +450,8 @@ private:
   Vec3 floorNormalAt(std::size_t i, const Vec3& position) const;
   /// Where the ball i centred at q is put back on the floor (q itself without a floor).
   Vec3 onFloor(std::size_t i, const Vec3& q) const;
-  /// Curved floors: ball i's chord moved to end on the floor and kept out of its blocked directions.
-  void endOnFloor(std::size_t i);
-  /// Shortens ball i's motion where its end would lie higher than its energy reaches.
+  /// Shortens ball i's motion where its end would lie higher than its energy reaches
+  /// (FloorMotion::keepEnergy()).
   void keepEnergy(std::size_t i);
   /// The speed ball i's motion would end with, from its energy at the motion's start.
   struct EnergyCheck
@@ -459,11 +467,6 @@ private:
     /// end off the floor, higher than the floor under its end
     double chordSpeedSquared(const Vec3& b) const;
   };
-  /// Where on its chord (a fraction in [0, 1]) ball i's speed runs out, a curved floor.
-  double energyRunsOut(const EnergyCheck& energy, double start, double full) const;
-  /// A motion starting above or below the floor where the energy does not reach: the
-  /// ball slides downhill as far as it takes, or is held.
-  void slideDownhill(const EnergyCheck& energy, double start);
   Vec3 onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const;
   /// The closing speed at or below which an impact at restitution e is a resting contact.
   /// (At a ball of this radius centred at `position`: the round-off of positions there.)
@@ -482,6 +485,9 @@ private:
   std::uint16_t sleep_steps_ = 1;
   Vec3 gravity_;
   Ground ground_;
+  /// The ground's motion type (FloorMotion::of(ground_)); the step asks it whatever
+  /// depends on the kind of floor.
+  const FloorMotion* floor_motion_ = nullptr;
   /// The parabola term of free balls' motions, a dt^2 / 2 with the ground's path
   /// acceleration a [m]; parabolas_ where it is not zero.
   Vec3 path_c_ = Vec3::Zero();

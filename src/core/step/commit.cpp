@@ -2,7 +2,7 @@
 // there (settled across the step's resting contacts), its turn by rolling; and, while the
 // visiting order stays, the next step's prediction. Reads motions_, states_, resting_;
 // writes balls_, feet_.
-#include "step_types.hpp"
+#include "floor_motion.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
 
@@ -73,7 +73,7 @@ void World::commitToFloor(bool predict_next)
     roll(i, floor_normals_[i], motions_[i].p0);
   // Groups at rest sleep; where gravity does not pull along the floor, nothing gathers
   // balls into groups, and none does.
-  if (!ground_.straight())
+  if (floor_motion_->gathers(*this))
     sleepStillGroups();
   if (predict_next)
     for (std::size_t i = 0; i < balls_.size(); ++i)
@@ -96,10 +96,9 @@ World::Committed World::commitBall(std::size_t i, bool settle)
     // its own spin at the end, and its turn over the step by the mean of its spins
     SpinMotion& sm = spin_motions_[i];
     BallSpin& spin = spins_[i];
-    Vec3 w = spinAt(i, 1.0);
-    // (on a curved floor a rolling ball rolls under the normal where it ends)
-    if (ground_.bends() && sm.phase() && sm.kind == MotionKind::kRolling)
-      w = frictionUnder(end.normal).rollingSpin(ball.radius, ball.velocity, w, w.dot(sm.normal));
+    // (a rolling ball rolls under the normal where it ends)
+    const Vec3 w = floor_motion_->spinThere(*this, i, end.normal, ball.velocity, spinAt(i, 1.0),
+                                            sm.phase() && sm.kind == MotionKind::kRolling);
     sm.turn = (0.5 * dt_) * (spin.angular_velocity + w);
     spin.angular_velocity = w;
     if (sm.mode == SpinMotion::Mode::kConstrained)

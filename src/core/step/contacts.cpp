@@ -1,7 +1,8 @@
 // Resting contacts: the directions a ball may not move along for the rest of the step,
-// holding balls still, and keeping a motion on the floor and within its energy.
+// holding balls still, and what a motion's energy allows (the floor's motion type keeps
+// a motion within it: FloorMotion::keepEnergy()).
 // Reads and writes motions_, states_, blocked_sets_.
-#include "step_types.hpp"
+#include "floor_motion.hpp"
 
 #include "../bracketed_root.hpp"
 
@@ -148,32 +149,6 @@ void World::hold(std::size_t i)
   states_[i].held = true;
 }
 
-void World::endOnFloor(std::size_t i)
-{
-  // The chord must end on the floor, where the step's end puts the ball: a ball moved
-  // there after its motion was checked could be pressed into what it touches. Taking
-  // out the blocked directions moves the end off a curved floor; back onto it and out of
-  // them again, in turn, until both hold.
-  Motion& m = motions_[i];
-  const double rest = chordEnd(i) - m.x0;
-  if (!ground_.bends() || states_[i].frozen || !(rest > 0))
-    return;
-  const double roundoff = roundoffAt(m.p0, m.radius, settings_);
-  for (int pass = 0; pass < settings_.correction_passes; ++pass)
-  {
-    const Vec3 on = (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest;
-    const Vec3 free = allowed(i, on);
-    const double off = (free - on).norm();
-    const bool done = off <= settings_.correction_tolerance * on.norm() || rest * off <= roundoff;
-    // (a pass that leaves the motion as it was would be repeated as it is: fully blocked
-    // off the floor, say)
-    const bool same = free == m.b;
-    m.b = done ? on : free;
-    if (done || same)
-      return;
-  }
-}
-
 double World::EnergyCheck::speedSquaredWith(const Vec3& b) const
 {
   const Motion& m = world->motions_[i];
@@ -187,98 +162,14 @@ double World::EnergyCheck::speedSquared(double s) const
 
 double World::EnergyCheck::chordSpeedSquared(const Vec3& b) const
 {
-  if (world->friction_ && world->spin_motions_[i].forced() && world->ground_.bends())
+  // (a chord's: its end is off the floor)
+  if (world->friction_ && world->spin_motions_[i].forced())
     return world->speedSquaredAt(i, world->chordEnd(i), world->motions_[i].p0 + rest * b);
   return world->startVelocity(i).squaredNorm() + 2 * rest * world->pullOf(i).dot(b);
 }
 
 void World::keepEnergy(std::size_t i)
 {
-  Motion& m = motions_[i];
-  const double rest = chordEnd(i) - m.x0;
-  if (ground_.straight() || states_[i].frozen || !(rest > 0))
-    return;
-  const EnergyCheck energy{this, i, rest};
-  // (on a curved floor endOnFloor has put the chord's end on it, or as near as its blocked
-  // directions let it: the chord's own end is what counts)
-  const double full = ground_.bends() ? energy.chordSpeedSquared(m.b) : energy.speedSquared(1.0);
-  if (full >= 0)
-    return;
-  // The chord ends higher than the ball's energy reaches (a turning point on a curved
-  // floor, or a ball in a pile whose constraints turned its motion uphill): it stops
-  // where the energy runs out instead, so that no energy is made.
-  const double start = energy.speedSquared(0.0);
-  double lo = 0.0;
-  if (start > 0)
-    lo = ground_.bends() ? energyRunsOut(energy, start, full) : start / (start - full);  // (linear in s)
-  // (round-off may leave the end a hair too high; the speed is clamped to zero then)
-  m.b *= lo;
-  if (!ground_.bends())
-    return;
-  if (lo > 0)
-  {
-    const Vec3 b = allowed(i, (onFloor(i, m.p0 + rest * m.b) - m.p0) / rest);
-    m.b = energy.chordSpeedSquared(b) >= 0 ? b : Vec3::Zero();
-    if (m.b == Vec3::Zero())
-      hold(i);
-    return;
-  }
-  slideDownhill(energy, start);
-}
-
-double World::energyRunsOut(const EnergyCheck& energy, double start, double full) const
-{
-  // the root of the speed on [0, 1], where it is still >= 0
-  return bracketedRoot([&](double s) { return energy.speedSquared(s); }, [](double v) { return v >= 0 ? 1 : -1; },
-                       0.0, 1.0, start, full, settings_.energy_root_iterations, settings_.energy_root_width);
-}
-
-void World::slideDownhill(const EnergyCheck& energy, double start)
-{
-  const std::size_t i = energy.i;
-  const double rest = energy.rest;
-  Motion& m = motions_[i];
-  // A motion that starts at an impact inside the step starts on the chord, below or
-  // above the floor; where the floor above it is higher than the energy reaches, the
-  // ball slides downhill from there instead, as far as it takes to be low enough.
-  // Where it finds no way, it is held: it stays put through the step's resting contacts.
-  // (keepEnergy only ever holds a ball: an impact, not a new motion, lets it go)
-  const Vec3 foot = onFloor(i, m.p0);
-  const Vec3 downhill = tangentPart(gravity_, floorNormalAt(i, foot));
-  const double slope = downhill.norm();
-  if (!(slope > 0))
-    return hold(i);
-  // (a short way only: the chord's sag is small next to the ball; else it stays put)
-  // The reaches tried are first * 2^k below half the radius. Where the energy left grows
-  // with the reach (the lower the end, the more), halving the range of k after the
-  // longest has shown that one does finds the shortest that does; elsewhere it finds one
-  // that does, or, where the longest does not, holds the ball (which makes no energy).
-  const double first = std::max(-start / slope, settings_.slide_first_reach * m.radius);
-  int count = 0;
-  while (count < settings_.slide_doublings && std::ldexp(first, count) < settings_.slide_longest_reach * m.radius)
-    ++count;
-  const auto motionTo = [&](int k) {
-    return allowed(i, (onFloor(i, foot + (std::ldexp(first, k) / slope) * downhill) - m.p0) / rest);
-  };
-  const auto keeps = [&](const Vec3& b) { return energy.speedSquaredWith(b) >= 0 && energy.chordSpeedSquared(b) >= 0; };
-  if (count == 0)
-    return hold(i);
-  Vec3 found = motionTo(count - 1);
-  if (!keeps(found))
-    return hold(i);
-  int fails = -1, works = count - 1;  // the largest k known to fail, the smallest known to work
-  while (works - fails > 1)
-  {
-    const int k = fails + (works - fails) / 2;
-    const Vec3 b = motionTo(k);
-    if (keeps(b))
-    {
-      works = k;
-      found = b;
-    }
-    else
-      fails = k;
-  }
-  m.b = found;
+  floor_motion_->keepEnergy(*this, i);
 }
 }  // namespace ball_collision_sim::core

@@ -3,7 +3,7 @@
 // end of a phase (slip, speed or spin about the normal reaching zero) is an event at its
 // exact time, and impacts add tangential impulses. Reads and writes motions_, states_,
 // spin_motions_, the start velocities and the queue; writes transitions_ and stats_.
-#include "step_types.hpp"
+#include "floor_motion.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
 
@@ -36,34 +36,23 @@ void World::recordKind(std::size_t i, double x)
 
 FrictionLaw World::frictionUnder(const Vec3& n) const
 {
-  if (!ground_.bends())
-    return *friction_;
-  return FrictionLaw(*scene_.friction, n, gravity_, tangentPart(gravity_, n), settings_.slip_tolerance,
-                     settings_.resting_speed_floor);
+  return floor_motion_->lawUnder(*this, n);
 }
 
 double World::speedSquaredAt(std::size_t i, double x, const Vec3& p) const
 {
-  const Motion& m = motions_[i];
-  const Vec3& v0 = startVelocity(i);
-  const SpinMotion& sm = friction_ ? spin_motions_[i] : SpinMotion{};
-  if (!friction_ || !sm.forced() || !ground_.bends() ||
-      (sm.kind != MotionKind::kSliding && sm.kind != MotionKind::kRolling))
-    return v0.squaredNorm() + 2 * pullOf(i).dot(p - m.p0);
-  if (sm.kind == MotionKind::kRolling)
+  if (friction_)
   {
-    // d(v^2 / 2) = <g, dp> / (1 + k) - mu_r g_n ds: the chord's length for the path's (no
-    // longer than it), so rolling resistance never gives energy, also where the ball
-    // turns within the chord
-    const double k = spins_[i].inertia;
-    return v0.squaredNorm() + 2 * (gravity_.dot(p - m.p0) / (1 + k) - sm.roll_resistance * (p - m.p0).norm());
+    const SpinMotion& sm = spin_motions_[i];
+    if (sm.forced() && (sm.kind == MotionKind::kSliding || sm.kind == MotionKind::kRolling))
+      return floor_motion_->speedSquaredAt(*this, i, x, p);
   }
-  const double t = std::min((x - m.x0) * dt_, std::max(sm.x_end - m.x0, 0.0) * dt_);
-  const double k = spins_[i].inertia;
-  const Vec3 w = sm.w0 + t * sm.alpha;
-  const double spin_change = k * m.radius * m.radius * (w.squaredNorm() - sm.w0.squaredNorm());
-  const double loss = sm.slip_force * (sm.slip0 * t - 0.5 * sm.slip_rate * t * t);
-  return v0.squaredNorm() + 2 * gravity_.dot(p - m.p0) - spin_change - 2 * loss;
+  return pulledSpeedSquared(i, p);
+}
+
+double World::pulledSpeedSquared(std::size_t i, const Vec3& p) const
+{
+  return startVelocity(i).squaredNorm() + 2 * pullOf(i).dot(p - motions_[i].p0);
 }
 
 const Vec3& World::pullOf(std::size_t i) const
@@ -80,10 +69,8 @@ bool World::startFriction(std::size_t i, double x, bool record, bool impact)
   const BallSpin& spin = spins_[i];
   Vec3& v = startVelocity(i);
   const FrictionLaw law = frictionUnder(floorNormalAt(i, m.p0));
-  // (the normal turned under it since its phase began: the discrete path's turn, not a
-  // slip; its spin about the normal is carried over, so |w| and the energy stay)
-  if (ground_.bends() && !impact && sm.kind == MotionKind::kRolling)
-    sm.w0 = law.rollingSpin(m.radius, v, sm.w0, sm.w0.dot(sm.normal));
+  if (!impact && sm.kind == MotionKind::kRolling)
+    floor_motion_->rollOn(*this, i, law);  // (under the normal where it is now)
   const FrictionPhase phase = law.start(spin.inertia, m.radius, v, sm.w0);
   sm.normal = law.normal();
 
@@ -112,22 +99,7 @@ bool World::startFriction(std::size_t i, double x, bool record, bool impact)
     recordKind(i, x);
   if (sm.mode == SpinMotion::Mode::kFrictionless)
     return true;  // the caller gives it a frictionless ball's motion
-  if (ground_.bends() && sm.mode == SpinMotion::Mode::kDriven)
-    return true;  // ... or a chord under sm.pull
-  if (ground_.bends())
-  {
-    // Still on a curved floor: it stays where it is, with no speed (a chord's point below
-    // the floor, where a phase ended mid-step, is not lifted onto it for nothing).
-    v = m.b = Vec3::Zero();
-    states_[i].accelerates = false;
-    return false;
-  }
-  // (its path is a parabola on the plane: a part of v into the floor, which a contact's
-  // projection out of a leaning wall can leave, is the floor's)
-  v = law.along(v);
-  m.b = dt_ * v;
-  states_[i].accelerates = true;
-  return false;
+  return floor_motion_->phaseMotion(*this, i, law);
 }
 
 void World::keepSpin(std::size_t i)
@@ -157,11 +129,7 @@ void World::constrainSpin(std::size_t i)
 Vec3 World::spinAtEvent(std::size_t i, double x, const Vec3& normal, const Vec3& v) const
 {
   const SpinMotion& sm = spin_motions_[i];
-  const Vec3 w = spinAt(i, x);
-  // (a rolling ball on a curved floor rolls with the velocity its energy gives it there)
-  if (!ground_.bends() || !sm.forced() || sm.kind != MotionKind::kRolling)
-    return w;
-  return frictionUnder(normal).rollingSpin(motions_[i].radius, v, w, w.dot(sm.normal));
+  return floor_motion_->spinThere(*this, i, normal, v, spinAt(i, x), sm.forced() && sm.kind == MotionKind::kRolling);
 }
 
 Vec3 World::spinAt(std::size_t i, double x) const

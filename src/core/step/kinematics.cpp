@@ -3,7 +3,7 @@
 // curved floor's chords cut to the longest it allows (an event at the cut).
 // Reads motions_, states_, the floor; writes motions_, chord_ends_, the start velocity
 // and, at a cut, the queue.
-#include "step_types.hpp"
+#include "floor_motion.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
 
@@ -56,12 +56,7 @@ Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const
 {
   const Motion& m = motions_[i];
   if (friction_ && spin_motions_[i].forced())
-  {
-    if (!ground_.bends() || spin_motions_[i].mode == SpinMotion::Mode::kStill)
-      return startVelocity(i) + ((x - m.x0) * dt_) * spin_motions_[i].a;
-    return ground_.withSpeedSquared(ground_.along(startVelocity(i) + ((x - m.x0) * dt_) * spin_motions_[i].pull, normal),
-                                    speedSquaredAt(i, x, position));
-  }
+    return floor_motion_->phaseVelocity(*this, i, x, position, normal);
   return ground_.velocityAt(startVelocity(i), (x - m.x0) * dt_, m.p0, position, normal);
 }
 
@@ -128,21 +123,7 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   }
   else if (friction_)
     constrainSpin(i);  // (leaning on something: its contacts decide its motion)
-  if (free_parabolas_ && states_[i].blocked < 0)
-  {
-    // free: the parabola the ground gives it, exactly
-    m.b = dt_ * v0;
-    states_[i].accelerates = true;
-    return;
-  }
-  const double rest = 1 - x;
-  m.b = rest > 0 ? Vec3((predictedEnd(i, position, v0, rest * dt_) - position) / rest) : Vec3(dt_ * v0);
-  cutChord(i, position, v0);
-  m.b = allowed(i, m.b);
-  endOnFloor(i);
-  keepEnergy(i);
-  if (states_[i].held)
-    m.b = Vec3::Zero();
+  floor_motion_->start(*this, i, x, position, v0);
 }
 
 void World::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)

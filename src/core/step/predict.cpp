@@ -2,7 +2,7 @@
 // velocity) and the floor, and its swept box in the grid.
 // Reads balls_, feet_, spins_; writes motions_, states_, spin_motions_, floor_uv_,
 // chord_ends_ and the grid's boxes.
-#include "step_types.hpp"
+#include "floor_motion.hpp"
 
 #include <utility>
 
@@ -63,23 +63,10 @@ void World::predictMotion(std::size_t i)
       return;
     }
   }
-  if (free_parabolas_)
-  {
-    m.b = dt_ * ball.velocity;  // the parabola the ground gives a free ball
-    states_[i].accelerates = true;
-    grid_.setBox(static_cast<std::uint32_t>(i), currentBox(i));
-    return;
-  }
-  const Vec3 end = predictedEnd(i, m.p0, ball.velocity, dt_);
-  m.b = end - m.p0;
-  if (ground_.bends())
-  {
-    // (a chord across the path, no longer than the floor allows, kept within the energy)
-    cutChord(i, m.p0, ball.velocity);
-    keepEnergy(i);
-  }
-  const Vec3 reach = m.p0 + m.b;
-  grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, reach, ball.radius));
+  floor_motion_->predict(*this, i, ball.velocity);
+  // (a chord's box reaches the uncut chord's end)
+  grid_.setBox(static_cast<std::uint32_t>(i),
+               states_[i].accelerates ? currentBox(i) : sweptBox(m.p0, m.p0 + m.b, ball.radius));
 }
 
 Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span)

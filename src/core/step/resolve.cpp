@@ -2,7 +2,7 @@
 // enough, becomes a resting contact), and the balls involved get new motions and are
 // detected again. Reads and writes motions_, states_, the queue, balls_' velocities;
 // writes events_ and stats_.
-#include "step_types.hpp"
+#include "floor_motion.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
 #include "ball_collision_sim/core/time_of_impact.hpp"
@@ -235,30 +235,10 @@ void World::settleRestingPair(const PairContact& c, double x, const Vec3& pa, co
   MotionState& sb = states_[j];
   toChord(i);
   toChord(j);
-  // (a held ball does not give way)
-  const double move_a = sa.held ? 0.0 : inv_a, move_b = sb.held ? 0.0 : inv_b;
   // No approach left in the motions either (gravity along the floor would press them
-  // together again at once). On a curved floor, putting the ends back on the floor can
-  // bring some back: in turn, a few times.
-  // (until what approach is left is round-off of the positions)
+  // together again at once); a held ball does not give way.
   const double rest = 1 - x;
-  const double roundoff =
-      ground_.bends() ? roundoffAt(pa, ma.radius, settings_) + roundoffAt(pb, mb.radius, settings_) : 0.0;
-  for (int pass = 0; pass < (ground_.bends() ? settings_.correction_passes : 1); ++pass)
-  {
-    const Vec3 ua = ground_.bends() ? n : ta, ub = ground_.bends() ? n : tb;
-    const double into = ma.b.dot(ua) - mb.b.dot(ub);
-    const double k = move_a * ta.dot(ua) + move_b * tb.dot(ub);
-    if (!(into > 0 && k > 0 && rest * into > roundoff))
-      break;
-    const double jb = into / k;
-    ma.b -= (jb * move_a) * ta;
-    mb.b += (jb * move_b) * tb;
-    if (!sa.held)
-      endOnFloor(i);
-    if (!sb.held)
-      endOnFloor(j);
-  }
+  floor_motion_->separate(*this, c, rest, sa.held ? 0.0 : inv_a, sb.held ? 0.0 : inv_b, pa, pb);
   // Two balls all but still whose motions still close in (a pile in a corner of a
   // curved floor, where the floor, the walls and each other leave no room to settle
   // into), or that are in a jam: they stay where they are for the rest of the step,

@@ -1,0 +1,252 @@
+// Motion on a curved floor (World::ChordMotion): every motion is a chord between points
+// of the floor, cut where it is longer than the floor allows, put back on the floor after
+// every correction and kept within the ball's energy; friction laws are taken under the
+// normal where the ball is, and a moving phase is a chord under its pull.
+// Reads and writes motions_, states_, spin_motions_ and the start velocities.
+#include "floor_motion.hpp"
+
+#include "../bracketed_root.hpp"
+
+#include "ball_collision_sim/core/response.hpp"
+
+#include <cmath>
+
+namespace ball_collision_sim::core
+{
+using namespace step;
+
+bool World::ChordMotion::gathers(const World& w) const
+{
+  return !w.ground_.straight();
+}
+
+void World::ChordMotion::predict(World& w, std::size_t i, const Vec3& v) const
+{
+  // a chord across the path, no longer than the floor allows, kept within the energy
+  Motion& m = w.motions_[i];
+  m.b = w.predictedEnd(i, m.p0, v, w.dt_) - m.p0;
+  w.cutChord(i, m.p0, v);
+  keepEnergy(w, i);
+}
+
+void World::ChordMotion::start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const
+{
+  Motion& m = w.motions_[i];
+  const double rest = 1 - x;
+  m.b = rest > 0 ? Vec3((w.predictedEnd(i, position, v0, rest * w.dt_) - position) / rest) : Vec3(w.dt_ * v0);
+  w.cutChord(i, position, v0);
+  m.b = w.allowed(i, m.b);
+  endOnFloor(w, i);
+  keepEnergy(w, i);
+  if (w.states_[i].held)
+    m.b = Vec3::Zero();
+}
+
+void World::ChordMotion::endOnFloor(World& w, std::size_t i)
+{
+  // The chord must end on the floor, where the step's end puts the ball: a ball moved
+  // there after its motion was checked could be pressed into what it touches. Taking
+  // out the blocked directions moves the end off the floor; back onto it and out of
+  // them again, in turn, until both hold.
+  Motion& m = w.motions_[i];
+  const double rest = w.chordEnd(i) - m.x0;
+  if (w.states_[i].frozen || !(rest > 0))
+    return;
+  const StepSettings& settings = w.settings_;
+  const double roundoff = roundoffAt(m.p0, m.radius, settings);
+  for (int pass = 0; pass < settings.correction_passes; ++pass)
+  {
+    const Vec3 on = (w.onFloor(i, m.p0 + rest * m.b) - m.p0) / rest;
+    const Vec3 free = w.allowed(i, on);
+    const double off = (free - on).norm();
+    const bool done = off <= settings.correction_tolerance * on.norm() || rest * off <= roundoff;
+    // (a pass that leaves the motion as it was would be repeated as it is: fully blocked
+    // off the floor, say)
+    const bool same = free == m.b;
+    m.b = done ? on : free;
+    if (done || same)
+      return;
+  }
+}
+
+void World::ChordMotion::keepEnergy(World& w, std::size_t i) const
+{
+  Motion& m = w.motions_[i];
+  const double rest = w.chordEnd(i) - m.x0;
+  if (w.ground_.straight() || w.states_[i].frozen || !(rest > 0))
+    return;
+  const EnergyCheck energy{&w, i, rest};
+  // (endOnFloor has put the chord's end on the floor, or as near as its blocked
+  // directions let it: the chord's own end is what counts)
+  const double full = energy.chordSpeedSquared(m.b);
+  if (full >= 0)
+    return;
+  // The chord ends higher than the ball's energy reaches (a turning point, or a ball in
+  // a pile whose constraints turned its motion uphill): it stops where the energy runs
+  // out instead, so that no energy is made.
+  const double start = energy.speedSquared(0.0);
+  double lo = 0.0;
+  if (start > 0)
+    lo = energyRunsOut(w, energy, start, full);
+  // (round-off may leave the end a hair too high; the speed is clamped to zero then)
+  m.b *= lo;
+  if (lo > 0)
+  {
+    const Vec3 b = w.allowed(i, (w.onFloor(i, m.p0 + rest * m.b) - m.p0) / rest);
+    m.b = energy.chordSpeedSquared(b) >= 0 ? b : Vec3::Zero();
+    if (m.b == Vec3::Zero())
+      w.hold(i);
+    return;
+  }
+  slideDownhill(w, energy, start);
+}
+
+double World::ChordMotion::energyRunsOut(const World& w, const EnergyCheck& energy, double start, double full)
+{
+  // the root of the speed on [0, 1], where it is still >= 0
+  return bracketedRoot([&](double s) { return energy.speedSquared(s); }, [](double v) { return v >= 0 ? 1 : -1; },
+                       0.0, 1.0, start, full, w.settings_.energy_root_iterations, w.settings_.energy_root_width);
+}
+
+void World::ChordMotion::slideDownhill(World& w, const EnergyCheck& energy, double start)
+{
+  const std::size_t i = energy.i;
+  const double rest = energy.rest;
+  Motion& m = w.motions_[i];
+  // A motion that starts at an impact inside the step starts on the chord, below or
+  // above the floor; where the floor above it is higher than the energy reaches, the
+  // ball slides downhill from there instead, as far as it takes to be low enough.
+  // Where it finds no way, it is held: it stays put through the step's resting contacts.
+  // (keepEnergy only ever holds a ball: an impact, not a new motion, lets it go)
+  const Vec3 foot = w.onFloor(i, m.p0);
+  const Vec3 downhill = tangentPart(w.gravity_, w.floorNormalAt(i, foot));
+  const double slope = downhill.norm();
+  if (!(slope > 0))
+    return w.hold(i);
+  // (a short way only: the chord's sag is small next to the ball; else it stays put)
+  // The reaches tried are first * 2^k below half the radius. Where the energy left grows
+  // with the reach (the lower the end, the more), halving the range of k after the
+  // longest has shown that one does finds the shortest that does; elsewhere it finds one
+  // that does, or, where the longest does not, holds the ball (which makes no energy).
+  const StepSettings& settings = w.settings_;
+  const double first = std::max(-start / slope, settings.slide_first_reach * m.radius);
+  int count = 0;
+  while (count < settings.slide_doublings && std::ldexp(first, count) < settings.slide_longest_reach * m.radius)
+    ++count;
+  const auto motionTo = [&](int k) {
+    return w.allowed(i, (w.onFloor(i, foot + (std::ldexp(first, k) / slope) * downhill) - m.p0) / rest);
+  };
+  const auto keeps = [&](const Vec3& b) { return energy.speedSquaredWith(b) >= 0 && energy.chordSpeedSquared(b) >= 0; };
+  if (count == 0)
+    return w.hold(i);
+  Vec3 found = motionTo(count - 1);
+  if (!keeps(found))
+    return w.hold(i);
+  int fails = -1, works = count - 1;  // the largest k known to fail, the smallest known to work
+  while (works - fails > 1)
+  {
+    const int k = fails + (works - fails) / 2;
+    const Vec3 b = motionTo(k);
+    if (keeps(b))
+    {
+      works = k;
+      found = b;
+    }
+    else
+      fails = k;
+  }
+  m.b = found;
+}
+
+void World::ChordMotion::separate(World& w, const PairContact& c, double rest, double move_a, double move_b,
+                                  const Vec3& pa, const Vec3& pb) const
+{
+  // No approach left along the normal; putting the ends back on the floor can bring some
+  // back: in turn, a few times, until what approach is left is round-off of the positions.
+  Motion& ma = w.motions_[c.i];
+  Motion& mb = w.motions_[c.j];
+  const double roundoff = roundoffAt(pa, ma.radius, w.settings_) + roundoffAt(pb, mb.radius, w.settings_);
+  for (int pass = 0; pass < w.settings_.correction_passes; ++pass)
+  {
+    const double into = ma.b.dot(c.n) - mb.b.dot(c.n);
+    const double k = move_a * c.ta.dot(c.n) + move_b * c.tb.dot(c.n);
+    if (!(into > 0 && k > 0 && rest * into > roundoff))
+      break;
+    const double jb = into / k;
+    ma.b -= (jb * move_a) * c.ta;
+    mb.b += (jb * move_b) * c.tb;
+    if (!w.states_[c.i].held)
+      endOnFloor(w, c.i);
+    if (!w.states_[c.j].held)
+      endOnFloor(w, c.j);
+  }
+}
+
+FrictionLaw World::ChordMotion::lawUnder(const World& w, const Vec3& n) const
+{
+  return FrictionLaw(*w.scene_.friction, n, w.gravity_, tangentPart(w.gravity_, n), w.settings_.slip_tolerance,
+                     w.settings_.resting_speed_floor);
+}
+
+void World::ChordMotion::rollOn(World& w, std::size_t i, const FrictionLaw& law) const
+{
+  // (the normal turned under it since its phase began: the discrete path's turn, not a
+  // slip; its spin about the normal is carried over, so |w| and the energy stay)
+  SpinMotion& sm = w.spin_motions_[i];
+  sm.w0 = law.rollingSpin(w.motions_[i].radius, w.startVelocity(i), sm.w0, sm.w0.dot(sm.normal));
+}
+
+bool World::ChordMotion::phaseMotion(World& w, std::size_t i, const FrictionLaw&) const
+{
+  if (w.spin_motions_[i].mode == SpinMotion::Mode::kDriven)
+    return true;  // a chord under its pull
+  // Still: it stays where it is, with no speed (a chord's point below the floor, where a
+  // phase ended mid-step, is not lifted onto it for nothing).
+  w.startVelocity(i) = w.motions_[i].b = Vec3::Zero();
+  w.states_[i].accelerates = false;
+  return false;
+}
+
+Vec3 World::ChordMotion::phaseVelocity(const World& w, std::size_t i, double x, const Vec3& position,
+                                       const Vec3& normal) const
+{
+  const SpinMotion& sm = w.spin_motions_[i];
+  const double t = (x - w.motions_[i].x0) * w.dt_;
+  if (sm.mode == SpinMotion::Mode::kStill)
+    return w.startVelocity(i) + t * sm.a;
+  return w.ground_.withSpeedSquared(w.ground_.along(w.startVelocity(i) + t * sm.pull, normal),
+                                    w.speedSquaredAt(i, x, position));
+}
+
+double World::ChordMotion::speedSquaredAt(const World& w, std::size_t i, double x, const Vec3& p) const
+{
+  const Motion& m = w.motions_[i];
+  const Vec3& v0 = w.startVelocity(i);
+  const SpinMotion& sm = w.spin_motions_[i];
+  const double k = w.spins_[i].inertia;
+  if (sm.kind == MotionKind::kRolling)
+  {
+    // d(v^2 / 2) = <g, dp> / (1 + k) - mu_r g_n ds: the chord's length for the path's (no
+    // longer than it), so rolling resistance never gives energy, also where the ball
+    // turns within the chord
+    return v0.squaredNorm() + 2 * (w.gravity_.dot(p - m.p0) / (1 + k) - sm.roll_resistance * (p - m.p0).norm());
+  }
+  // sliding: what gravity's work along the chord leaves after the spin's change and the
+  // slip's loss, mu_s g_n (|u0| t - rate t^2 / 2)
+  const double t = std::min((x - m.x0) * w.dt_, std::max(sm.x_end - m.x0, 0.0) * w.dt_);
+  const Vec3 spin = sm.w0 + t * sm.alpha;
+  const double spin_change = k * m.radius * m.radius * (spin.squaredNorm() - sm.w0.squaredNorm());
+  const double loss = sm.slip_force * (sm.slip0 * t - 0.5 * sm.slip_rate * t * t);
+  return v0.squaredNorm() + 2 * w.gravity_.dot(p - m.p0) - spin_change - 2 * loss;
+}
+
+Vec3 World::ChordMotion::spinThere(const World& w, std::size_t i, const Vec3& normal, const Vec3& v,
+                                   const Vec3& spin, bool rolling) const
+{
+  // (a rolling ball rolls with the velocity its energy gives it there, under the normal
+  // there)
+  if (!rolling)
+    return spin;
+  return lawUnder(w, normal).rollingSpin(w.motions_[i].radius, v, spin, spin.dot(w.spin_motions_[i].normal));
+}
+}  // namespace ball_collision_sim::core

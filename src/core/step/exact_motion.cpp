@@ -1,0 +1,112 @@
+// Motion on a plane or without a floor (World::ExactMotion): a free ball's path is exact
+// (a parabola under gravity's part along the plane, a line where it has none); a ball
+// under its contacts moves on its chord in the plane, whose energy is linear along it.
+// Reads and writes motions_ and states_, and the start velocities of friction phases.
+#include "floor_motion.hpp"
+
+namespace ball_collision_sim::core
+{
+using namespace step;
+
+const World::FloorMotion& World::FloorMotion::of(const Ground& ground)
+{
+  static const ExactMotion exact;
+  static const ChordMotion chord;
+  if (ground.bends())
+    return chord;
+  return exact;
+}
+
+bool World::ExactMotion::gathers(const World& w) const
+{
+  return !w.ground_.straight();
+}
+
+void World::ExactMotion::predict(World& w, std::size_t i, const Vec3& v) const
+{
+  Motion& m = w.motions_[i];
+  if (w.free_parabolas_)
+  {
+    m.b = w.dt_ * v;  // the parabola the ground gives a free ball
+    w.states_[i].accelerates = true;
+    return;
+  }
+  m.b = w.predictedEnd(i, m.p0, v, w.dt_) - m.p0;
+}
+
+void World::ExactMotion::start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const
+{
+  Motion& m = w.motions_[i];
+  if (w.free_parabolas_ && w.states_[i].blocked < 0)
+  {
+    // free: the parabola the ground gives it, exactly
+    m.b = w.dt_ * v0;
+    w.states_[i].accelerates = true;
+    return;
+  }
+  const double rest = 1 - x;
+  m.b = rest > 0 ? Vec3((w.predictedEnd(i, position, v0, rest * w.dt_) - position) / rest) : Vec3(w.dt_ * v0);
+  m.b = w.allowed(i, m.b);
+  keepEnergy(w, i);
+}
+
+void World::ExactMotion::keepEnergy(World& w, std::size_t i) const
+{
+  Motion& m = w.motions_[i];
+  const double rest = w.chordEnd(i) - m.x0;
+  if (w.ground_.straight() || w.states_[i].frozen || !(rest > 0))
+    return;
+  const EnergyCheck energy{&w, i, rest};
+  const double full = energy.speedSquared(1.0);
+  if (full >= 0)
+    return;
+  // The chord ends higher than the ball's energy reaches (a ball in a pile whose
+  // constraints turned its motion uphill): it stops where the energy runs out, which is
+  // linear along the chord, so that no energy is made.
+  const double start = energy.speedSquared(0.0);
+  // (round-off may leave the end a hair too high; the speed is clamped to zero then)
+  m.b *= start > 0 ? start / (start - full) : 0.0;
+}
+
+void World::ExactMotion::separate(World& w, const PairContact& c, double rest, double move_a, double move_b,
+                                  const Vec3&, const Vec3&) const
+{
+  // No approach left along the impulse's directions: one correction does it (the
+  // motions stay in the plane).
+  Motion& ma = w.motions_[c.i];
+  Motion& mb = w.motions_[c.j];
+  const double into = ma.b.dot(c.ta) - mb.b.dot(c.tb);
+  const double k = move_a * c.ta.dot(c.ta) + move_b * c.tb.dot(c.tb);
+  if (!(into > 0 && k > 0 && rest * into > 0))
+    return;
+  const double jb = into / k;
+  ma.b -= (jb * move_a) * c.ta;
+  mb.b += (jb * move_b) * c.tb;
+}
+
+FrictionLaw World::ExactMotion::lawUnder(const World& w, const Vec3&) const
+{
+  return *w.friction_;  // the plane's (or no floor's) own
+}
+
+bool World::ExactMotion::phaseMotion(World& w, std::size_t i, const FrictionLaw& law) const
+{
+  // (its path is a parabola on the plane: a part of v into the floor, which a contact's
+  // projection out of a leaning wall can leave, is the floor's)
+  Vec3& v = w.startVelocity(i);
+  v = law.along(v);
+  w.motions_[i].b = w.dt_ * v;
+  w.states_[i].accelerates = true;
+  return false;
+}
+
+Vec3 World::ExactMotion::phaseVelocity(const World& w, std::size_t i, double x, const Vec3&, const Vec3&) const
+{
+  return w.startVelocity(i) + ((x - w.motions_[i].x0) * w.dt_) * w.spin_motions_[i].a;
+}
+
+double World::ExactMotion::speedSquaredAt(const World& w, std::size_t i, double, const Vec3& p) const
+{
+  return w.pulledSpeedSquared(i, p);
+}
+}  // namespace ball_collision_sim::core

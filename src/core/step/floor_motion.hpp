@@ -1,0 +1,110 @@
+// A ball's motion on the ground within the step, as a type the ground provides: what
+// the step asks of a motion that depends on the kind of floor. Two types:
+// - ExactMotion (a plane, or no floor): a free ball's path is exact, a parabola under
+//   gravity's part along the plane (a line where it has none); a ball under its contacts
+//   moves on a chord in the plane, and its energy is linear along the chord.
+// - ChordMotion (a curved floor): every motion is a chord between points of the floor,
+//   no longer than the floor allows, put back on it after every correction and kept
+//   within the ball's energy; friction laws are taken under the normal where the ball is.
+// A new kind of motion is a new type here, not a branch in the step's stages.
+// Reads and writes what the World's stages give it (motions_, states_, spin_motions_).
+#pragma once
+
+#include "step_types.hpp"
+
+namespace ball_collision_sim::core
+{
+struct World::FloorMotion
+{
+  virtual ~FloorMotion() = default;
+  /// The motion type of this ground.
+  static const FloorMotion& of(const Ground& ground);
+
+  /// Balls keep foot points (World::feet_) between steps, as Newton's first guess.
+  virtual bool keepsFeet() const = 0;
+  /// Gravity pulls balls along the floor, so that they gather into groups at rest.
+  virtual bool gathers(const World& w) const = 0;
+
+  /// Ball i's free motion over the next step, from motions_[i].p0 with velocity v (no
+  /// friction phase set it).
+  virtual void predict(World& w, std::size_t i, const Vec3& v) const = 0;
+  /// Ball i's motion from x on, from `position` with start velocity v0 after a contact
+  /// has redirected it: a free ball's path, or a chord kept out of its blocked directions.
+  virtual void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const = 0;
+  /// Shortens ball i's motion where its end would lie higher than its energy reaches.
+  virtual void keepEnergy(World& w, std::size_t i) const = 0;
+  /// Takes the approach left in a resting pair's motions out of them, after the impulse
+  /// at pa and pb, with `rest` of the step to go; each ball gives way by its inverse mass
+  /// (move_a, move_b: 0 where it is held).
+  virtual void separate(World& w, const PairContact& c, double rest, double move_a, double move_b, const Vec3& pa,
+                        const Vec3& pb) const = 0;
+
+  // Friction.
+  /// The friction laws under the floor's normal n.
+  virtual FrictionLaw lawUnder(const World& w, const Vec3& n) const = 0;
+  /// A rolling ball that was not hit starts its next phase under `law`'s normal: its
+  /// spin then (SpinMotion::w0).
+  virtual void rollOn(World& w, std::size_t i, const FrictionLaw& law) const = 0;
+  /// After startFriction() has set the phase of a ball whose phase has friction force or
+  /// holds it still: its motion where the phase gives it one (returns false), or true
+  /// where the caller is to move it as the chord under SpinMotion::pull.
+  virtual bool phaseMotion(World& w, std::size_t i, const FrictionLaw& law) const = 0;
+  /// Ball i's velocity at x, at `position` on the floor with this normal, in a phase
+  /// friction acts on (SpinMotion::forced()).
+  virtual Vec3 phaseVelocity(const World& w, std::size_t i, double x, const Vec3& position,
+                             const Vec3& normal) const = 0;
+  /// |v|^2 of ball i at x where its motion is at p, from the energy (World::speedSquaredAt()).
+  virtual double speedSquaredAt(const World& w, std::size_t i, double x, const Vec3& p) const = 0;
+  /// Ball i's spin at an event or the step's end, where its velocity is v under `normal`,
+  /// from its phase's spin there; `rolling`: its phase rolls.
+  virtual Vec3 spinThere(const World& w, std::size_t i, const Vec3& normal, const Vec3& v, const Vec3& spin,
+                         bool rolling) const = 0;
+};
+
+struct World::ExactMotion final : World::FloorMotion
+{
+  bool keepsFeet() const override { return false; }
+  bool gathers(const World& w) const override;
+  void predict(World& w, std::size_t i, const Vec3& v) const override;
+  void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
+  void keepEnergy(World& w, std::size_t i) const override;
+  void separate(World& w, const PairContact& c, double rest, double move_a, double move_b, const Vec3& pa,
+                const Vec3& pb) const override;
+  FrictionLaw lawUnder(const World& w, const Vec3& n) const override;
+  void rollOn(World&, std::size_t, const FrictionLaw&) const override {}
+  bool phaseMotion(World& w, std::size_t i, const FrictionLaw& law) const override;
+  Vec3 phaseVelocity(const World& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const override;
+  double speedSquaredAt(const World& w, std::size_t i, double x, const Vec3& p) const override;
+  Vec3 spinThere(const World&, std::size_t, const Vec3&, const Vec3&, const Vec3& spin, bool) const override
+  {
+    return spin;
+  }
+};
+
+struct World::ChordMotion final : World::FloorMotion
+{
+  bool keepsFeet() const override { return true; }
+  bool gathers(const World& w) const override;
+  void predict(World& w, std::size_t i, const Vec3& v) const override;
+  void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
+  void keepEnergy(World& w, std::size_t i) const override;
+  void separate(World& w, const PairContact& c, double rest, double move_a, double move_b, const Vec3& pa,
+                const Vec3& pb) const override;
+  FrictionLaw lawUnder(const World& w, const Vec3& n) const override;
+  void rollOn(World& w, std::size_t i, const FrictionLaw& law) const override;
+  bool phaseMotion(World& w, std::size_t i, const FrictionLaw& law) const override;
+  Vec3 phaseVelocity(const World& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const override;
+  double speedSquaredAt(const World& w, std::size_t i, double x, const Vec3& p) const override;
+  Vec3 spinThere(const World& w, std::size_t i, const Vec3& normal, const Vec3& v, const Vec3& spin,
+                 bool rolling) const override;
+
+private:
+  /// The chord moved to end on the floor and kept out of the ball's blocked directions.
+  static void endOnFloor(World& w, std::size_t i);
+  /// Where on its chord (a fraction in [0, 1]) the ball's speed runs out.
+  static double energyRunsOut(const World& w, const EnergyCheck& energy, double start, double full);
+  /// A motion starting above or below the floor where the energy does not reach: the
+  /// ball slides downhill as far as it takes, or is held.
+  static void slideDownhill(World& w, const EnergyCheck& energy, double start);
+};
+}  // namespace ball_collision_sim::core
