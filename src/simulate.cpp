@@ -95,6 +95,13 @@ int reportBadInput(const std::string& message)
   return kExitBadInput;
 }
 
+/// The same for a command line that asks for what cannot be, with the usage hint.
+int reportBadCommandLine(const std::string& message)
+{
+  std::fprintf(stderr, "simulate: error: %s\nTry 'simulate --help' for usage.\n", message.c_str());
+  return kExitBadInput;
+}
+
 // One row per ball per sample. %.17g so that every double reads back to the same bits:
 // the CSV is ground truth, not a plot.
 class CsvWriter
@@ -202,7 +209,7 @@ int run(const SimulateOptions& options)
     char message[160];
     std::snprintf(message, sizeof(message), "--duration: %g s at dt = %g s is more than %g steps", options.duration,
                   world->dt(), kMaxSteps);
-    return reportBadInput(message);
+    return reportBadCommandLine(message);
   }
   const auto steps = static_cast<std::uint64_t>(std::max(0.0, std::ceil(exact_steps - 1e-9)));
 
@@ -310,10 +317,7 @@ int main(int argc, char** argv)
   const std::vector<std::string> args(argv + 1, argv + argc);
   const ball_collision_sim::tools::ParsedOptions parsed = ball_collision_sim::tools::parseSimulateOptions(args);
   if (!parsed.ok())
-  {
-    std::fprintf(stderr, "simulate: error: %s\nTry 'simulate --help' for usage.\n", parsed.error.c_str());
-    return kExitBadInput;
-  }
+    return reportBadCommandLine(parsed.error);
   if (parsed.options.help)
   {
     std::fputs(ball_collision_sim::tools::simulateUsage().c_str(), stdout);

@@ -10,6 +10,7 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <rosgraph_msgs/Clock.h>
+#include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <fcntl.h>
@@ -24,6 +25,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -179,6 +181,7 @@ TEST_F(SimulateCli, BadCommandLinesExitTwoWithAUsageHint)
     {{kGoodScene, "--duration", "abc"}, "--duration"},
     {{kGoodScene, "--duration", "nan"}, "--duration"},
     {{kGoodScene, "--duration", "inf"}, "--duration"},
+    {{kGoodScene, "--duration", "1e300"}, "--duration"},  // (more steps than a run may take)
     {{kGoodScene, "--duration"}, "--duration"},
     {{kGoodScene, "--duration", "--csv", "x.csv"}, "--duration"},
     {{kGoodScene, "--duration", "1", "--duration", "2"}, "--duration"},
@@ -332,6 +335,34 @@ TEST_F(SimulateCli, BagFollowsTheScenesTfRateAndCollisionSwitch)
   EXPECT_EQ(counts["/tf"], 0);
   EXPECT_EQ(counts["/ball_sim/collisions"], 0);
   EXPECT_EQ(counts["/ball_sim/ball_states"], 51);
+}
+
+// The bag's tf frames are the node's: <frame_prefix>ball_<id>, with the scene's prefix
+// where it sets one, none by default (the node's in the root namespace).
+TEST_F(SimulateCli, BagTfFramesTakeTheScenesFramePrefix)
+{
+  const auto childFrames = [&](const std::string& extra) {
+    const std::string scene = path("scene.yaml");
+    {
+      std::ofstream out(scene);
+      out << readFile(kGoodScene) << extra;
+    }
+    const RunResult result = run({scene, "--duration", "0.1", "--bag", path("x.bag")});
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    std::set<std::string> frames;
+    rosbag::Bag bag(path("x.bag"), rosbag::bagmode::Read);
+    for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/tf")))
+      for (const auto& t : m.instantiate<tf2_msgs::TFMessage>()->transforms)
+        frames.insert(t.child_frame_id);
+    return frames;
+  };
+  const std::set<std::string> plain = childFrames("");
+  ASSERT_FALSE(plain.empty());
+  EXPECT_EQ(plain.count("ball_1"), 1u);
+  const std::set<std::string> prefixed = childFrames("frame_prefix: \"sim2/\"\n");
+  EXPECT_EQ(prefixed.size(), plain.size());
+  for (const std::string& frame : plain)
+    EXPECT_EQ(prefixed.count("sim2/" + frame), 1u) << frame;
 }
 
 // Ctrl-C during a long run: exit 130, and a valid bag of the run so far under the final

@@ -191,12 +191,24 @@ yaml::SceneFile sceneOfRequest(const LoadScene::Request& req)
   if (req.path.empty() == req.yaml.empty())
     throw yaml::SceneError(req.path.empty() ? "path: missing (give a scene file in path, or its text in yaml)"
                                             : "yaml: give either path or yaml, not both");
-  const std::string source = req.path.empty() ? "yaml" : resolvePath(req.path);
-  const std::string text = req.path.empty() ? req.yaml : yaml::readTextFile(source);
-  yaml::SceneFile file = yaml::parseSceneFile(text, source);
-  const std::vector<core::SceneIssue> issues = yaml::check(file);
-  if (!issues.empty())
-    throw yaml::SceneError(source + ": " + core::joinIssues(issues));
-  return file;
+  const auto read = [](const std::string& text, const std::string& source) {
+    yaml::SceneFile file = yaml::parseSceneFile(text, source);
+    const std::vector<core::SceneIssue> issues = yaml::check(file);
+    if (!issues.empty())
+      throw yaml::SceneError(source + ": " + core::joinIssues(issues));
+    return file;
+  };
+  if (req.path.empty())
+    return read(req.yaml, "yaml");  // (its messages start "yaml: ")
+  const std::string source = resolvePath(req.path);
+  try
+  {
+    return read(yaml::readTextFile(source), source);
+  }
+  catch (const yaml::SceneError& e)
+  {
+    // the field first, then the file and what is wrong in it
+    throw yaml::SceneError(std::string("path: ") + e.what());
+  }
 }
 }  // namespace ball_collision_sim::bridge

@@ -61,7 +61,7 @@ void RunBag::write(const std::string& topic, const ros::Time& stamp, const Msg& 
 void RunBag::writeView(const core::World& world, const ros::Time& stamp)
 {
   if (tf_every_ > 0 && world.stats().steps % tf_every_ == 0 && tf_max_balls_ > 0)
-    write("/tf", stamp, transformsMessage(world, frame_id_, stamp, tf_max_balls_));
+    write("/tf", stamp, transformsMessage(world, frame_id_, stamp, tf_max_balls_, node_.frame_prefix.value_or("")));
   if (world.stats().steps == 0 || (marker_every_ > 0 && world.stats().steps % marker_every_ == 0))
   {
     visualization_msgs::MarkerArray markers = ballMarkers(

@@ -197,7 +197,7 @@ class NodeApi(unittest.TestCase):
         before = get()
         buffer = tf2_ros.Buffer()  # listening before the load: it sends the new frames once
         listener = tf2_ros.TransformListener(buffer)  # noqa: F841
-        bad = [({"path": "/nonexistent/scene.yaml"}, "/nonexistent/scene.yaml: cannot open file"),
+        bad = [({"path": "/nonexistent/scene.yaml"}, "path: /nonexistent/scene.yaml: cannot open file"),
                ({"yaml": "balls:\n  - {position: [0, 0, 0.1], radius: -1}\n"}, "balls[0].radius: must be > 0"),
                ({"yaml": "dtt: 0.1\n"}, "dtt: unknown key"),
                ({"path": "package://no_such_package/x.yaml"}, "path: no package named"),

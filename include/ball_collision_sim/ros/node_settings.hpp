@@ -33,7 +33,7 @@ void copyKeys(const std::vector<std::string>& keys, const NodeSettings& from, No
 SimulatorConfig toConfig(const NodeSettings& node);
 
 /// The settings `config` asks for; a value the scene's validation would refuse (a ball
-/// colour other than speed or id) keeps its old value, and `config` is corrected to it.
+/// colour other than speed, id or motion) keeps its old value, and `config` is corrected to it.
 /// Returns one "key: reason" line per value kept.
 std::vector<std::string> applyConfig(SimulatorConfig& config, NodeSettings& node);
 }  // namespace ball_collision_sim::bridge
