@@ -95,6 +95,7 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
     return result;
   balls_[s].position = def.position;
   balls_[s].velocity = def.velocity;
+  balls_[s].quiet_steps = 0;  // (the ball the edit moved counts its still steps again)
   if (friction_)
     spins_[s] = makeSpin(def, foot);
   if (floor_motion_->keepsFeet())
@@ -147,6 +148,7 @@ AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
     spin.kind = frictionUnder(ground_.normalUnder(footOf(s))).kindOf(spin.inertia, ball.radius, velocity, w);
   }
   ball.velocity = velocity;
+  ball.quiet_steps = 0;  // (the ball the edit set going counts its still steps again)
   forgetOrder();
   result.ok = true;
   return result;

@@ -442,8 +442,16 @@ private:
   /// Velocity `v` of ball i turned out of its blocked directions, keeping its speed where
   /// speeds come from energy (gravity along the floor).
   Vec3 redirected(std::size_t i, const Vec3& v) const;
-  /// Ball i may not move along `direction` for the rest of the step: it leans on a contact of this restitution.
-  void addBlocked(std::size_t i, const Vec3& direction, double restitution);
+  /// Ball i may not move along `direction` for the rest of the step: it leans on a contact
+  /// of this restitution, from `source` (blockedSource()).
+  void addBlocked(std::size_t i, const Vec3& direction, std::uint64_t source, double restitution);
+  /// The source of a blocked direction: wall w's along the floor, or its own normal
+  /// (own_normal), or ball j's (by its id, whatever the records' order).
+  static std::uint64_t wallSource(std::size_t w, bool own_normal) { return 2 * std::uint64_t{w} + (own_normal ? 1 : 0); }
+  std::uint64_t ballSource(std::size_t j) const
+  {
+    return 2 * (std::uint64_t{walls_.size()} + static_cast<std::uint64_t>(balls_[j].id));
+  }
   /// While the step runs, a ball's velocity is the one at the start of its motion.
   Vec3& startVelocity(std::size_t i) { return balls_[i].velocity; }
   const Vec3& startVelocity(std::size_t i) const { return balls_[i].velocity; }

@@ -47,7 +47,9 @@ void World::ChordMotion::endOnFloor(World& w, std::size_t i)
   // The chord must end on the floor, where the step's end puts the ball: a ball moved
   // there after its motion was checked could be pressed into what it touches. Taking
   // out the blocked directions moves the end off the floor; back onto it and out of
-  // them again, in turn, until both hold.
+  // them again, in turn, until both hold to round-off. It ends out of them: a chord
+  // that goes on into what the ball leans on by round-off meets it again within the
+  // step, and again after that, an event each time that changes nothing.
   Motion& m = w.motions_[i];
   const double rest = w.chordEnd(i) - m.x0;
   if (w.states_[i].frozen || !(rest > 0))
@@ -63,7 +65,7 @@ void World::ChordMotion::endOnFloor(World& w, std::size_t i)
     // (a pass that leaves the motion as it was would be repeated as it is: fully blocked
     // off the floor, say)
     const bool same = free == m.b;
-    m.b = done ? on : free;
+    m.b = free;
     if (done || same)
       return;
   }

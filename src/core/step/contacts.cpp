@@ -39,7 +39,7 @@ Vec3 World::redirected(std::size_t i, const Vec3& v) const
   return ground_.turned(v, free);
 }
 
-void World::addBlocked(std::size_t i, const Vec3& direction, double restitution)
+void World::addBlocked(std::size_t i, const Vec3& direction, std::uint64_t source, double restitution)
 {
   MotionState& m = states_[i];
   if (m.blocked < 0)
@@ -48,7 +48,7 @@ void World::addBlocked(std::size_t i, const Vec3& direction, double restitution)
     blocked_sets_.emplace_back();
   }
   BlockedSet& set = blocked_sets_[static_cast<std::size_t>(m.blocked)];
-  set.add(direction, settings_);
+  set.add(direction, source, settings_);
   set.elastic = set.elastic && !(restitution < 1);
 }
 
@@ -86,11 +86,14 @@ bool World::wallBetween(const Ball& a, const Ball& b) const
 
 void World::wakeAll()
 {
+  // (a ball awake keeps its count of still steps: the edit did not move it, and a step
+  // that it moves in starts the count again)
   for (Ball& ball : balls_)
-  {
-    ball.asleep = false;
-    ball.quiet_steps = 0;
-  }
+    if (ball.asleep)
+    {
+      ball.asleep = false;
+      ball.quiet_steps = 0;
+    }
   motions_ready_ = false;  // (a prediction made while they slept)
 }
 

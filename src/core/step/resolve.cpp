@@ -73,9 +73,9 @@ void World::resolveBallWall(const Event& event)
   {
     // leaning on the wall until the step ends; where the floor is not square to the wall,
     // also no motion into the wall itself (else it comes back at once, again and again)
-    addBlocked(i, dir, wall.restitution);
+    addBlocked(i, dir, wallSource(event.j, false), wall.restitution);
     if (dir.dot(n) < 1 - settings_.same_direction)
-      addBlocked(i, n, wall.restitution);
+      addBlocked(i, n, wallSource(event.j, true), wall.restitution);
   }
   startMotion(i, event.x, p, v, !resting);
   recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
@@ -218,9 +218,9 @@ bool World::blockAtRest(const PairContact& c, const Vec3& va, const Vec3& vb)
   const bool b_fixed =
       both_still || states_[j].held || inv_b * tb.squaredNorm() < settings_.fixed_mobility_ratio * inv_a * ta.squaredNorm();
   if (a_fixed && along_b.squaredNorm() > 0)
-    addBlocked(j, -along_b.normalized(), scene_.restitution);
+    addBlocked(j, -along_b.normalized(), ballSource(i), scene_.restitution);
   if (b_fixed && along_a.squaredNorm() > 0)
-    addBlocked(i, along_a.normalized(), scene_.restitution);
+    addBlocked(i, along_a.normalized(), ballSource(j), scene_.restitution);
   return both_still;
 }
 

@@ -112,10 +112,14 @@ struct World::SpinMotion
 
 /// Unit directions a ball may not move along for the rest of the step: toward a wall it
 /// leans on, or toward a ball that cannot give way. A ball in a corner or in a pile at
-/// rest has several; most balls have none, and no set.
+/// rest has several; most balls have none, and no set. Each comes from a source (a wall's
+/// direction along the floor, a wall's own normal, another ball: World::blockedSource()),
+/// and a source's latest contact replaces its direction: the ball has moved since, and
+/// on a curved floor, or around a wall's edge or corner, the direction has turned with it.
 struct World::BlockedSet
 {
   std::array<Vec3, 8> directions;
+  std::array<std::uint64_t, 8> sources;
   std::uint8_t count = 0;
   /// Every contact that blocks it is elastic (e = 1): it turns the ball's velocity and
   /// takes none of its speed. An inelastic one takes the part of the velocity into it,
@@ -148,13 +152,22 @@ struct World::BlockedSet
         return Vec3::Zero();
     return w;
   }
-  void add(const Vec3& direction, const StepSettings& settings)
+  void add(const Vec3& direction, std::uint64_t source, const StepSettings& settings)
   {
+    for (std::uint8_t k = 0; k < count; ++k)
+      if (sources[k] == source)
+      {
+        directions[k] = direction;
+        return;
+      }
     for (std::uint8_t k = 0; k < count; ++k)
       if (directions[k].dot(direction) > 1 - settings.same_direction)
         return;
     if (count < directions.size())
-      directions[count++] = direction;
+    {
+      directions[count] = direction;
+      sources[count++] = source;
+    }
   }
 };
 
