@@ -435,7 +435,8 @@ private:
   /// The spin of a ball defined by `def` on the floor with normal n: its own, or rolling's.
   static Vec3 spinOf(const BallDef& def, const Vec3& n);
   /// A parabola motion of ball i becomes its chord (the same end): the resting-contact
-  /// corrections work on chords.
+  /// corrections work on chords. With friction, a ball in a phase is then under its
+  /// contacts (constrainSpin()).
   void toChord(std::size_t i);
   /// `w` less its parts along the directions the ball may not move this step.
   Vec3 allowed(std::size_t i, const Vec3& w) const;

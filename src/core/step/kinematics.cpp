@@ -38,12 +38,16 @@ Vec3 World::parabolaOf(std::size_t i) const
 
 void World::toChord(std::size_t i)
 {
-  if (!states_[i].accelerates)
-    return;
-  Motion& m = motions_[i];
-  m.b += (1 - m.x0) * pathTerm(i);
-  states_[i].accelerates = false;
-  if (friction_)
+  const bool parabola = states_[i].accelerates;
+  if (parabola)
+  {
+    Motion& m = motions_[i];
+    m.b += (1 - m.x0) * pathTerm(i);
+    states_[i].accelerates = false;
+  }
+  // (its contacts decide its motion from now on, and what it costs: gravity's work, not
+  // its phase's pull, which for a still ball leaves gravity along the floor out)
+  if (friction_ && (parabola || spin_motions_[i].phase()))
     constrainSpin(i);
 }
 
