@@ -352,8 +352,11 @@ TEST_F(SimulateCli, BagTfFramesTakeTheScenesFramePrefix)
     std::set<std::string> frames;
     rosbag::Bag bag(path("x.bag"), rosbag::bagmode::Read);
     for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/tf")))
-      for (const auto& t : m.instantiate<tf2_msgs::TFMessage>()->transforms)
+    {
+      const tf2_msgs::TFMessage::ConstPtr tf = m.instantiate<tf2_msgs::TFMessage>();
+      for (const auto& t : tf->transforms)
         frames.insert(t.child_frame_id);
+    }
     return frames;
   };
   const std::set<std::string> plain = childFrames("");
