@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <utility>
 
 namespace ball_collision_sim::core
@@ -117,8 +116,12 @@ std::optional<double> firstRoot(const std::array<double, 5>& a, double t_max)
   return std::nullopt;
 }
 
-std::optional<double> firstInwardRoot(const std::array<double, 5>& a, double t_max,
-                                      const std::function<bool(double)>& accept)
+namespace
+{
+/// The first t in (0, t_max) at which a[0] + a[1] t + ... + a[4] t^4 falls through zero
+/// from above and `accept(t)` holds; none where there is no such t.
+template <class Accept>
+std::optional<double> firstInwardRoot(const std::array<double, 5>& a, double t_max, const Accept& accept)
 {
   std::array<double, 4> roots{};
   const int found = rootsIn(a, 4, 0.0, t_max, roots, 4, false);
@@ -134,14 +137,19 @@ std::optional<double> firstInwardRoot(const std::array<double, 5>& a, double t_m
   return std::nullopt;
 }
 
+/// |d + t e + t^2 c|^2 - reach^2, by powers of t.
+std::array<double, 5> distanceQuartic(const Vec3& d, const Vec3& e, const Vec3& c, double reach)
+{
+  return {d.squaredNorm() - reach * reach, 2 * d.dot(e), e.squaredNorm() + 2 * d.dot(c), 2 * e.dot(c), c.squaredNorm()};
+}
+}  // namespace
+
 std::optional<double> sphereSweepAccelerated(const Vec3& d, const Vec3& e, const Vec3& c, double reach, double t_max,
                                              double slop)
 {
   if (c == Vec3::Zero())
     return sphereSweep(d, e, reach, t_max, slop);
-  // |d + t e + t^2 c|^2 - reach^2, by powers of t
-  const std::array<double, 5> f{d.squaredNorm() - reach * reach, 2 * d.dot(e), e.squaredNorm() + 2 * d.dot(c),
-                                2 * e.dot(c), c.squaredNorm()};
+  const std::array<double, 5> f = distanceQuartic(d, e, c, reach);
   if (f[0] > 0)
   {
     // (|d + t e + t^2 c| >= |d| - t |e| - t^2 |c|: most pairs cannot meet at all)
@@ -251,9 +259,7 @@ std::optional<WallHit> sweepEdge(const Wall& wall, int k, const Vec3& p, const V
   // Under acceleration the ball can come within r of the edge's line beside the segment
   // (or start there, beside it, leaning on a corner) and then leave and come in again
   // along the segment: the edge is met where the distance falls through r within it.
-  const std::array<double, 5> f{start, 2 * d_perp.dot(e_perp), e_perp.squaredNorm() + 2 * d_perp.dot(c_perp),
-                                2 * e_perp.dot(c_perp), c_perp.squaredNorm()};
-  if (const auto in = firstInwardRoot(f, t_max, within))
+  if (const auto in = firstInwardRoot(distanceQuartic(d_perp, e_perp, c_perp, r), t_max, within))
     return hit(*in);
   return std::nullopt;
 }

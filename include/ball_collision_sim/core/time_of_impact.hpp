@@ -5,7 +5,6 @@
 
 #include <array>
 #include <cmath>
-#include <functional>
 #include <optional>
 
 namespace ball_collision_sim::core
@@ -46,11 +45,6 @@ inline std::optional<double> sphereSweep(const Vec3& d, const Vec3& e, double re
 /// t returned is the last double at which the polynomial is still positive (or the
 /// root itself where it is exactly zero there).
 std::optional<double> firstRoot(const std::array<double, 5>& a, double t_max);
-
-/// The first t in (0, t_max) at which a[0] + a[1] t + ... + a[4] t^4 falls through zero
-/// from above and `accept(t)` holds; none where there is no such t.
-std::optional<double> firstInwardRoot(const std::array<double, 5>& a, double t_max,
-                                      const std::function<bool(double)>& accept);
 
 /// As sphereSweep(), for a relative motion under constant acceleration,
 /// |d + t e + t^2 c| = reach: the distance squared less reach^2 is a quartic in t.

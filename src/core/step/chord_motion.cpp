@@ -15,11 +15,6 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-bool World::ChordMotion::gathers(const World& w) const
-{
-  return !w.ground_.straight();
-}
-
 void World::ChordMotion::predict(World& w, std::size_t i, const Vec3& v) const
 {
   // a chord across the path, no longer than the floor allows, kept within the energy

@@ -73,7 +73,7 @@ void World::commitToFloor(bool predict_next)
     roll(i, floor_normals_[i], motions_[i].p0);
   // Groups at rest sleep; where gravity does not pull along the floor, nothing gathers
   // balls into groups, and none does.
-  if (floor_motion_->gathers(*this))
+  if (FloorMotion::gathers(*this))
     sleepStillGroups();
   if (predict_next)
     for (std::size_t i = 0; i < balls_.size(); ++i)

@@ -4,8 +4,6 @@
 // Reads and writes motions_, states_, blocked_sets_.
 #include "floor_motion.hpp"
 
-#include "../bracketed_root.hpp"
-
 #include "ball_collision_sim/core/response.hpp"
 
 #include <algorithm>

@@ -17,11 +17,6 @@ const World::FloorMotion& World::FloorMotion::of(const Ground& ground)
   return exact;
 }
 
-bool World::ExactMotion::gathers(const World& w) const
-{
-  return !w.ground_.straight();
-}
-
 void World::ExactMotion::predict(World& w, std::size_t i, const Vec3& v) const
 {
   Motion& m = w.motions_[i];

@@ -23,7 +23,7 @@ struct World::FloorMotion
   /// Balls keep foot points (World::feet_) between steps, as Newton's first guess.
   virtual bool keepsFeet() const = 0;
   /// Gravity pulls balls along the floor, so that they gather into groups at rest.
-  virtual bool gathers(const World& w) const = 0;
+  static bool gathers(const World& w) { return !w.ground_.straight(); }
 
   /// Ball i's free motion over the next step, from motions_[i].p0 with velocity v (no
   /// friction phase set it).
@@ -64,7 +64,6 @@ struct World::FloorMotion
 struct World::ExactMotion final : World::FloorMotion
 {
   bool keepsFeet() const override { return false; }
-  bool gathers(const World& w) const override;
   void predict(World& w, std::size_t i, const Vec3& v) const override;
   void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
   void keepEnergy(World& w, std::size_t i) const override;
@@ -84,7 +83,6 @@ struct World::ExactMotion final : World::FloorMotion
 struct World::ChordMotion final : World::FloorMotion
 {
   bool keepsFeet() const override { return true; }
-  bool gathers(const World& w) const override;
   void predict(World& w, std::size_t i, const Vec3& v) const override;
   void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
   void keepEnergy(World& w, std::size_t i) const override;

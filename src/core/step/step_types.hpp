@@ -113,7 +113,7 @@ struct World::SpinMotion
 /// Unit directions a ball may not move along for the rest of the step: toward a wall it
 /// leans on, or toward a ball that cannot give way. A ball in a corner or in a pile at
 /// rest has several; most balls have none, and no set. Each comes from a source (a wall's
-/// direction along the floor, a wall's own normal, another ball: World::blockedSource()),
+/// direction along the floor, a wall's own normal, another ball: World::wallSource(), World::ballSource()),
 /// and a source's latest contact replaces its direction: the ball has moved since, and
 /// on a curved floor, or around a wall's edge or corner, the direction has turned with it.
 struct World::BlockedSet
