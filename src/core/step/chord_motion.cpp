@@ -163,19 +163,36 @@ void World::ChordMotion::separate(World& w, const PairContact& c, double rest, d
   Motion& ma = w.motions_[c.i];
   Motion& mb = w.motions_[c.j];
   const double roundoff = roundoffAt(pa, ma.radius, w.settings_) + roundoffAt(pb, mb.radius, w.settings_);
+  // A ball gives way only as far as the floor and what it leans on let it: where they
+  // turn its part of a correction back into the contact (a light ball wedged in a corner,
+  // whose one free direction is nearly square to the contact), that part is undone and
+  // the other ball gives all the way from then on (else each pass would push the wedged
+  // ball further along its free direction, and the corrections grow without end).
+  double give_a = move_a, give_b = move_b;
+  const auto undoTurnedBack = [&](Motion& m, const Vec3& before, double away, double& give, double wanted) {
+    // (away: the correction takes ball a's motion back along n, and ball b's on)
+    if (wanted > 0 && away * (before - m.b).dot(c.n) <= 0)
+    {
+      m.b = before;
+      give = 0.0;
+    }
+  };
   for (int pass = 0; pass < w.settings_.correction_passes; ++pass)
   {
     const double into = ma.b.dot(c.n) - mb.b.dot(c.n);
-    const double k = move_a * c.ta.dot(c.n) + move_b * c.tb.dot(c.n);
+    const double k = give_a * c.ta.dot(c.n) + give_b * c.tb.dot(c.n);
     if (!(into > 0 && k > 0 && rest * into > roundoff))
       break;
     const double jb = into / k;
-    ma.b -= (jb * move_a) * c.ta;
-    mb.b += (jb * move_b) * c.tb;
+    const Vec3 before_a = ma.b, before_b = mb.b;
+    ma.b -= (jb * give_a) * c.ta;
+    mb.b += (jb * give_b) * c.tb;
     if (!w.states_[c.i].held)
       endOnFloor(w, c.i);
     if (!w.states_[c.j].held)
       endOnFloor(w, c.j);
+    undoTurnedBack(ma, before_a, 1.0, give_a, jb * give_a * c.ta.dot(c.n));
+    undoTurnedBack(mb, before_b, -1.0, give_b, jb * give_b * c.tb.dot(c.n));
   }
 }
 
