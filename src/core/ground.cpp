@@ -122,6 +122,13 @@ Ground::End Ground::end(const Vec3& p, double radius, const Vec2& guess) const
   return {p, foot.normal, foot.uv};
 }
 
+Ground::End Ground::stillEnd(const Vec3& p, double radius, const Vec2& foot, bool with_normal) const
+{
+  if (plane_ || !floor_)
+    return end(p, radius, foot);
+  return {p, with_normal ? floor_->normal(foot) : Vec3::Zero(), foot};
+}
+
 Vec2 Ground::footParameters(const Vec3& centre, const Vec2& kept) const
 {
   return plane_ ? floor_->planeParameters(centre) : kept;

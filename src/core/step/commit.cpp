@@ -83,7 +83,11 @@ void World::commitToFloor(bool predict_next)
 World::Committed World::commitBall(std::size_t i, bool settle)
 {
   Ball& ball = balls_[i];
-  const Ground::End end = ground_.end(positionAt(i, 1.0), motions_[i].radius, guessOf(i));
+  // (a ball asleep stays where it is, on the foot point it had; the floor's normal there
+  // counts only across resting contacts and for a spin)
+  const Ground::End end = states_[i].asleep
+                              ? ground_.stillEnd(ball.position, motions_[i].radius, guessOf(i), settle || friction_)
+                              : ground_.end(positionAt(i, 1.0), motions_[i].radius, guessOf(i));
   if (!feet_.empty())
     feet_[i] = end.foot;
   if (settle)
