@@ -163,15 +163,16 @@ void World::ChordMotion::separate(World& w, const PairContact& c, double rest, d
   Motion& ma = w.motions_[c.i];
   Motion& mb = w.motions_[c.j];
   const double roundoff = roundoffAt(pa, ma.radius, w.settings_) + roundoffAt(pb, mb.radius, w.settings_);
-  // A ball gives way only as far as the floor and what it leans on let it: where they
-  // turn its part of a correction back into the contact (a light ball wedged in a corner,
-  // whose one free direction is nearly square to the contact), that part is undone and
-  // the other ball gives all the way from then on (else each pass would push the wedged
-  // ball further along its free direction, and the corrections grow without end).
+  // A ball gives way only as far as the floor and what it leans on let it: where its part
+  // of a correction, once they are done with it, closes the contact instead of opening it
+  // (a light ball wedged in a corner, whose free directions are nearly square to the
+  // contact, or lead back into it), that part is undone and the other ball gives all the
+  // way from then on (else each pass pushes the wedged ball further along its free
+  // direction, and the corrections grow without end).
   double give_a = move_a, give_b = move_b;
-  const auto undoTurnedBack = [&](Motion& m, const Vec3& before, double away, double& give, double wanted) {
+  const auto undoWhereClosing = [&](Motion& m, const Vec3& before, double away, double& give) {
     // (away: the correction takes ball a's motion back along n, and ball b's on)
-    if (wanted > 0 && away * (before - m.b).dot(c.n) <= 0)
+    if (give > 0 && away * (before - m.b).dot(c.n) <= 0)
     {
       m.b = before;
       give = 0.0;
@@ -191,8 +192,8 @@ void World::ChordMotion::separate(World& w, const PairContact& c, double rest, d
       endOnFloor(w, c.i);
     if (!w.states_[c.j].held)
       endOnFloor(w, c.j);
-    undoTurnedBack(ma, before_a, 1.0, give_a, jb * give_a * c.ta.dot(c.n));
-    undoTurnedBack(mb, before_b, -1.0, give_b, jb * give_b * c.tb.dot(c.n));
+    undoWhereClosing(ma, before_a, 1.0, give_a);
+    undoWhereClosing(mb, before_b, -1.0, give_b);
   }
 }
 
