@@ -148,6 +148,10 @@ void World::hold(std::size_t i)
   if (!states_[i].held)
     ++stats_.held_balls;
   states_[i].held = true;
+  // (with friction its spin then follows from its contacts too, not from a phase whose
+  // motion it does not make: FrictionLaw::constrained())
+  if (friction_ && spin_motions_[i].phase())
+    constrainSpin(i);
 }
 
 double World::EnergyCheck::speedSquaredWith(const Vec3& b) const
