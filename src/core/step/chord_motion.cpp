@@ -66,22 +66,20 @@ void World::ChordMotion::endOnFloor(World& w, std::size_t i)
   }
 }
 
-void World::ChordMotion::keepEnergy(World& w, std::size_t i) const
+double World::ChordMotion::endSpeedSquared(const World& w, std::size_t i, const EnergyCheck& energy) const
 {
-  Motion& m = w.motions_[i];
-  const double rest = w.chordEnd(i) - m.x0;
-  if (w.ground_.straight() || w.states_[i].frozen || !(rest > 0))
-    return;
-  const EnergyCheck energy{&w, i, rest};
   // (endOnFloor has put the chord's end on the floor, or as near as its blocked
   // directions let it: the chord's own end is what counts)
-  const double full = energy.chordSpeedSquared(m.b);
-  if (full >= 0)
-    return;
+  return energy.chordSpeedSquared(w.motions_[i].b);
+}
+
+void World::ChordMotion::shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full) const
+{
   // The chord ends higher than the ball's energy reaches (a turning point, or a ball in
   // a pile whose constraints turned its motion uphill): it stops where the energy runs
   // out instead, so that no energy is made.
-  const double start = energy.speedSquared(0.0);
+  Motion& m = w.motions_[i];
+  const double rest = energy.rest;
   double lo = 0.0;
   if (start > 0)
     lo = energyRunsOut(w, energy, start, full);

@@ -45,22 +45,30 @@ void World::ExactMotion::start(World& w, std::size_t i, double x, const Vec3& po
   keepEnergy(w, i);
 }
 
-void World::ExactMotion::keepEnergy(World& w, std::size_t i) const
+void World::FloorMotion::keepEnergy(World& w, std::size_t i) const
 {
-  Motion& m = w.motions_[i];
-  const double rest = w.chordEnd(i) - m.x0;
+  const double rest = w.chordEnd(i) - w.motions_[i].x0;
   if (w.ground_.straight() || w.states_[i].frozen || !(rest > 0))
     return;
   const EnergyCheck energy{&w, i, rest};
-  const double full = energy.speedSquared(1.0);
+  const double full = endSpeedSquared(w, i, energy);
   if (full >= 0)
     return;
+  shorten(w, i, energy, energy.speedSquared(0.0), full);
+}
+
+double World::ExactMotion::endSpeedSquared(const World&, std::size_t, const EnergyCheck& energy) const
+{
+  return energy.speedSquared(1.0);
+}
+
+void World::ExactMotion::shorten(World& w, std::size_t i, const EnergyCheck&, double start, double full) const
+{
   // The chord ends higher than the ball's energy reaches (a ball in a pile whose
   // constraints turned its motion uphill): it stops where the energy runs out, which is
   // linear along the chord, so that no energy is made.
-  const double start = energy.speedSquared(0.0);
   // (round-off may leave the end a hair too high; the speed is clamped to zero then)
-  m.b *= start > 0 ? start / (start - full) : 0.0;
+  w.motions_[i].b *= start > 0 ? start / (start - full) : 0.0;
 }
 
 void World::ExactMotion::separate(World& w, const PairContact& c, double rest, double move_a, double move_b,

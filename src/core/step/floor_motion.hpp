@@ -31,8 +31,14 @@ struct World::FloorMotion
   /// Ball i's motion from x on, from `position` with start velocity v0 after a contact
   /// has redirected it: a free ball's path, or a chord kept out of its blocked directions.
   virtual void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const = 0;
-  /// Shortens ball i's motion where its end would lie higher than its energy reaches.
-  virtual void keepEnergy(World& w, std::size_t i) const = 0;
+  /// Shortens ball i's motion where its end would lie higher than its energy reaches
+  /// (where gravity pulls along the floor, and the ball moves for the rest of the step).
+  void keepEnergy(World& w, std::size_t i) const;
+  /// |v|^2 where ball i's motion ends, from its energy (below zero: higher than it reaches).
+  virtual double endSpeedSquared(const World& w, std::size_t i, const EnergyCheck& energy) const = 0;
+  /// Cuts ball i's motion where its speed runs out, `start` and `full` its speed squared
+  /// at the motion's start and end (full < 0).
+  virtual void shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full) const = 0;
   /// Takes the approach left in a resting pair's motions out of them, after the impulse
   /// at pa and pb, with `rest` of the step to go; each ball gives way by its inverse mass
   /// (move_a, move_b: 0 where it is held).
@@ -66,7 +72,8 @@ struct World::ExactMotion final : World::FloorMotion
   bool keepsFeet() const override { return false; }
   void predict(World& w, std::size_t i, const Vec3& v) const override;
   void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
-  void keepEnergy(World& w, std::size_t i) const override;
+  double endSpeedSquared(const World& w, std::size_t i, const EnergyCheck& energy) const override;
+  void shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full) const override;
   void separate(World& w, const PairContact& c, double rest, double move_a, double move_b, const Vec3& pa,
                 const Vec3& pb) const override;
   FrictionLaw lawUnder(const World& w, const Vec3& n) const override;
@@ -85,7 +92,8 @@ struct World::ChordMotion final : World::FloorMotion
   bool keepsFeet() const override { return true; }
   void predict(World& w, std::size_t i, const Vec3& v) const override;
   void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
-  void keepEnergy(World& w, std::size_t i) const override;
+  double endSpeedSquared(const World& w, std::size_t i, const EnergyCheck& energy) const override;
+  void shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full) const override;
   void separate(World& w, const PairContact& c, double rest, double move_a, double move_b, const Vec3& pa,
                 const Vec3& pb) const override;
   FrictionLaw lawUnder(const World& w, const Vec3& n) const override;
