@@ -75,6 +75,15 @@ TEST(Ground, OnTheBowl)
   EXPECT_LT((end.normal - n).norm(), 1e-12);
   EXPECT_LT((end.foot - guess).norm(), 1e-12);
   EXPECT_EQ(ground.footParameters(c, guess), guess);
+  // a ball that has not moved since its foot point was found (asleep): the same end,
+  // bit for bit, without the search; the normal only when asked for
+  const Ground::End still = ground.stillEnd(c, 0.1, end.foot, true);
+  const Ground::End again = ground.end(c, 0.1, end.foot);
+  EXPECT_EQ(still.centre, again.centre);
+  EXPECT_EQ(still.foot, again.foot);
+  EXPECT_EQ(still.normal, again.normal);
+  EXPECT_EQ(ground.stillEnd(c, 0.1, end.foot, false).normal, Vec3::Zero());
+  EXPECT_EQ(ground.stillEnd(c, 0.1, end.foot, false).centre, c);
 }
 
 TEST(Ground, WithoutAFloor)

@@ -92,6 +92,8 @@ public:
   /// The same for a ball that has not moved since its foot point was found (asleep):
   /// where it is, with that foot point, and no search for it; on a curved floor the
   /// normal only `with_normal` (else zero: a ball that does not move turns by nothing).
+  /// The same as end() where `foot` is what end() found there (its search then stops at
+  /// once), that is where it converged.
   End stillEnd(const Vec3& p, double radius, const Vec2& foot, bool with_normal) const;
 
   /// The (u, v) of a ball's foot point, to tell whether it is on the floor: from its

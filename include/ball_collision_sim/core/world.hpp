@@ -363,7 +363,8 @@ private:
   /// go, and a ball still held after it keeps no motion for the rest of the step.
   void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact);
   void countEvent(std::size_t i);
-  /// Ball i stays where it is through the step's resting contacts (counted once a step).
+  /// Ball i stays where it is through the step's resting contacts (counted once a step);
+  /// with friction its spin then follows its contacts (constrainSpin()).
   void hold(std::size_t i);
   /// An impact between balls i and j closing at `closing` along their normal wakes the
   /// group of the one asleep, where it is faster than the pair's resting speed.

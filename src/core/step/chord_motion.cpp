@@ -163,10 +163,12 @@ void World::ChordMotion::separate(World& w, const PairContact& c, double rest, d
   const double roundoff = roundoffAt(pa, ma.radius, w.settings_) + roundoffAt(pb, mb.radius, w.settings_);
   // A ball gives way only as far as the floor and what it leans on let it: where its part
   // of a correction, once they are done with it, closes the contact instead of opening it
-  // (a light ball wedged in a corner, whose free directions are nearly square to the
-  // contact, or lead back into it), that part is undone and the other ball gives all the
-  // way from then on (else each pass pushes the wedged ball further along its free
-  // direction, and the corrections grow without end).
+  // (in any pair; in piles about one correction in eight; at its worst a light ball
+  // wedged in a corner, whose free directions are nearly square to the contact or lead
+  // into it), that part is undone and the other ball gives all the way from then on
+  // (else each pass pushes the wedged ball further along its free direction, and the
+  // corrections grow without end). Where neither can give, the approach left stays, and
+  // the pair is held if it is more than round-off (World::settleRestingPair()).
   double give_a = move_a, give_b = move_b;
   const auto undoWhereClosing = [&](Motion& m, const Vec3& before, double away, double& give) {
     // (away: the correction takes ball a's motion back along n, and ball b's on)

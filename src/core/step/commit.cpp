@@ -84,10 +84,9 @@ World::Committed World::commitBall(std::size_t i, bool settle)
 {
   Ball& ball = balls_[i];
   // (a ball asleep stays where it is, on the foot point it had; the floor's normal there
-  // counts only across resting contacts and for a spin)
-  const Ground::End end = states_[i].asleep
-                              ? ground_.stillEnd(ball.position, motions_[i].radius, guessOf(i), settle || friction_)
-                              : ground_.end(positionAt(i, 1.0), motions_[i].radius, guessOf(i));
+  // counts only across resting contacts: its spin is kept as it is, SpinMotion::Mode::kKept)
+  const Ground::End end = states_[i].asleep ? ground_.stillEnd(ball.position, motions_[i].radius, guessOf(i), settle)
+                                            : ground_.end(positionAt(i, 1.0), motions_[i].radius, guessOf(i));
   if (!feet_.empty())
     feet_[i] = end.foot;
   if (settle)

@@ -1,7 +1,7 @@
 // Resting contacts: the directions a ball may not move along for the rest of the step,
-// holding balls still, and what a motion's energy allows (the floor's motion type keeps
-// a motion within it: FloorMotion::keepEnergy()).
-// Reads and writes motions_, states_, blocked_sets_.
+// holding balls still, and what a motion's energy allows (FloorMotion::keepEnergy(), with
+// the floor's motion type saying where its motion ends and how it is cut short).
+// Reads and writes motions_, states_, blocked_sets_, and a held ball's spin_motions_.
 #include "floor_motion.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
@@ -176,5 +176,17 @@ double World::EnergyCheck::chordSpeedSquared(const Vec3& b) const
 void World::keepEnergy(std::size_t i)
 {
   floor_motion_->keepEnergy(*this, i);
+}
+
+void World::FloorMotion::keepEnergy(World& w, std::size_t i) const
+{
+  const double rest = w.chordEnd(i) - w.motions_[i].x0;
+  if (w.ground_.straight() || w.states_[i].frozen || !(rest > 0))
+    return;
+  const EnergyCheck energy{&w, i, rest};
+  const double full = endSpeedSquared(w, i, energy);
+  if (full >= 0)
+    return;
+  shorten(w, i, energy, energy.speedSquared(0.0), full);
 }
 }  // namespace ball_collision_sim::core

@@ -45,18 +45,6 @@ void World::ExactMotion::start(World& w, std::size_t i, double x, const Vec3& po
   keepEnergy(w, i);
 }
 
-void World::FloorMotion::keepEnergy(World& w, std::size_t i) const
-{
-  const double rest = w.chordEnd(i) - w.motions_[i].x0;
-  if (w.ground_.straight() || w.states_[i].frozen || !(rest > 0))
-    return;
-  const EnergyCheck energy{&w, i, rest};
-  const double full = endSpeedSquared(w, i, energy);
-  if (full >= 0)
-    return;
-  shorten(w, i, energy, energy.speedSquared(0.0), full);
-}
-
 double World::ExactMotion::endSpeedSquared(const World&, std::size_t, const EnergyCheck& energy) const
 {
   return energy.speedSquared(1.0);

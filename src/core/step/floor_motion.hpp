@@ -37,7 +37,8 @@ struct World::FloorMotion
   /// |v|^2 where ball i's motion ends, from its energy (below zero: higher than it reaches).
   virtual double endSpeedSquared(const World& w, std::size_t i, const EnergyCheck& energy) const = 0;
   /// Cuts ball i's motion where its speed runs out, `start` and `full` its speed squared
-  /// at the motion's start and end (full < 0).
+  /// at the motion's start and end (full < 0); on a curved floor a motion whose energy
+  /// runs out at once slides downhill as far as it can, or the ball is held.
   virtual void shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full) const = 0;
   /// Takes the approach left in a resting pair's motions out of them, after the impulse
   /// at pa and pb, with `rest` of the step to go; each ball gives way by its inverse mass

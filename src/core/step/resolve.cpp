@@ -243,9 +243,10 @@ void World::settleRestingPair(const PairContact& c, double x, const Vec3& pa, co
   // curved floor, where the floor, the walls and each other leave no room to settle
   // into), or that are in a jam: they stay where they are for the rest of the step,
   // whatever resting contact comes next (else each such contact would start them
-  // again, and one the next, without end). So do two whose motions keepEnergy turned
-  // back into each other (shortened or slid downhill) by more than detection lets
-  // pass: it would find this contact again at once, and again.
+  // again, and one the next, without end). So do two whose motions still close in by
+  // more than detection lets pass, because keepEnergy turned them back into each other
+  // (shortened or slid downhill) or because neither could give way (on a curved floor,
+  // FloorMotion::separate()): it would find this contact again at once, and again.
   keepEnergy(i);
   keepEnergy(j);
   const bool jammed = sa.events >= settings_.jam_events_per_ball_step || sb.events >= settings_.jam_events_per_ball_step;
