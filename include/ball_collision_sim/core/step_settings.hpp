@@ -28,9 +28,6 @@ struct StepSettings
   /// are in a jam that answers pair by pair only pass around: they are held for the rest
   /// of the step [events].
   std::uint32_t jam_events_per_ball_step = 16;
-  /// A ball that gives way less than this fraction of the other's mobility along a
-  /// resting contact counts as fixed there: it blocks the other's approach [ratio].
-  double fixed_mobility_ratio = 1e-12;
   /// Passes of alternating corrections (onto the floor, out of blocked directions, the
   /// approach of a resting pair) before giving up: each pass halves what is left in
   /// practice, and 32 halvings reach round-off [passes].

@@ -204,19 +204,17 @@ void World::recordEvents(bool record)
 bool World::blockAtRest(const PairContact& c, const Vec3& va, const Vec3& vb)
 {
   const std::size_t i = c.i, j = c.j;
-  const double inv_a = c.inv_a, inv_b = c.inv_b;
-  const Vec3 &ta = c.ta, &tb = c.tb, &along_a = c.along_a, &along_b = c.along_b;
-  // A ball that cannot give way along the contact blocks the other's approach for the
-  // rest of the step, and two balls that are both all but still (a pile at rest) block
-  // each other, so that piles settle in one event per contact instead of passing
-  // vanishing impulses back and forth.
+  const Vec3 &along_a = c.along_a, &along_b = c.along_b;
+  // A ball that cannot move (held, or frozen: asleep or stopped by the event cap) blocks
+  // the other's approach for the rest of the step, as a wall does, and two balls that are
+  // both all but still (a pile at rest) block each other, so that piles settle in one
+  // event per contact instead of passing vanishing impulses back and forth. (A ball that
+  // gives way, however little, is left to: the corrections of the pair's motions weigh
+  // each ball by how far it can go, FloorMotion::separate().)
   const double still = std::max(stillSpeed(c.na), stillSpeed(c.nb));
   const bool both_still = va.norm() <= still && vb.norm() <= still;
-  // (a held ball gives no way either)
-  const bool a_fixed =
-      both_still || states_[i].held || inv_a * ta.squaredNorm() < settings_.fixed_mobility_ratio * inv_b * tb.squaredNorm();
-  const bool b_fixed =
-      both_still || states_[j].held || inv_b * tb.squaredNorm() < settings_.fixed_mobility_ratio * inv_a * ta.squaredNorm();
+  const bool a_fixed = both_still || states_[i].held || states_[i].frozen;
+  const bool b_fixed = both_still || states_[j].held || states_[j].frozen;
   if (a_fixed && along_b.squaredNorm() > 0)
     addBlocked(j, -along_b.normalized(), ballSource(i), scene_.restitution);
   if (b_fixed && along_a.squaredNorm() > 0)
