@@ -156,6 +156,46 @@ TEST(SweepWall, NoTunnellingAtAnySpeed)
   EXPECT_NEAR(hit->t, (3 - 0.01) / 1e6, 1e-20);
 }
 
+// A ball that comes within r of the wall's plane just beside the face, and then moves on
+// over the face with a slow drift into it (a ball that leaned on the wall's edge, going
+// back along the wall under a blocked direction a hair off the face's normal): the edge's
+// cylinder is only grazed, by round-off, so the face must be met where the ball comes over
+// it. No path may end deeper in the wall than round-off without an impact before.
+TEST(SweepWall, GrazingAnEdgeIntoTheFaceIsMet)
+{
+  const Wall w = unitWall();
+  const double r = 0.25;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int met = 0;
+  for (int k = 0; k < 2000; ++k)
+  {
+    // where the plane is crossed, beside the face by `beside` (down to 1e-12) along x
+    const double beside = std::pow(10.0, -12 + 11 * unit(rng));
+    const double drift = std::pow(10.0, -10 + 7 * unit(rng));  // down, per unit t
+    const double speed = 0.5 + unit(rng);                     // along -x
+    const bool accelerated = k % 2 == 1;
+    const double t_cross = 0.2;
+    const Vec3 e(-speed, 0.0, -drift);
+    const Vec3 c = accelerated ? Vec3(0.0, 0.0, -drift * unit(rng)) : Vec3::Zero();
+    const double z_cross = r;
+    const Vec3 p(1 + beside + speed * t_cross, 0.5, z_cross + drift * t_cross - c.z() * t_cross * t_cross);
+    const auto hit = sweepWall(w, p, e, c, r, 1.0, kSlop);
+    const double until = hit ? hit->t : 1.0;
+    // the path up to the impact (or its end) stays out of the wall but for round-off
+    double deepest = 0;
+    for (int s = 0; s <= 400; ++s)
+    {
+      const double t = until * s / 400.0;
+      const Vec3 q = p + t * e + (t * t) * c;
+      deepest = std::max(deepest, r - (q - w.closestPoint(q)).norm());
+    }
+    EXPECT_LT(deepest, 1e-12) << "beside " << beside << " drift " << drift << " accelerated " << accelerated;
+    met += hit ? 1 : 0;
+  }
+  EXPECT_GT(met, 1900);
+}
+
 TEST(FirstRoot, FindsTheEarliestRootOfAQuarticToTheLastBit)
 {
   // -(t - 0.3)(t - 0.5)(t - 2)(t + 1) = -t^4 + 1.8 t^3 + 1.05 t^2 - 1.45 t + 0.3

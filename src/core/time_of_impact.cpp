@@ -182,6 +182,34 @@ bool beside(const Wall& wall, const Vec3& p)
   return u < 0 || u > 1 || v < 0 || v > 1;
 }
 
+/// The first t in [from, t_max) at which the projection of p + t e + t^2 c onto the
+/// wall's plane enters its parallelogram (from itself where it is inside there): the
+/// start of the first piece, between the times its two coordinates cross 0 or 1, whose
+/// middle lies inside.
+std::optional<double> entersFace(const Wall& wall, const Vec3& p, const Vec3& e, const Vec3& c, double from,
+                                 double t_max)
+{
+  const Vec3 q = p - wall.def.point;
+  std::array<double, 10> cuts{};
+  std::size_t count = 0;
+  cuts[count++] = from;
+  for (const Vec3* dual : {&wall.dual_u, &wall.dual_v})
+    for (const double level : {0.0, 1.0})
+    {
+      std::array<double, 4> roots{};
+      const int found = rootsIn({q.dot(*dual) - level, e.dot(*dual), c.dot(*dual), 0.0, 0.0}, 2, from, t_max, roots, 2,
+                                false);
+      for (int k = 0; k < found; ++k)
+        cuts[count++] = roots[static_cast<std::size_t>(k)];
+    }
+  std::sort(cuts.begin() + 1, cuts.begin() + static_cast<std::ptrdiff_t>(count));
+  cuts[count++] = t_max;
+  for (std::size_t k = 0; k + 1 < count; ++k)
+    if (cuts[k + 1] > cuts[k] && !beside(wall, pointAt(p, e, c, 0.5 * (cuts[k] + cuts[k + 1]))))
+      return cuts[k];
+  return std::nullopt;
+}
+
 /// The face: the plane at distance r on the ball's side (the signed distance from it is
 /// linear in t, or quadratic under acceleration), then the contact point must project
 /// inside the parallelogram.
@@ -194,38 +222,57 @@ std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e,
   if (s0 == 0)
     side = en > 0 || (en == 0 && cn > 0) ? -1.0 : 1.0;
   const double d0 = side * s0, rate = side * en, acc = side * cn;
+  const WallHit none{t_max, WallFeature::kFace, side * wall.normal};
+  // Within r of the plane at `from` (the distance there is d0 + rate t + acc t^2): met
+  // now where the motion goes deeper than round-off, or where it moves off and comes
+  // back to this depth.
+  const auto fromWithin = [&](double from) -> std::optional<double> {
+    const double rate_from = rate + 2 * acc * from;
+    if (rate_from > 0)
+    {
+      const auto back = firstRoot({rate_from, acc, 0.0, 0.0, 0.0}, t_max - from);
+      return back ? std::optional<double>(from + *back) : std::nullopt;
+    }
+    return closesIn(rate_from, acc, t_max - from, slop * r) ? std::optional<double>(from) : std::nullopt;
+  };
+  // Within r of the plane beside the face: where the contact point comes over the face
+  // while still within r, the face is met there. (An edge is met first, exactly; but a
+  // ball grazing an edge may miss it by round-off, and then go on into the face.)
+  const auto entering = [&](double from) -> std::optional<double> {
+    const auto in = entersFace(wall, p, e, c, from, t_max);
+    if (!in || !(d0 + *in * (rate + acc * *in) <= r))
+      return std::nullopt;
+    const auto t = fromWithin(*in);
+    return t && (*t == *in || !beside(wall, pointAt(p, e, c, *t))) ? t : std::nullopt;
+  };
   std::optional<double> t;
-  if (d0 > r && acc == 0)
+  if (d0 > r)
   {
-    if (rate < 0 && (d0 - r) / -rate <= t_max)
-      t = (d0 - r) / -rate;
+    t = acc == 0 ? (rate < 0 && (d0 - r) / -rate <= t_max ? std::optional<double>((d0 - r) / -rate) : std::nullopt)
+                 : firstRoot({d0 - r, rate, acc, 0.0, 0.0}, t_max);
+    if (t && beside(wall, pointAt(p, e, c, *t)))
+      t = entering(*t);
+    return t ? std::optional<WallHit>(WallHit{*t, none.feature, none.normal}) : std::nullopt;
   }
-  else if (d0 > r)
-    t = firstRoot({d0 - r, rate, acc, 0.0, 0.0}, t_max);
-  else if (beside(wall, p))
+  if (beside(wall, p))
   {
-    // Within r of the wall's plane but beside the face (its edges are nearer): the face is
-    // met only coming back from beyond r, where (d0 - r) + rate t + acc t^2, <= 0 now, falls
-    // to 0 again: its larger root, where it opens downward. (Straight, it never comes back.)
+    t = entering(0.0);
+    // Beside the face, it may also leave beyond r and come back over the face, where
+    // (d0 - r) + rate t + acc t^2, <= 0 now, falls to 0 again: its larger root, where it
+    // opens downward. (Straight, it never comes back.)
     const double disc = rate * rate - 4 * acc * (d0 - r);
     if (acc < 0 && disc > 0)
     {
       const double back = (-rate - std::sqrt(disc)) / (2 * acc);
-      if (back > 0 && back <= t_max)
+      if (back > 0 && back <= t_max && !beside(wall, pointAt(p, e, c, back)) && (!t || back < *t))
         t = back;
     }
+    return t ? std::optional<WallHit>(WallHit{*t, none.feature, none.normal}) : std::nullopt;
   }
-  else if (rate > 0)
-    t = firstRoot({rate, acc, 0.0, 0.0, 0.0}, t_max);  // touching, moves off, and back
-  else if (closesIn(rate, acc, t_max, slop * r))
-    t = 0.0;
-  if (!t)
+  t = fromWithin(0.0);
+  if (!t || beside(wall, pointAt(p, e, c, *t)))
     return std::nullopt;
-  const Vec3 q = pointAt(p, e, c, *t) - wall.def.point;
-  const double u = q.dot(wall.dual_u), v = q.dot(wall.dual_v);
-  if (u < 0 || u > 1 || v < 0 || v > 1)
-    return std::nullopt;
-  return WallHit{*t, WallFeature::kFace, side * wall.normal};
+  return WallHit{*t, none.feature, none.normal};
 }
 
 /// Edge k: the cylinder of radius r around the segment, then the contact must lie
