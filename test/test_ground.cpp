@@ -39,8 +39,9 @@ TEST(Ground, OnASlopedPlane)
   const Ground::End end = ground.end(q, 0.25, guess);
   EXPECT_EQ(end.centre, c);
   EXPECT_EQ(end.normal, n);
-  const Vec2 uv = ground.footParameters(Vec3(2.5, 0, 0), guess);
-  EXPECT_GT(uv.x(), 1.0);
+  // (the plane spans x in [-2, 2]: a centre at x = 2.5 is beside it)
+  EXPECT_EQ(ground.whyOff(c, 0.25, guess, {}), "");
+  EXPECT_EQ(ground.whyOff(Vec3(2.5, 0, 0), 0.25, guess, {}).rfind("left the floor (its foot point at u = ", 0), 0u);
   // a plane square to gravity: straight lines
   f.u = Vec3(4, 0, 0);
   EXPECT_TRUE(Ground(f, g, StepSettings()).straight());
@@ -74,7 +75,9 @@ TEST(Ground, OnTheBowl)
   EXPECT_EQ(end.centre, c);
   EXPECT_LT((end.normal - n).norm(), 1e-12);
   EXPECT_LT((end.foot - guess).norm(), 1e-12);
-  EXPECT_EQ(ground.footParameters(c, guess), guess);
+  // on a curved floor the kept foot point says whether the ball is on it
+  EXPECT_EQ(ground.whyOff(c, 0.1, guess, {}), "");
+  EXPECT_NE(ground.whyOff(c, 0.1, Vec2(1.01, 0.5), {}), "");
   // a ball that has not moved since its foot point was found (asleep): the same end,
   // bit for bit, without the search; the normal only when asked for
   const Ground::End still = ground.stillEnd(c, 0.1, end.foot, true);
@@ -97,6 +100,15 @@ TEST(Ground, WithoutAFloor)
   EXPECT_EQ(ground.gravityAlong(ground.up()), 2.0);
   EXPECT_FALSE(ground.straight());
   EXPECT_TRUE(Ground(std::nullopt, Vec3::Zero(), StepSettings()).straight());
+  // without walls nothing bounds a ball; with them, the box they span (a ball may reach
+  // one radius beyond it)
+  EXPECT_FALSE(ground.bounded({}));
+  EXPECT_EQ(ground.whyOff(Vec3(1e9, 0, 0), 0.5, Vec2::Zero(), {}), "");
+  const Ground::Bounds box{true, Vec3(0, 0, 0), Vec3(2, 2, 2)};
+  EXPECT_TRUE(ground.bounded(box));
+  EXPECT_EQ(ground.whyOff(Vec3(2.4, 1, 1), 0.5, Vec2::Zero(), box), "");
+  EXPECT_EQ(ground.whyOff(Vec3(2.6, 1, 1), 0.5, Vec2::Zero(), box), "left the walls' bounds");
+  EXPECT_EQ(ground.whyOff(Vec3(1, 1, -0.6), 0.5, Vec2::Zero(), box), "left the walls' bounds");
 }
 
 TEST(Ground, VelocityAlongTheWayAndTurnsThatKeepTheSpeed)

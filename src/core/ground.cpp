@@ -1,5 +1,7 @@
 #include "ball_collision_sim/core/ground.hpp"
 
+#include "ball_collision_sim/core/format.hpp"
+
 #include "ball_collision_sim/core/response.hpp"
 
 #include <cmath>
@@ -129,8 +131,18 @@ Ground::End Ground::stillEnd(const Vec3& p, double radius, const Vec2& foot, boo
   return {p, with_normal ? floor_->normal(foot) : Vec3::Zero(), foot};
 }
 
-Vec2 Ground::footParameters(const Vec3& centre, const Vec2& kept) const
+std::string Ground::whyOff(const Vec3& centre, double radius, const Vec2& kept, const Bounds& walls) const
 {
-  return plane_ ? floor_->planeParameters(centre) : kept;
+  if (floor_)
+  {
+    const Vec2 uv = plane_ ? floor_->planeParameters(centre) : kept;
+    if (Floor::inside(uv))
+      return "";
+    return "left the floor (its foot point at u = " + formatNumber(uv.x()) + ", v = " + formatNumber(uv.y()) +
+           " is outside [0, 1]^2)";
+  }
+  if (walls.any && ((centre.array() < walls.lo.array() - radius).any() || (centre.array() > walls.hi.array() + radius).any()))
+    return "left the walls' bounds";
+  return "";
 }
 }  // namespace ball_collision_sim::core

@@ -1,17 +1,15 @@
-// Balls that left the world: off the floor (their foot point outside it) or, without a
-// floor, outside the box the walls span. Reads balls_, feet_, walls_; removeLostBalls()
+// Balls that left the world (the ground says what that is: off the floor, or without a
+// floor outside the box the walls span). Reads balls_, feet_, walls_; removeLostBalls()
 // takes them out of balls_, feet_ and spins_.
 #include "ball_collision_sim/core/world.hpp"
-
-#include "ball_collision_sim/core/format.hpp"
 
 #include <utility>
 
 namespace ball_collision_sim::core
 {
-World::Bounds World::wallBounds() const
+Ground::Bounds World::wallBounds() const
 {
-  Bounds bounds;
+  Ground::Bounds bounds;
   for (const Wall& wall : walls_)
   {
     bounds.lo = bounds.any ? bounds.lo.cwiseMin(wall.box_min) : wall.box_min;
@@ -21,26 +19,14 @@ World::Bounds World::wallBounds() const
   return bounds;
 }
 
-std::string World::whyLost(std::size_t s, const Bounds& bounds) const
+std::string World::whyLost(std::size_t s, const Ground::Bounds& bounds) const
 {
-  const Ball& ball = balls_[s];
-  if (ground_.floor())
-  {
-    const Vec2 uv = ground_.footParameters(ball.position, footOf(s));
-    if (Floor::inside(uv))
-      return "";
-    return "left the floor (its foot point at u = " + formatNumber(uv.x()) + ", v = " + formatNumber(uv.y()) +
-           " is outside [0, 1]^2)";
-  }
-  if (bounds.any && ((ball.position.array() < bounds.lo.array() - ball.radius).any() ||
-                     (ball.position.array() > bounds.hi.array() + ball.radius).any()))
-    return "left the walls' bounds";
-  return "";
+  return ground_.whyOff(balls_[s].position, balls_[s].radius, footOf(s), bounds);
 }
 
 int World::lostBalls() const
 {
-  const Bounds bounds = wallBounds();
+  const Ground::Bounds bounds = wallBounds();
   int lost = 0;
   for (std::size_t s = 0; s < balls_.size(); ++s)
     lost += whyLost(s, bounds).empty() ? 0 : 1;
@@ -50,9 +36,9 @@ int World::lostBalls() const
 std::vector<LostBall> World::removeLostBalls()
 {
   std::vector<LostBall> lost;
-  if (!ground_.floor() && walls_.empty())
+  const Ground::Bounds bounds = wallBounds();
+  if (!ground_.bounded(bounds))
     return lost;
-  const Bounds bounds = wallBounds();
   bool any = false;
   for (std::size_t s = 0; s < balls_.size() && !any; ++s)
     any = !whyLost(s, bounds).empty();

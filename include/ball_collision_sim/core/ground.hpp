@@ -7,6 +7,7 @@
 
 #include <limits>
 #include <optional>
+#include <string>
 
 namespace ball_collision_sim::core
 {
@@ -96,9 +97,19 @@ public:
   /// once), that is where it converged.
   End stillEnd(const Vec3& p, double radius, const Vec2& foot, bool with_normal) const;
 
-  /// The (u, v) of a ball's foot point, to tell whether it is on the floor: from its
-  /// centre on a plane, the kept one on a curved floor.
-  Vec2 footParameters(const Vec3& centre, const Vec2& kept) const;
+  /// A box [m]; `any` false: none.
+  struct Bounds
+  {
+    bool any = false;
+    Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
+  };
+  /// Why a ball of radius r centred at `centre` has left what it moves on, or "" where it
+  /// has not: with a floor, its foot point (from its centre on a plane, the kept one on a
+  /// curved floor) is off the floor; without one, it is beyond `walls`, the box the walls
+  /// span (nothing, where there are none).
+  std::string whyOff(const Vec3& centre, double radius, const Vec2& kept, const Bounds& walls) const;
+  /// Whether a ball can leave at all: there is a floor, or walls to bound it.
+  bool bounded(const Bounds& walls) const { return floor_.has_value() || walls.any; }
 
 private:
   std::optional<Floor> floor_;

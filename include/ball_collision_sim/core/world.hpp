@@ -280,14 +280,9 @@ private:
   /// is put on the floor as `landing` says and `foot` gets its foot point (u, v).
   std::string place(BallDef& def, Landing landing, int ignore_id, Vec2& foot) const;
   /// The box the walls span, which a ball without a floor must not leave; empty without walls.
-  struct Bounds
-  {
-    bool any = false;
-    Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  ///< [m]
-  };
-  Bounds wallBounds() const;
-  /// Why the ball in slot s is out of the world (off the floor, or outside `bounds`), or "".
-  std::string whyLost(std::size_t k, const Bounds& bounds) const;
+  Ground::Bounds wallBounds() const;
+  /// Why the ball in slot s is out of the world (Ground::whyOff()), or "".
+  std::string whyLost(std::size_t s, const Ground::Bounds& bounds) const;
   /// The record of the ball with this id in balls_, or balls_.size().
   std::size_t slotOf(int id) const;
   /// The records in id order again, as an edit leaves them (the next step visits them so).
