@@ -340,6 +340,53 @@ TEST(RestingContact, PileOfThreeAgainstWallOnSlope)
   EXPECT_EQ(world.stats().frozen_balls, 0u);
 }
 
+// Three equal balls at the bottom of the bowl (z = a (x^2 + y^2)), each pressed toward the
+// axis by gravity along the floor and held off it by the other two: a jam of resting
+// contacts. Placed a hair apart on a circle, they close in, touch, and rest where
+// frictionless contacts hold them, the equilateral triangle of side 2 r around the
+// axis: each centre 2 r / sqrt(3) from it. Then they sleep.
+TEST(RestingContact, JamOfThreeInTheBowl)
+{
+  const double L = 4, h = 0.5, a = 4 * h / (L * L), r = 0.1;
+  const double rho = 2 * r / std::sqrt(3.0);
+  Scene scene;
+  scene.floor = bowl(L, h);
+  scene.restitution = 0.5;
+  // the centre of a ball resting with its foot at horizontal distance f from the axis is
+  // at f - r 2 a f / sqrt(1 + 4 a^2 f^2) from it: the foot for a centre a hair beyond rho
+  const double centre = rho * (1 + 1e-7);
+  double f = centre;
+  for (int k = 0; k < 60; ++k)
+    f = centre + r * 2 * a * f / std::sqrt(1 + 4 * a * a * f * f);
+  const double z = a * f * f + r / std::sqrt(1 + 4 * a * a * f * f);
+  for (int k = 0; k < 3; ++k)
+  {
+    const double phi = 2 * M_PI * k / 3 + 0.3;
+    BallDef b;
+    b.radius = r;
+    b.position = Vec3(centre * std::cos(phi), centre * std::sin(phi), z);
+    scene.balls.push_back(b);
+  }
+  World world(scene);
+  const double rise = largestEnergyRise(world, 300);
+  EXPECT_LT(rise, 1e-9 * std::abs(world.energy().total()) + 1e-12);
+  for (const Ball& b : world.balls())
+  {
+    EXPECT_NEAR(std::hypot(b.position.x(), b.position.y()), rho, 1e-9) << b.id;
+    EXPECT_LT(b.velocity.norm(), 1e-9) << b.id;
+    EXPECT_TRUE(b.asleep) << b.id;
+  }
+  const auto& b = world.balls();
+  for (std::size_t i = 0; i < 3; ++i)
+    EXPECT_NEAR((b[i].position - b[(i + 1) % 3].position).norm(), 2 * r, 1e-9) << i;
+  EXPECT_EQ(world.stats().frozen_balls, 0u);
+  EXPECT_GT(world.stats().resting_events, 0u);
+  // asleep: no events
+  const std::uint64_t events = world.stats().events;
+  world.step();
+  EXPECT_EQ(world.stats().events, events);
+}
+
 // Two balls in a channel barely wider than both: many impacts per step, all kept.
 TEST(Squeeze, TwoBallsBetweenCloseWalls)
 {
