@@ -227,6 +227,36 @@ TEST(TiltedPlane, SlidesWhereFrictionCannotHoldRolling)
   EXPECT_NEAR(world.angularVelocity(0).norm(), mu_s * kG * std::cos(a) / (kSolidInertia * 0.1), 1e-12);
 }
 
+// Without sliding friction (mu_s = 0) nothing acts on the slip but gravity, which turns it:
+// a ball thrown uphill (and a little across) without spin slides on a parabola (rolling
+// resistance acts on rolling balls only), also past where the slip's part along its
+// direction at a step's start is gone (near 1 / g_t, where the slip is about 5 mm/s
+// across, not zero).
+TEST(TiltedPlane, WithoutSlidingFrictionABallSlidesOnItsParabola)
+{
+  const double deg = 10, a = deg * M_PI / 180, g_t = kG * std::sin(a);
+  Scene scene = tilted(deg, friction(0.0, 0.01));
+  BallDef b = ball(0, 0, 0, 0);
+  b.position = onTilted(deg, b.radius);
+  const Vec3 down(std::cos(a), 0, -std::sin(a));
+  const Vec3 v0 = -1.0 * down + Vec3(0, 0.005, 0);
+  b.velocity = v0;
+  b.angular_velocity = Vec3::Zero();
+  scene.balls = {b};
+  World world(scene);
+  const Vec3 p0 = world.balls()[0].position;
+  const double e0 = world.energy().total();
+  const auto transitions = runUntil(world, 1.0);
+  EXPECT_TRUE(transitions.empty());
+  EXPECT_EQ(world.motionKind(0), MotionKind::kSliding);
+  const double t = world.time();
+  const Vec3 expected = p0 + t * v0 + (0.5 * g_t * t * t) * down;
+  EXPECT_LT((world.balls()[0].position - expected).norm(), 1e-12);
+  EXPECT_LT((world.balls()[0].velocity - (v0 + (g_t * t) * down)).norm(), 1e-12);
+  EXPECT_EQ(world.angularVelocity(0), Vec3::Zero());
+  EXPECT_NEAR(world.energy().total(), e0, 1e-12 * std::abs(e0));
+}
+
 // Thrown uphill without spin: it slides until the slip is gone, rolls up, stops and rolls
 // back down, each piece a closed form.
 TEST(TiltedPlane, ThrownUphillSlidesRollsUpAndComesBack)

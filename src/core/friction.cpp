@@ -57,7 +57,9 @@ FrictionPhase FrictionLaw::sliding(double k, double r, const Vec3& u_direction, 
   // du/dt = g_t - mu_s g_n (1 + 1/k) u/|u|: |u| falls at this rate along its direction
   const double rate = force * (1 + k) / k - g_t_.dot(u_direction);
   phase.duration = kNever;
-  if (u_norm > 0 && rate > 0)
+  // (the slip ends where friction takes it away; without friction (mu_s g_n = 0) gravity
+  // only turns it, and a part across its first direction stays: the ball slides on)
+  if (u_norm > 0 && rate > 0 && force > 0)
   {
     phase.duration = u_norm / rate;
     phase.ends = kSlipStops;
