@@ -25,7 +25,10 @@ Ground::Ground(const std::optional<FloorDef>& floor, const Vec3& gravity, const 
   plane_gravity_along_ = plane_ ? along.norm() : 0.0;
   straight_ = !bends() && along.norm() <= settings.straight_gravity_ratio * g;
   if (bends() && floor_->maxCurvature() > 0)
+  {
     longest_chord_ = settings.chord_turn / floor_->maxCurvature();
+    sag_chord_squared_ = 8 * settings.chord_sag / floor_->maxCurvature();
+  }
 }
 
 Vec3 Ground::land(const Vec3& q, double radius, const Vec2& guess) const

@@ -5,6 +5,8 @@
 #include "ball_collision_sim/core/step_settings.hpp"
 #include "ball_collision_sim/core/types.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
@@ -38,6 +40,12 @@ public:
   /// (StepSettings::chord_turn over the floor's largest curvature); infinite where paths
   /// do not bend [m].
   double longestChord() const { return longest_chord_; }
+  /// ... for a ball of this radius: also no longer than strays StepSettings::chord_sag of
+  /// the radius from the floor [m].
+  double longestChord(double radius) const
+  {
+    return std::min(longest_chord_, std::sqrt(sag_chord_squared_ * radius));
+  }
 
   /// The centre of a ball of radius r put back on the floor from q (q without a floor).
   Vec3 land(const Vec3& q, double radius, const Vec2& guess) const;
@@ -121,5 +129,6 @@ private:
   Vec3 gravity_;
   bool straight_ = true;
   double longest_chord_ = std::numeric_limits<double>::infinity();
+  double sag_chord_squared_ = std::numeric_limits<double>::infinity();  ///< 8 chord_sag / k [m]
 };
 }  // namespace ball_collision_sim::core

@@ -85,6 +85,11 @@ struct StepSettings
   /// A longer one is cut where it reaches this length, and the ball goes on from the cut,
   /// on the floor, with the speed its energy gives there (an event) [rad].
   double chord_turn = 0.25;
+  /// ... and strays at most this part of the ball's radius from the surface (L^2 k / 8):
+  /// a ball stopped part way along its chord (held) ends the step there, off the floor by
+  /// the sag, and a small ball's long chord would leave it floating several radii above
+  /// it [ratio].
+  double chord_sag = 0.01;
 
   // ---- friction ----------------------------------------------------------------------
   /// A slip of the contact point smaller than this part of the ball's speeds (|v| plus

@@ -139,10 +139,11 @@ void World::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)
   // path's put back on the floor, which can lie far from it)
   const double rest = 1 - m.x0;
   const double length = rest * std::max(m.b.norm(), dt_ * v0.norm());
-  if (!(length > ground_.longestChord()))
+  const double longest = ground_.longestChord(m.radius);
+  if (!(length > longest))
     return;
   // (the path beyond the cut is not the chord's: the cut's event makes the chord after it)
-  const double span = rest * (ground_.longestChord() / length);
+  const double span = rest * (longest / length);
   chord_ends_[i] = m.x0 + span;
   m.b = (predictedEnd(i, position, v0, span * dt_) - position) / span;
 }
