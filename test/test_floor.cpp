@@ -481,6 +481,7 @@ TEST(Bowl, ASmallBallsChordsStrayLessThanItsRadius)
     }
     EXPECT_LT(std::abs(world.energy().total() - e0), 1e-9 * e0);
     EXPECT_EQ(world.lostBalls(), 0);
+    EXPECT_EQ(world.stats().frozen_balls, 0u);
     return worst;
   };
   const StepSettings settings;

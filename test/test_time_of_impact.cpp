@@ -182,6 +182,14 @@ TEST(SweepWall, GrazingAnEdgeIntoTheFaceIsMet)
     const Vec3 p(1 + beside + speed * t_cross, 0.5, z_cross + drift * t_cross - c.z() * t_cross * t_cross);
     const auto hit = sweepWall(w, p, e, c, r, 1.0, kSlop);
     const double until = hit ? hit->t : 1.0;
+    if (hit)
+    {
+      // met touching, from its own side
+      const Vec3 q = p + hit->t * e + (hit->t * hit->t) * c;
+      EXPECT_NEAR((q - w.closestPoint(q)).norm(), r, 1e-9);
+      EXPECT_GT(q.z(), 0.0);
+      EXPECT_GT(hit->normal.z(), 0.0);
+    }
     // the path up to the impact (or its end) stays out of the wall but for round-off
     double deepest = 0;
     for (int s = 0; s <= 400; ++s)
@@ -194,6 +202,11 @@ TEST(SweepWall, GrazingAnEdgeIntoTheFaceIsMet)
     met += hit ? 1 : 0;
   }
   EXPECT_GT(met, 1900);
+  // A ball that passes beside the edge with room to spare, crosses the plane beside the
+  // face and comes over the face from behind meets nothing; straight, and falling past
+  // the edge under acceleration.
+  EXPECT_FALSE(sweepWall(w, Vec3(1.1, 0.5, 0.05), Vec3(-3, 0, -3), Vec3::Zero(), 0.02, 0.04, kSlop));
+  EXPECT_FALSE(sweepWall(w, Vec3(1.1, 0.5, 0.1), Vec3(-1, 0, 0), Vec3(0, 0, -100), 0.02, 0.3, kSlop));
 }
 
 TEST(FirstRoot, FindsTheEarliestRootOfAQuarticToTheLastBit)

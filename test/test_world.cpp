@@ -740,4 +740,14 @@ TEST(StepSettings, TakenByTheWorldAtConstruction)
   EXPECT_EQ(World(cradle).stats().frozen_balls, 0u);
   capped.max_events_per_ball_step = 70000;
   EXPECT_THROW(World(cradle, capped), std::invalid_argument);
+  // chords of no length (or none at all) are refused too
+  for (const double bad : {0.0, -0.01, std::nan("")})
+  {
+    StepSettings chords;
+    chords.chord_sag = bad;
+    EXPECT_THROW(World(cradle, chords), std::invalid_argument) << bad;
+    chords = StepSettings();
+    chords.chord_turn = bad;
+    EXPECT_THROW(World(cradle, chords), std::invalid_argument) << bad;
+  }
 }

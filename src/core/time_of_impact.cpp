@@ -231,16 +231,19 @@ std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e,
     if (rate_from > 0)
     {
       const auto back = firstRoot({rate_from, acc, 0.0, 0.0, 0.0}, t_max - from);
-      return back ? std::optional<double>(from + *back) : std::nullopt;
+      return back ? std::optional<double>(std::min(from + *back, t_max)) : std::nullopt;
     }
     return closesIn(rate_from, acc, t_max - from, slop * r) ? std::optional<double>(from) : std::nullopt;
   };
   // Within r of the plane beside the face: where the contact point comes over the face
-  // while still within r, the face is met there. (An edge is met first, exactly; but a
-  // ball grazing an edge may miss it by round-off, and then go on into the face.)
+  // while still within r, and on the side it came from, the face is met there. (An edge
+  // is met first, exactly; but a ball grazing an edge may miss it by round-off, and then
+  // go on into the face. One that passed the edge and the plane comes over the face from
+  // behind: no impact.)
   const auto entering = [&](double from) -> std::optional<double> {
     const auto in = entersFace(wall, p, e, c, from, t_max);
-    if (!in || !(d0 + *in * (rate + acc * *in) <= r))
+    const double d_in = in ? d0 + *in * (rate + acc * *in) : 0.0;
+    if (!in || !(d_in >= 0 && d_in <= r))
       return std::nullopt;
     const auto t = fromWithin(*in);
     return t && (*t == *in || !beside(wall, pointAt(p, e, c, *t))) ? t : std::nullopt;

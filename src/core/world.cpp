@@ -38,6 +38,11 @@ World::World(const Scene& scene, SceneCheck checked, const StepSettings& setting
   // (a ball's event count is kept in 16 bits, up to one past the cap)
   if (settings_.max_events_per_ball_step >= 0xffff)
     throw std::invalid_argument("max_events_per_ball_step: must be below 65535");
+  // (a chord of no length would be cut again and again where it starts)
+  if (!(settings_.chord_turn > 0))
+    throw std::invalid_argument("chord_turn: must be > 0");
+  if (!(settings_.chord_sag > 0))
+    throw std::invalid_argument("chord_sag: must be > 0");
   sleep_steps_ = static_cast<std::uint16_t>(std::clamp(std::ceil(settings_.sleep_time / dt_), 1.0, 65535.0));
   load(checked.balls);
 }

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Item: several simulators side by side on one master, no crosstalk. The README's
-launch/two_simulators.launch runs config/default.yaml in /a and config/billiards.yaml in
+"""Item: several simulators side by side on one master, no crosstalk. The
+launch/two_simulators.launch (README, docs/ros-interface.md) runs config/default.yaml in /a and config/billiards.yaml in
 /b, both paused. Each answers for its own world only: its topics, services, rviz clicks
 and tf frames are its own, and only /a publishes /clock."""
 import sys

@@ -40,8 +40,8 @@ public:
   /// (StepSettings::chord_turn over the floor's largest curvature); infinite where paths
   /// do not bend [m].
   double longestChord() const { return longest_chord_; }
-  /// ... for a ball of this radius: also no longer than strays StepSettings::chord_sag of
-  /// the radius from the floor [m].
+  /// ... for a ball of this radius: also no longer than one that strays
+  /// StepSettings::chord_sag of the radius from the floor [m].
   double longestChord(double radius) const
   {
     return std::min(longest_chord_, std::sqrt(sag_chord_squared_ * radius));

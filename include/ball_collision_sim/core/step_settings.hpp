@@ -85,10 +85,13 @@ struct StepSettings
   /// A longer one is cut where it reaches this length, and the ball goes on from the cut,
   /// on the floor, with the speed its energy gives there (an event) [rad].
   double chord_turn = 0.25;
-  /// ... and strays at most this part of the ball's radius from the surface (L^2 k / 8):
-  /// a ball stopped part way along its chord (held) ends the step there, off the floor by
-  /// the sag, and a small ball's long chord would leave it floating several radii above
-  /// it [ratio].
+  /// ... and strays at most about this part of the ball's radius from the surface (L^2 k /
+  /// 8, for the floor's curvature k; the centre's surface, r further out, curves by up to
+  /// R / (R - r) more in a hollow of radius R): a ball stopped part way along its chord
+  /// (held) ends the step there, off the floor by the sag, and a small ball's long chord
+  /// would leave it floating several radii above it. A small fast ball's step is then cut
+  /// into v dt / sqrt(8 chord_sag r / k) chords, each an event that counts toward
+  /// max_events_per_ball_step [ratio].
   double chord_sag = 0.01;
 
   // ---- friction ----------------------------------------------------------------------
