@@ -138,6 +138,8 @@ void StepGrid::start(std::size_t n, const Vec3& up, const StepSettings& settings
   outlier_ratio_ = settings.grid_outlier_ratio;
   dense_cells_per_item_ = settings.grid_dense_cells_per_item;
   dense_extra_cells_ = settings.grid_dense_extra_cells;
+  cell_margin_ = settings.grid_cell_margin;
+  cell_floor_ = settings.grid_cell_floor;
 }
 
 void StepGrid::build()
@@ -193,7 +195,7 @@ double StepGrid::chooseCell(bool& outliers)
         widest = std::max(widest, e);
   }
   // (wider by round-off of the boxes' bounds, and not zero where every box is a point)
-  cell_ = widest * (1 + 1e-9) + 1e-12;
+  cell_ = widest * (1 + cell_margin_) + cell_floor_;
   inv_cell_ = 1.0 / cell_;
   return widest;
 }

@@ -225,6 +225,8 @@ private:
   double outlier_ratio_ = 4.0;          ///< StepSettings::grid_outlier_ratio
   double dense_cells_per_item_ = 4.0;   ///< StepSettings::grid_dense_cells_per_item
   double dense_extra_cells_ = 1024.0;   ///< StepSettings::grid_dense_extra_cells
+  double cell_margin_ = 1e-9;           ///< StepSettings::grid_cell_margin
+  double cell_floor_ = 1e-12;           ///< StepSettings::grid_cell_floor [m]
   /// What the grid keeps of an item, in half a cache line.
   struct alignas(32) Item
   {

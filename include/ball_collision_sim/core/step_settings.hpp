@@ -110,6 +110,11 @@ struct StepSettings
   /// A swept box wider than this many times the mean is left out of the cell's width
   /// and listed apart: one fast or large ball must not make every cell huge [ratio].
   double grid_outlier_ratio = 4.0;
+  /// A cell is wider than the widest box it is sized by, by this part of it (round-off of
+  /// the boxes' bounds) [ratio], and by this, so that it is not zero where every box is a
+  /// point [m].
+  double grid_cell_margin = 1e-9;
+  double grid_cell_floor = 1e-12;
   /// The grid's cells are one dense array while there are at most this many per item
   /// plus grid_dense_extra_cells (then the scan reads the items in cell order), else
   /// hashed buckets: balls spread thin over a large floor must not cost a table of empty
