@@ -222,7 +222,9 @@ std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e,
   if (s0 == 0)
     side = en > 0 || (en == 0 && cn > 0) ? -1.0 : 1.0;
   const double d0 = side * s0, rate = side * en, acc = side * cn;
-  const WallHit none{t_max, WallFeature::kFace, side * wall.normal};
+  const auto hit = [&](std::optional<double> t) {
+    return t ? std::optional<WallHit>(WallHit{*t, WallFeature::kFace, side * wall.normal}) : std::nullopt;
+  };
   // Within r of the plane at `from` (the distance there is d0 + rate t + acc t^2): met
   // now where the motion goes deeper than round-off, or where it moves off and comes
   // back to this depth.
@@ -242,8 +244,10 @@ std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e,
   // behind: no impact.)
   const auto entering = [&](double from) -> std::optional<double> {
     const auto in = entersFace(wall, p, e, c, from, t_max);
-    const double d_in = in ? d0 + *in * (rate + acc * *in) : 0.0;
-    if (!in || !(d_in >= 0 && d_in <= r))
+    if (!in)
+      return std::nullopt;
+    const double d_in = d0 + *in * (rate + acc * *in);
+    if (!(d_in >= 0 && d_in <= r))
       return std::nullopt;
     const auto t = fromWithin(*in);
     return t && (*t == *in || !beside(wall, pointAt(p, e, c, *t))) ? t : std::nullopt;
@@ -255,7 +259,7 @@ std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e,
                  : firstRoot({d0 - r, rate, acc, 0.0, 0.0}, t_max);
     if (t && beside(wall, pointAt(p, e, c, *t)))
       t = entering(*t);
-    return t ? std::optional<WallHit>(WallHit{*t, none.feature, none.normal}) : std::nullopt;
+    return hit(t);
   }
   if (beside(wall, p))
   {
@@ -270,12 +274,10 @@ std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e,
       if (back > 0 && back <= t_max && !beside(wall, pointAt(p, e, c, back)) && (!t || back < *t))
         t = back;
     }
-    return t ? std::optional<WallHit>(WallHit{*t, none.feature, none.normal}) : std::nullopt;
+    return hit(t);
   }
   t = fromWithin(0.0);
-  if (!t || beside(wall, pointAt(p, e, c, *t)))
-    return std::nullopt;
-  return WallHit{*t, none.feature, none.normal};
+  return t && !beside(wall, pointAt(p, e, c, *t)) ? hit(t) : std::nullopt;
 }
 
 /// Edge k: the cylinder of radius r around the segment, then the contact must lie

@@ -36,12 +36,10 @@ public:
   /// The plane's normal, or up where there is no floor (a curved floor's varies) [unit].
   const Vec3& flatNormal() const { return plane_ ? plane_normal_ : up_; }
 
-  /// The longest chord a motion on the floor may take before it is cut
-  /// (StepSettings::chord_turn over the floor's largest curvature); infinite where paths
-  /// do not bend [m].
-  double longestChord() const { return longest_chord_; }
-  /// ... for a ball of this radius: also no longer than one that strays
-  /// StepSettings::chord_sag of the radius from the floor [m].
+  /// The longest chord a ball of this radius may take on the floor before it is cut:
+  /// StepSettings::chord_turn over the floor's largest curvature, and no longer than one
+  /// that strays StepSettings::chord_sag of the radius from the floor; infinite where
+  /// paths do not bend [m].
   double longestChord(double radius) const
   {
     return std::min(longest_chord_, std::sqrt(sag_chord_squared_ * radius));

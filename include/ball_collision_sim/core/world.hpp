@@ -347,7 +347,7 @@ private:
   /// Where ball i's chord ends: 1, or on a curved floor where it was cut (cutChord()).
   double chordEnd(std::size_t i) const { return chord_ends_.empty() ? 1.0 : chord_ends_[i]; }
   /// A chord of ball i (from `position` with start velocity v0) longer than the floor
-  /// allows (Ground::longestChord(radius)) is cut where it reaches that length, and ends there
+  /// allows (Ground::longestChord()) is cut where it reaches that length, and ends there
   /// on the floor; the ball goes on from there by an event (queueCut(), resolveMotionEnd()).
   void cutChord(std::size_t i, const Vec3& position, const Vec3& v0);
   void queueCut(std::size_t i);
