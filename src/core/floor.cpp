@@ -18,6 +18,9 @@ std::array<Vec3, 3> powerBasis(const Vec3& p0, const Vec3& p1, const Vec3& p2)
 /// Newton's method for the foot point converges quadratically from a guess near it;
 /// far from the surface its damped steps take longer, never this many in the tests.
 constexpr int kMaxNewtonIterations = 30;
+/// Newton's method stops where its next step in (u, v) would be shorter than this [1]:
+/// a few ulps of parameters in [0, 1], where a further step only trades round-off.
+constexpr double kFootStepTolerance = 1e-15;
 }  // namespace
 
 Floor::Floor(const FloorDef& def, const Vec3& gravity) : def_(def)
@@ -150,7 +153,7 @@ FloorFoot Floor::project(const Vec3& q, const Vec2& guess) const
   {
     // Newton's method on the gradient of |S(u, v) - q|^2 / 2; where its Hessian is not
     // positive definite (far from the surface), the Gauss-Newton step instead.
-    // It stops where the next step would be below 1e-15, without taking it: the
+    // It stops where the next step would be below kFootStepTolerance, without taking it: the
     // derivatives at hand are then those at the foot point (and a guess that is already
     // the foot, as for a ball at rest, costs one evaluation).
     Vec2 uv = guess;
@@ -168,7 +171,7 @@ FloorFoot Floor::project(const Vec3& q, const Vec2& guess) const
         h << su.dot(su), su.dot(sv), su.dot(sv), sv.dot(sv);
       Vec2 step = -h.inverse() * grad;
       const double len = step.norm();
-      converged = len < 1e-15;
+      converged = len < kFootStepTolerance;
       if (converged)
         break;
       if (len > 0.5)

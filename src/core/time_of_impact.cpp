@@ -11,6 +11,11 @@ namespace ball_collision_sim::core
 
 namespace
 {
+/// The screen that drops pairs too far apart to meet within the step compares lengths
+/// of a few rounded operations; it drops a pair only when its bound beats the reach by
+/// this part of it [1], well above their round-off, so no pair that meets is dropped.
+constexpr double kScreenMargin = 1e-9;
+
 /// p(t) for the coefficients a[0..n], by Horner's rule.
 double evaluate(const std::array<double, 5>& a, int n, double t)
 {
@@ -153,7 +158,7 @@ std::optional<double> sphereSweepAccelerated(const Vec3& d, const Vec3& e, const
   if (f[0] > 0)
   {
     // (|d + t e + t^2 c| >= |d| - t |e| - t^2 |c|: most pairs cannot meet at all)
-    if (std::sqrt(f[0] + reach * reach) - t_max * (e.norm() + t_max * c.norm()) > (1 + 1e-9) * reach)
+    if (std::sqrt(f[0] + reach * reach) - t_max * (e.norm() + t_max * c.norm()) > (1 + kScreenMargin) * reach)
       return std::nullopt;
     return firstRoot(f, t_max);
   }
