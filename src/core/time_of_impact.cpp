@@ -215,25 +215,37 @@ std::optional<double> entersFace(const Wall& wall, const Vec3& p, const Vec3& e,
   return std::nullopt;
 }
 
-/// The face: the plane at distance r on the ball's side (the signed distance from it is
-/// linear in t, or quadratic under acceleration), then the contact point must project
-/// inside the parallelogram.
-std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e, const Vec3& c, double r,
-                                 double t_max, double slop)
+/// A ball's path against a wall's face, in the signed distance from the face's plane on
+/// the ball's side: d(t) = d0 + rate t + acc t^2.
+struct FaceSweep
 {
-  const double s0 = (p - wall.def.point).dot(wall.normal);
-  const double en = e.dot(wall.normal), cn = c.dot(wall.normal);
-  double side = s0 > 0 ? 1.0 : -1.0;
-  if (s0 == 0)
-    side = en > 0 || (en == 0 && cn > 0) ? -1.0 : 1.0;
-  const double d0 = side * s0, rate = side * en, acc = side * cn;
-  const auto hit = [&](std::optional<double> t) {
+  const Wall& wall;
+  const Vec3& p;
+  const Vec3& e;
+  const Vec3& c;
+  double r, t_max, slop;
+  double side, d0, rate, acc;
+
+  FaceSweep(const Wall& wall, const Vec3& p, const Vec3& e, const Vec3& c, double r, double t_max, double slop)
+      : wall(wall), p(p), e(e), c(c), r(r), t_max(t_max), slop(slop)
+  {
+    const double s0 = (p - wall.def.point).dot(wall.normal);
+    const double en = e.dot(wall.normal), cn = c.dot(wall.normal);
+    side = s0 > 0 ? 1.0 : -1.0;
+    if (s0 == 0)
+      side = en > 0 || (en == 0 && cn > 0) ? -1.0 : 1.0;
+    d0 = side * s0;
+    rate = side * en;
+    acc = side * cn;
+  }
+  std::optional<WallHit> hit(std::optional<double> t) const
+  {
     return t ? std::optional<WallHit>(WallHit{*t, WallFeature::kFace, side * wall.normal}) : std::nullopt;
-  };
-  // Within r of the plane at `from` (the distance there is d0 + rate t + acc t^2): met
-  // now where the motion goes deeper than round-off, or where it moves off and comes
-  // back to this depth.
-  const auto fromWithin = [&](double from) -> std::optional<double> {
+  }
+  /// Within r of the plane at `from`: met now where the motion goes deeper than
+  /// round-off, or where it moves off and comes back to this depth.
+  std::optional<double> fromWithin(double from) const
+  {
     const double rate_from = rate + 2 * acc * from;
     if (rate_from > 0)
     {
@@ -241,13 +253,14 @@ std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e,
       return back ? std::optional<double>(std::min(from + *back, t_max)) : std::nullopt;
     }
     return closesIn(rate_from, acc, t_max - from, slop * r) ? std::optional<double>(from) : std::nullopt;
-  };
-  // Within r of the plane beside the face: where the contact point comes over the face
-  // while still within r, and on the side it came from, the face is met there. (An edge
-  // is met first, exactly; but a ball grazing an edge may miss it by round-off, and then
-  // go on into the face. One that passed the edge and the plane comes over the face from
-  // behind: no impact.)
-  const auto entering = [&](double from) -> std::optional<double> {
+  }
+  /// Within r of the plane beside the face: where the contact point comes over the face
+  /// while still within r, and on the side it came from, the face is met there. (An edge
+  /// is met first, exactly; but a ball grazing an edge may miss it by round-off, and then
+  /// go on into the face. One that passed the edge and the plane comes over the face from
+  /// behind: no impact.)
+  std::optional<double> entering(double from) const
+  {
     const auto in = entersFace(wall, p, e, c, from, t_max);
     if (!in)
       return std::nullopt;
@@ -256,22 +269,14 @@ std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e,
       return std::nullopt;
     const auto t = fromWithin(*in);
     return t && (*t == *in || !beside(wall, pointAt(p, e, c, *t))) ? t : std::nullopt;
-  };
-  std::optional<double> t;
-  if (d0 > r)
-  {
-    t = acc == 0 ? (rate < 0 && (d0 - r) / -rate <= t_max ? std::optional<double>((d0 - r) / -rate) : std::nullopt)
-                 : firstRoot({d0 - r, rate, acc, 0.0, 0.0}, t_max);
-    if (t && beside(wall, pointAt(p, e, c, *t)))
-      t = entering(*t);
-    return hit(t);
   }
-  if (beside(wall, p))
+  /// Beside the face and within r of its plane: it may come over the face (entering()),
+  /// or leave beyond r and come back over the face, where (d0 - r) + rate t + acc t^2,
+  /// <= 0 now, falls to 0 again: its larger root, where it opens downward. (Straight, it
+  /// never comes back.)
+  std::optional<double> fromBeside() const
   {
-    t = entering(0.0);
-    // Beside the face, it may also leave beyond r and come back over the face, where
-    // (d0 - r) + rate t + acc t^2, <= 0 now, falls to 0 again: its larger root, where it
-    // opens downward. (Straight, it never comes back.)
+    std::optional<double> t = entering(0.0);
     const double disc = rate * rate - 4 * acc * (d0 - r);
     if (acc < 0 && disc > 0)
     {
@@ -279,10 +284,31 @@ std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e,
       if (back > 0 && back <= t_max && !beside(wall, pointAt(p, e, c, back)) && (!t || back < *t))
         t = back;
     }
-    return hit(t);
+    return t;
   }
-  t = fromWithin(0.0);
-  return t && !beside(wall, pointAt(p, e, c, *t)) ? hit(t) : std::nullopt;
+};
+
+/// The face: the plane at distance r on the ball's side (the signed distance from it is
+/// linear in t, or quadratic under acceleration), then the contact point must project
+/// inside the parallelogram.
+std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e, const Vec3& c, double r,
+                                 double t_max, double slop)
+{
+  const FaceSweep f(wall, p, e, c, r, t_max, slop);
+  if (f.d0 > r)
+  {
+    std::optional<double> t =
+        f.acc == 0 ? (f.rate < 0 && (f.d0 - r) / -f.rate <= t_max ? std::optional<double>((f.d0 - r) / -f.rate)
+                                                                   : std::nullopt)
+                   : firstRoot({f.d0 - r, f.rate, f.acc, 0.0, 0.0}, t_max);
+    if (t && beside(wall, pointAt(p, e, c, *t)))
+      t = f.entering(*t);
+    return f.hit(t);
+  }
+  if (beside(wall, p))
+    return f.hit(f.fromBeside());
+  const auto t = f.fromWithin(0.0);
+  return t && !beside(wall, pointAt(p, e, c, *t)) ? f.hit(t) : std::nullopt;
 }
 
 /// Edge k: the cylinder of radius r around the segment, then the contact must lie
