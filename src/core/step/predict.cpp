@@ -13,6 +13,7 @@ using namespace step;
 void World::predictMotions()
 {
   static_assert(sizeof(Motion) == 64, "a Motion fills one cache line");
+  static_assert(sizeof(MotionState) == 12, "a MotionState packs into 12 bytes");
   grid_.start(balls_.size(), ground_.up(), settings_);
   // (taken back at once, so that a step cut short by an exception leaves none ready)
   if (std::exchange(motions_ready_, false))

@@ -37,24 +37,25 @@ struct alignas(64) World::Motion
   double radius = 0.0;           ///< the ball's [m]
 };
 
-/// The rest of a ball's state in the step.
+/// The rest of a ball's state in the step, in 12 bytes (its flags one bit each).
 struct World::MotionState
 {
   std::uint32_t epoch = 0;       ///< bumped at every event of this ball
   std::uint16_t events = 0;      ///< events of this ball in this step, up to one past the cap
   /// no motion for the rest of the step, immovable (inverse mass 0): stopped by the event
   /// cap, or asleep
-  bool frozen = false;
-  bool asleep = false;           ///< frozen because the ball sleeps: an impact wakes it
+  bool frozen : 1;
+  bool asleep : 1;               ///< frozen because the ball sleeps: an impact wakes it
   /// its motion is the parabola of a free ball (World::path_c_), not a chord
-  bool accelerates = false;
+  bool accelerates : 1;
   /// Held (see hold()): in a jam at a resting contact, or left no motion its energy allows;
   /// it stays where it is through resting contacts for the rest of the step (an impact
   /// lets it go).
-  bool held = false;
+  bool held : 1;
   std::int32_t blocked = -1;     ///< its BlockedSet this step, if any
-};
 
+  MotionState() : frozen(false), asleep(false), accelerates(false), held(false) {}
+};
 /// A ball's friction phase in the step (worlds with friction), by visiting index: while
 /// `free`, its motion's parabola term is c = a dt^2 / 2 and its spin at x is
 /// w0 + alpha (x - x0) dt, until x_end, where the phase ends as `ends` says.
