@@ -252,6 +252,9 @@ private:
   struct Motion;
   struct MotionState;
   struct SpinMotion;
+  /// How a ball's motion and spin go within the step with friction
+  /// (src/core/step/spin_phase.hpp): a type per phase, not a branch in the step.
+  struct SpinPhase;
   struct BlockedSet;
   /// How balls move on this world's ground within a step (src/core/step/floor_motion.hpp):
   /// a type the ground provides, exact paths on a plane or without a floor, chords on a
@@ -387,7 +390,7 @@ private:
   // Friction (src/core/step/friction.cpp).
   /// Ball i's friction phase from x on, from its start velocity and spin_motions_[i].w0;
   /// a change of motion kind is recorded when `record`. A phase without friction force
-  /// (SpinMotion::Mode::kFrictionless) is left for the caller to move as a frictionless ball,
+  /// (a frictionless SpinPhase) is left for the caller to move as a frictionless ball,
   /// and on a curved floor every moving phase to move on its chord under
   /// SpinMotion::pull: returns whether the caller is to move it. On a curved floor a ball
   /// that was rolling, and not hit (`impact`), rolls on under the normal where it is now.
@@ -426,6 +429,12 @@ private:
   /// |v0|^2 + 2 <pull, p - p0>: ball i's speed squared at p where its pull does all the
   /// work [m^2/s^2].
   double pulledSpeedSquared(std::size_t i, const Vec3& p) const;
+  /// |v|^2 where ball i's chord b ends, `rest` of the step on, with its pull's work along
+  /// the chord (linear in b).
+  double linearChordSpeedSquared(std::size_t i, double rest, const Vec3& b) const
+  {
+    return startVelocity(i).squaredNorm() + 2 * rest * pullOf(i).dot(b);
+  }
   /// Turns ball i by the rotation vector `angle` [rad].
   void turn(std::size_t i, const Vec3& angle);
   /// The spin of a ball defined by `def` on the floor with normal n: its own, or rolling's.

@@ -211,11 +211,14 @@ void World::ChordMotion::rollOn(World& w, std::size_t i, const FrictionLaw& law)
   sm.w0 = law.rollingSpin(w.motions_[i].radius, w.startVelocity(i), sm.w0, sm.w0.dot(sm.normal));
 }
 
-bool World::ChordMotion::phaseMotion(World& w, std::size_t i, const FrictionLaw&) const
+bool World::ChordMotion::drivenMotion(World&, std::size_t, const FrictionLaw&) const
 {
-  if (w.spin_motions_[i].mode == SpinMotion::Mode::kDriven)
-    return true;  // a chord under its pull
-  // Still: it stays where it is, with no speed (a chord's point below the floor, where a
+  return true;  // a chord under its pull
+}
+
+bool World::ChordMotion::stillMotion(World& w, std::size_t i, const FrictionLaw&) const
+{
+  // It stays where it is, with no speed (a chord's point below the floor, where a
   // phase ended mid-step, is not lifted onto it for nothing).
   w.startVelocity(i) = w.motions_[i].b = Vec3::Zero();
   w.states_[i].accelerates = false;
@@ -227,8 +230,6 @@ Vec3 World::ChordMotion::phaseVelocity(const World& w, std::size_t i, double x, 
 {
   const SpinMotion& sm = w.spin_motions_[i];
   const double t = (x - w.motions_[i].x0) * w.dt_;
-  if (sm.mode == SpinMotion::Mode::kStill)
-    return w.startVelocity(i) + t * sm.a;
   return w.ground_.withSpeedSquared(w.ground_.along(w.startVelocity(i) + t * sm.pull, normal),
                                     w.speedSquaredAt(i, x, position));
 }

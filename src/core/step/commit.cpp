@@ -2,7 +2,7 @@
 // there (settled across the step's resting contacts), its turn by rolling; and, while the
 // visiting order stays, the next step's prediction. Reads motions_, states_, resting_;
 // writes balls_, feet_.
-#include "floor_motion.hpp"
+#include "spin_phase.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
 
@@ -84,7 +84,7 @@ World::Committed World::commitBall(std::size_t i, bool settle)
 {
   Ball& ball = balls_[i];
   // (a ball asleep stays where it is, on the foot point it had; the floor's normal there
-  // counts only across resting contacts: its spin is kept as it is, SpinMotion::Mode::kKept)
+  // counts only across resting contacts: its spin is kept as it is, SpinPhase::kept())
   const Ground::End end = states_[i].asleep ? ground_.stillEnd(ball.position, motions_[i].radius, guessOf(i), settle)
                                             : ground_.end(positionAt(i, 1.0), motions_[i].radius, guessOf(i));
   if (!feet_.empty())
@@ -101,11 +101,10 @@ World::Committed World::commitBall(std::size_t i, bool settle)
     BallSpin& spin = spins_[i];
     // (a rolling ball rolls under the normal where it ends)
     const Vec3 w = floor_motion_->spinThere(*this, i, end.normal, ball.velocity, spinAt(i, 1.0),
-                                            sm.phase() && sm.kind == MotionKind::kRolling);
+                                            sm.phase->rollsAtCommit(sm));
     sm.turn = (0.5 * dt_) * (spin.angular_velocity + w);
     spin.angular_velocity = w;
-    if (sm.mode == SpinMotion::Mode::kConstrained)
-      sm.kind = frictionUnder(end.normal).constrainedKind(motions_[i].radius, ball.velocity, w);
+    sm.kind = sm.phase->kindAtEnd(*this, i, sm, end.normal, ball.velocity, w);
     recordKind(i, motions_[i].x0);  // (a kind the step's events did not report)
     spin.kind = sm.kind;
   }

@@ -2,7 +2,7 @@
 // holding balls still, and what a motion's energy allows (FloorMotion::keepEnergy(), with
 // the floor's motion type saying where its motion ends and how it is cut short).
 // Reads and writes motions_, states_, blocked_sets_, and a held ball's spin_motions_.
-#include "floor_motion.hpp"
+#include "spin_phase.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
 
@@ -150,7 +150,7 @@ void World::hold(std::size_t i)
   states_[i].held = true;
   // (with friction its spin then follows from its contacts too, not from a phase whose
   // motion it does not make: FrictionLaw::constrained())
-  if (friction_ && spin_motions_[i].phase())
+  if (friction_ && spin_motions_[i].phase->ownsMotion())
     constrainSpin(i);
 }
 
@@ -168,9 +168,9 @@ double World::EnergyCheck::speedSquared(double s) const
 double World::EnergyCheck::chordSpeedSquared(const Vec3& b) const
 {
   // (a chord's: its end is off the floor)
-  if (world->friction_ && world->spin_motions_[i].forced())
-    return world->speedSquaredAt(i, world->chordEnd(i), world->motions_[i].p0 + rest * b);
-  return world->startVelocity(i).squaredNorm() + 2 * rest * world->pullOf(i).dot(b);
+  if (world->friction_)
+    return world->spin_motions_[i].phase->chordSpeedSquared(*world, i, rest, b);
+  return world->linearChordSpeedSquared(i, rest, b);
 }
 
 void World::keepEnergy(std::size_t i)

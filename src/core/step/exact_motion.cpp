@@ -80,7 +80,12 @@ FrictionLaw World::ExactMotion::lawUnder(const World& w, const Vec3&) const
   return *w.friction_;  // the plane's (or no floor's) own
 }
 
-bool World::ExactMotion::phaseMotion(World& w, std::size_t i, const FrictionLaw& law) const
+bool World::ExactMotion::stillMotion(World& w, std::size_t i, const FrictionLaw& law) const
+{
+  return drivenMotion(w, i, law);  // (its phase's parabola, of no acceleration along the floor)
+}
+
+bool World::ExactMotion::drivenMotion(World& w, std::size_t i, const FrictionLaw& law) const
 {
   // (its path is a parabola on the plane: a part of v into the floor, which a contact's
   // projection out of a leaning wall can leave, is the floor's)

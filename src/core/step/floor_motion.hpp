@@ -52,12 +52,14 @@ struct World::FloorMotion
   /// A rolling ball that was not hit starts its next phase under `law`'s normal: its
   /// spin then (SpinMotion::w0).
   virtual void rollOn(World& w, std::size_t i, const FrictionLaw& law) const = 0;
-  /// After startFriction() has set the phase of a ball whose phase has friction force or
-  /// holds it still: its motion where the phase gives it one (returns false), or true
-  /// where the caller is to move it as the chord under SpinMotion::pull.
-  virtual bool phaseMotion(World& w, std::size_t i, const FrictionLaw& law) const = 0;
-  /// Ball i's velocity at x, at `position` on the floor with this normal, in a phase
-  /// friction acts on (SpinMotion::forced()).
+  /// After startFriction() has set a driven phase (sliding, rolling): its motion where
+  /// the phase gives it one (returns false), or true where the caller is to move it as
+  /// the chord under SpinMotion::pull.
+  virtual bool drivenMotion(World& w, std::size_t i, const FrictionLaw& law) const = 0;
+  /// The same for a still phase (spinning, stationary).
+  virtual bool stillMotion(World& w, std::size_t i, const FrictionLaw& law) const = 0;
+  /// Ball i's velocity at x, at `position` on the floor with this normal, in a driven
+  /// phase.
   virtual Vec3 phaseVelocity(const World& w, std::size_t i, double x, const Vec3& position,
                              const Vec3& normal) const = 0;
   /// |v|^2 of ball i at x where its motion is at p, from the energy (World::speedSquaredAt()).
@@ -79,7 +81,8 @@ struct World::ExactMotion final : World::FloorMotion
                 const Vec3& pb) const override;
   FrictionLaw lawUnder(const World& w, const Vec3& n) const override;
   void rollOn(World&, std::size_t, const FrictionLaw&) const override {}
-  bool phaseMotion(World& w, std::size_t i, const FrictionLaw& law) const override;
+  bool drivenMotion(World& w, std::size_t i, const FrictionLaw& law) const override;
+  bool stillMotion(World& w, std::size_t i, const FrictionLaw& law) const override;
   Vec3 phaseVelocity(const World& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const override;
   double speedSquaredAt(const World& w, std::size_t i, double x, const Vec3& p) const override;
   Vec3 spinThere(const World&, std::size_t, const Vec3&, const Vec3&, const Vec3& spin, bool) const override
@@ -99,7 +102,8 @@ struct World::ChordMotion final : World::FloorMotion
                 const Vec3& pb) const override;
   FrictionLaw lawUnder(const World& w, const Vec3& n) const override;
   void rollOn(World& w, std::size_t i, const FrictionLaw& law) const override;
-  bool phaseMotion(World& w, std::size_t i, const FrictionLaw& law) const override;
+  bool drivenMotion(World& w, std::size_t i, const FrictionLaw& law) const override;
+  bool stillMotion(World& w, std::size_t i, const FrictionLaw& law) const override;
   Vec3 phaseVelocity(const World& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const override;
   double speedSquaredAt(const World& w, std::size_t i, double x, const Vec3& p) const override;
   Vec3 spinThere(const World& w, std::size_t i, const Vec3& normal, const Vec3& v, const Vec3& spin,

@@ -3,7 +3,7 @@
 // end of a phase (slip, speed or spin about the normal reaching zero) is an event at its
 // exact time, and impacts add tangential impulses. Reads and writes motions_, states_,
 // spin_motions_, the start velocities and the queue; writes transitions_ and stats_.
-#include "floor_motion.hpp"
+#include "spin_phase.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
 
@@ -42,11 +42,7 @@ FrictionLaw World::frictionUnder(const Vec3& n) const
 double World::speedSquaredAt(std::size_t i, double x, const Vec3& p) const
 {
   if (friction_)
-  {
-    const SpinMotion& sm = spin_motions_[i];
-    if (sm.forced() && (sm.kind == MotionKind::kSliding || sm.kind == MotionKind::kRolling))
-      return floor_motion_->speedSquaredAt(*this, i, x, p);
-  }
+    return spin_motions_[i].phase->speedSquaredAt(*this, i, x, p);
   return pulledSpeedSquared(i, p);
 }
 
@@ -57,8 +53,8 @@ double World::pulledSpeedSquared(std::size_t i, const Vec3& p) const
 
 const Vec3& World::pullOf(std::size_t i) const
 {
-  if (friction_ && spin_motions_[i].forced())
-    return spin_motions_[i].pull;
+  if (friction_)
+    return spin_motions_[i].phase->pull(*this, spin_motions_[i]);
   return gravity_;
 }
 
@@ -92,14 +88,10 @@ bool World::startFriction(std::size_t i, double x, bool record, bool impact)
   sm.slip_force = scene_.friction->sliding * std::max(0.0, -gravity_.dot(law.normal()));
   sm.roll_resistance = scene_.friction->rolling * std::max(0.0, -gravity_.dot(law.normal()));
   sm.slip_rate = sm.slip_force * (1 + spin.inertia) / spin.inertia - law.gravityAlong().dot(phase.slip_direction);
-  sm.mode = phase.conservative       ? SpinMotion::Mode::kFrictionless
-            : phase.gravity_share > 0 ? SpinMotion::Mode::kDriven
-                                      : SpinMotion::Mode::kStill;
+  sm.phase = &SpinPhase::of(phase);
   if (record)
     recordKind(i, x);
-  if (sm.mode == SpinMotion::Mode::kFrictionless)
-    return true;  // the caller gives it a frictionless ball's motion
-  return floor_motion_->phaseMotion(*this, i, law);
+  return sm.phase->startMotion(*this, i, law);
 }
 
 void World::keepSpin(std::size_t i)
@@ -108,7 +100,7 @@ void World::keepSpin(std::size_t i)
   sm.alpha = sm.a = sm.c = Vec3::Zero();
   sm.x_end = 2.0;
   sm.ends = kPhaseRuns;
-  sm.mode = SpinMotion::Mode::kKept;
+  sm.phase = &SpinPhase::kept();
 }
 
 void World::constrainSpin(std::size_t i)
@@ -123,29 +115,26 @@ void World::constrainSpin(std::size_t i)
   sm.along_time = spin.along_time;
   sm.normal_rate = spin.normal_rate;
   sm.normal_time = spin.normal_time;
-  sm.mode = SpinMotion::Mode::kConstrained;
+  sm.phase = &SpinPhase::constrained();
 }
 
 Vec3 World::spinAtEvent(std::size_t i, double x, const Vec3& normal, const Vec3& v) const
 {
   const SpinMotion& sm = spin_motions_[i];
-  return floor_motion_->spinThere(*this, i, normal, v, spinAt(i, x), sm.forced() && sm.kind == MotionKind::kRolling);
+  return floor_motion_->spinThere(*this, i, normal, v, spinAt(i, x), sm.phase->rollsAtEvent(sm));
 }
 
 Vec3 World::spinAt(std::size_t i, double x) const
 {
   const SpinMotion& sm = spin_motions_[i];
   const double t = (x - motions_[i].x0) * dt_;
-  if (sm.mode != SpinMotion::Mode::kConstrained)
-    return sm.w0 + t * sm.alpha;
-  return sm.w0 + std::min(t, sm.along_time) * sm.alpha +
-         (std::min(t, sm.normal_time) * sm.normal_rate) * sm.normal;
+  return sm.phase->spinAt(sm, t);
 }
 
 void World::queueTransition(std::size_t i)
 {
   const SpinMotion& sm = spin_motions_[i];
-  if (!sm.phase() || states_[i].frozen || !(sm.x_end <= 1))
+  if (!sm.phase->ownsMotion() || states_[i].frozen || !(sm.x_end <= 1))
     return;
   const auto k = static_cast<std::uint32_t>(i);
   queue_.push(Event{sm.x_end, k, k, states_[i].epoch, states_[i].epoch, false, WallFeature::kFace, true, false,

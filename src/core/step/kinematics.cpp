@@ -3,7 +3,7 @@
 // curved floor's chords cut to the longest it allows (an event at the cut).
 // Reads motions_, states_, the floor; writes motions_, chord_ends_, the start velocity
 // and, at a cut, the queue.
-#include "floor_motion.hpp"
+#include "spin_phase.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
 
@@ -47,7 +47,7 @@ void World::toChord(std::size_t i)
   }
   // (its contacts decide its motion from now on, and what it costs: gravity's work, not
   // its phase's pull, which for a still ball leaves gravity along the floor out)
-  if (friction_ && (parabola || spin_motions_[i].phase()))
+  if (friction_ && (parabola || spin_motions_[i].phase->ownsMotion()))
     constrainSpin(i);
 }
 
@@ -58,9 +58,9 @@ Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
 
 Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
+  if (friction_)
+    return spin_motions_[i].phase->velocity(*this, i, x, position, normal);
   const Motion& m = motions_[i];
-  if (friction_ && spin_motions_[i].forced())
-    return floor_motion_->phaseVelocity(*this, i, x, position, normal);
   return ground_.velocityAt(startVelocity(i), (x - m.x0) * dt_, m.p0, position, normal);
 }
 

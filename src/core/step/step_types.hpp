@@ -61,6 +61,7 @@ struct World::MotionState
 /// w0 + alpha (x - x0) dt, until x_end, where the phase ends as `ends` says.
 struct World::SpinMotion
 {
+  SpinMotion();  ///< kept (SpinPhase::kept())
   Vec3 w0 = Vec3::Zero();     ///< spin at the motion's start [rad/s]
   Vec3 alpha = Vec3::Zero();  ///< angular acceleration [rad/s^2]
   Vec3 a = Vec3::Zero();      ///< acceleration [m/s^2]
@@ -70,27 +71,9 @@ struct World::SpinMotion
   double x_end = 2.0;         ///< where the phase ends (beyond 1: not in this step)
   MotionKind kind = MotionKind::kStationary;
   std::uint8_t ends = kPhaseRuns;
-  /// How its motion and spin go in the step.
-  enum class Mode : std::uint8_t
-  {
-    /// no motion of its own (frozen by the event cap, or asleep): its spin stays
-    kKept,
-    /// its contacts decide its motion (held, or kept out of blocked directions); friction
-    /// acts on its spin only (FrictionLaw::constrained()): alpha along the floor for
-    /// along_time, normal_rate about n for normal_time
-    kConstrained,
-    /// a friction phase without friction force: its velocity is a frictionless ball's
-    kFrictionless,
-    /// a still phase (stationary or spinning): no share of gravity moves it
-    kStill,
-    /// a phase its share of gravity and the friction force move (sliding, rolling)
-    kDriven,
-  };
-  Mode mode = Mode::kKept;
-  /// Its motion follows a friction phase (else its contacts', or none).
-  bool phase() const { return mode >= Mode::kFrictionless; }
-  /// ... and friction acts on that motion.
-  bool forced() const { return mode == Mode::kStill || mode == Mode::kDriven; }
+  /// How its motion and spin go in the step (src/core/step/spin_phase.hpp): kept,
+  /// constrained, or a phase of its own (frictionless, still, driven).
+  const SpinPhase* phase;
   double along_time = 0.0;   ///< [s]
   double normal_rate = 0.0;  ///< [rad/s^2]
   double normal_time = 0.0;  ///< [s]

@@ -1,0 +1,69 @@
+// How a ball's motion and spin go within the step in a world with friction, as a type
+// (SpinMotion::phase): what depends on it is asked of the type, not branched on in the
+// step's stages. Five types:
+// - Kept: no motion of its own (frozen by the event cap, or asleep); its spin stays.
+// - Constrained: its contacts decide its motion (held, or kept out of blocked
+//   directions); friction acts on its spin only (FrictionLaw::constrained()).
+// - Frictionless: a friction phase without friction force; its velocity is a
+//   frictionless ball's.
+// - Still: a phase that holds the ball where it is (spinning or stationary); no share of
+//   gravity moves it.
+// - Driven: a phase its share of gravity and the friction force move (sliding, rolling).
+// Reads what the World's stages give it (motions_, spin_motions_, the start velocities);
+// starting a phase writes the ball's motion.
+#pragma once
+
+#include "floor_motion.hpp"
+
+namespace ball_collision_sim::core
+{
+struct World::SpinPhase
+{
+  virtual ~SpinPhase() = default;
+  static const SpinPhase& kept();
+  static const SpinPhase& constrained();
+  /// The phase `start` found: frictionless, still or driven.
+  static const SpinPhase& of(const FrictionPhase& start);
+
+  /// Its motion follows a friction phase (else its contacts', or none): a phase that
+  /// ends within the step is an event, and a contact that takes the motion over takes
+  /// the spin over too (World::constrainSpin()).
+  virtual bool ownsMotion() const { return false; }
+  /// The ball's spin t seconds into its motion.
+  virtual Vec3 spinAt(const SpinMotion& sm, double t) const { return sm.w0 + t * sm.alpha; }
+  /// Gives ball i the motion of its new phase under `law` (World::startFriction()); true
+  /// where the caller is to give it a frictionless ball's motion, or the chord under
+  /// SpinMotion::pull on a curved floor.
+  virtual bool startMotion(World&, std::size_t, const FrictionLaw&) const { return true; }
+  /// What pulls the ball's motion [m/s^2]: gravity, or with friction acting on the
+  /// motion the phase's pull (gravity's share and the friction force).
+  virtual const Vec3& pull(const World& w, const SpinMotion&) const { return w.gravity_; }
+  /// Ball i's velocity at x, at `position` on the floor with this normal.
+  virtual Vec3 velocity(const World& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const;
+  /// |v|^2 of ball i at x where its motion is at p, from the energy.
+  virtual double speedSquaredAt(const World& w, std::size_t i, double, const Vec3& p) const
+  {
+    return w.pulledSpeedSquared(i, p);
+  }
+  /// |v|^2 where ball i's chord b ends, `rest` of the step on (World::EnergyCheck).
+  virtual double chordSpeedSquared(const World& w, std::size_t i, double rest, const Vec3& b) const;
+  /// Its spin rolls the ball where it ends the step (under the normal there) ...
+  virtual bool rollsAtCommit(const SpinMotion&) const { return false; }
+  /// ... and where an event finds it.
+  virtual bool rollsAtEvent(const SpinMotion&) const { return false; }
+  /// The kind it ends the step in, where its velocity is v and its spin w under `normal`.
+  virtual MotionKind kindAtEnd(const World&, std::size_t, const SpinMotion& sm, const Vec3&, const Vec3&,
+                               const Vec3&) const
+  {
+    return sm.kind;
+  }
+
+private:
+  struct Kept;
+  struct Constrained;
+  struct Frictionless;
+  struct Forced;
+  struct Still;
+  struct Driven;
+};
+}  // namespace ball_collision_sim::core
