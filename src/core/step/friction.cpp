@@ -1,4 +1,4 @@
-// Friction in the step (worlds with a friction block, on a plane): each free ball's
+// Friction in the step (worlds with a friction block, on any floor): each free ball's
 // motion is a phase of constant accelerations from the friction laws (FrictionLaw); the
 // end of a phase (slip, speed or spin about the normal reaching zero) is an event at its
 // exact time, and impacts add tangential impulses. Reads and writes motions_, states_,

@@ -1,7 +1,8 @@
 // The five ways a ball's motion and spin go within the step under friction
 // (World::SpinPhase): kept, constrained, frictionless, still, driven.
-// Reads motions_, spin_motions_ and the start velocities; starting a phase writes the
-// ball's motion (through the floor's motion type where it depends on the floor).
+// Reads motions_, spin_motions_, the start velocities, chord ends, gravity and the
+// ground; starting a phase writes the ball's motion (through the floor's motion type,
+// floor_motion_, where it depends on the floor).
 #include "spin_phase.hpp"
 
 #include <algorithm>
