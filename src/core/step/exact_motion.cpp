@@ -2,7 +2,7 @@
 // (a parabola under gravity's part along the plane, a line where it has none); a ball
 // under its contacts moves on its chord in the plane, whose energy is linear along it.
 // Reads and writes motions_ and states_, and the start velocities of friction phases.
-#include "floor_motion.hpp"
+#include "spin_phase.hpp"
 
 namespace ball_collision_sim::core
 {
@@ -98,7 +98,7 @@ bool World::ExactMotion::drivenMotion(World& w, std::size_t i, const FrictionLaw
 
 Vec3 World::ExactMotion::phaseVelocity(const World& w, std::size_t i, double x, const Vec3&, const Vec3&) const
 {
-  return w.startVelocity(i) + ((x - w.motions_[i].x0) * w.dt_) * w.spin_motions_[i].a;
+  return SpinPhase::constantlyAccelerated(w, i, x);
 }
 
 double World::ExactMotion::speedSquaredAt(const World& w, std::size_t i, double, const Vec3& p) const

@@ -20,6 +20,11 @@ double World::SpinPhase::chordSpeedSquared(const World& w, std::size_t i, double
   return w.linearChordSpeedSquared(i, rest, b);
 }
 
+Vec3 World::SpinPhase::constantlyAccelerated(const World& w, std::size_t i, double x)
+{
+  return w.startVelocity(i) + ((x - w.motions_[i].x0) * w.dt_) * w.spin_motions_[i].a;
+}
+
 World::SpinMotion::SpinMotion() : phase(&SpinPhase::kept()) {}
 
 /// Kept: no motion of its own, its spin as it was.
@@ -79,7 +84,7 @@ struct World::SpinPhase::Still final : World::SpinPhase::Forced
   }
   Vec3 velocity(const World& w, std::size_t i, double x, const Vec3&, const Vec3&) const override
   {
-    return w.startVelocity(i) + ((x - w.motions_[i].x0) * w.dt_) * w.spin_motions_[i].a;
+    return constantlyAccelerated(w, i, x);
   }
 };
 

@@ -9,8 +9,8 @@
 // - Still: a phase that holds the ball where it is (spinning or stationary); no share of
 //   gravity moves it.
 // - Driven: a phase its share of gravity and the friction force move (sliding, rolling).
-// Reads what the World's stages give it (motions_, spin_motions_, the start velocities);
-// starting a phase writes the ball's motion.
+// Reads motions_, spin_motions_, the start velocities, chord ends, gravity and the
+// ground; starting a phase writes the ball's motion (through floor_motion_).
 #pragma once
 
 #include "floor_motion.hpp"
@@ -24,6 +24,9 @@ struct World::SpinPhase
   static const SpinPhase& constrained();
   /// The phase `start` found: frictionless, still or driven.
   static const SpinPhase& of(const FrictionPhase& start);
+  /// Ball i's velocity at x under its phase's constant acceleration (SpinMotion::a): a
+  /// still phase's anywhere, a driven one's on a plane.
+  static Vec3 constantlyAccelerated(const World& w, std::size_t i, double x);
 
   /// Its motion follows a friction phase (else its contacts', or none): a phase that
   /// ends within the step is an event, and a contact that takes the motion over takes
