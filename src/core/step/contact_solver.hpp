@@ -1,0 +1,115 @@
+// The contact solver: a group's resting contacts as constraints, solved together by
+// projected Gauss-Seidel (Moreau; Jean; Catto's sequential impulses, Box2D's solver
+// loop). Each contact's impulse is at least zero (it pushes, never pulls) and is the
+// least that leaves it no closing; a wall is a contact with a body that does not move.
+// It works on any vector per body: velocities [m/s], or a step's motions [m per unit of
+// the step]. Reads and writes only what it is given; knows nothing of the World.
+#pragma once
+
+#include "ball_collision_sim/core/types.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace ball_collision_sim::core::step
+{
+/// One contact between bodies a and b (b may be kImmovable: a wall, or a body that does
+/// not give way). Its closing is <u_a - u_b, normal>, the normal pointing from a toward b;
+/// its impulse moves a by -impulse * inv_mass_a * push_a and b by +impulse * inv_mass_b *
+/// push_b (the pushes are the normal as each body can take it: along its floor).
+struct ContactRow
+{
+  static constexpr std::uint32_t kImmovable = 0xffffffffu;
+  std::uint32_t a = 0;
+  std::uint32_t b = kImmovable;
+  Vec3 normal = Vec3::UnitX();
+  Vec3 push_a = Vec3::UnitX();
+  Vec3 push_b = Vec3::UnitX();
+  /// the closing the contact allows: 0 for rest; below zero, a bounce's separation
+  double target = 0.0;
+  /// accumulated, >= 0: in, where to start (a warm start, applied first); out, the result
+  double impulse = 0.0;
+};
+
+/// How a solve went: sweeps taken, and the largest closing left beyond a row's target.
+struct ContactSolve
+{
+  int sweeps = 0;
+  double residual = 0.0;
+  bool converged = false;
+};
+
+/// Projected Gauss-Seidel over `rows` in their order (the caller's order makes it
+/// deterministic): for each row in turn, the impulse that takes its closing to its target,
+/// clamped so that the accumulated impulse stays >= 0. After each sweep `project(u)` may
+/// put the bodies' vectors back where they must lie (on the floor); sweeps go on until a
+/// sweep changes no row's closing by more than `tolerance` and none closes by more than
+/// `tolerance` past its target, or `max_sweeps` have run.
+template <class Project>
+ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double>& inv_mass, std::vector<ContactRow>& rows,
+                           double tolerance, int max_sweeps, Project&& project)
+{
+  const auto invOf = [&](std::uint32_t k) { return k == ContactRow::kImmovable ? 0.0 : inv_mass[k]; };
+  const auto closingOf = [&](const ContactRow& row) {
+    const double va = u[row.a].dot(row.normal);
+    const double vb = row.b == ContactRow::kImmovable ? 0.0 : u[row.b].dot(row.normal);
+    return va - vb;
+  };
+  const auto apply = [&](const ContactRow& row, double d) {
+    u[row.a] -= (d * invOf(row.a)) * row.push_a;
+    if (row.b != ContactRow::kImmovable)
+      u[row.b] += (d * invOf(row.b)) * row.push_b;
+  };
+  // (the warm start, then the impulses' effective masses: how much a unit impulse opens)
+  std::vector<double> opens(rows.size());
+  for (std::size_t r = 0; r < rows.size(); ++r)
+  {
+    ContactRow& row = rows[r];
+    opens[r] = invOf(row.a) * row.push_a.dot(row.normal) +
+               (row.b == ContactRow::kImmovable ? 0.0 : invOf(row.b) * row.push_b.dot(row.normal));
+    row.impulse = std::max(row.impulse, 0.0);
+    if (row.impulse > 0 && opens[r] > 0)
+      apply(row, row.impulse);
+    else
+      row.impulse = 0.0;
+  }
+  ContactSolve out;
+  while (out.sweeps < max_sweeps)
+  {
+    ++out.sweeps;
+    double change = 0.0;
+    for (std::size_t r = 0; r < rows.size(); ++r)
+    {
+      ContactRow& row = rows[r];
+      if (!(opens[r] > 0))
+        continue;  // neither body can give way along it
+      const double next = std::max(row.impulse + (closingOf(row) - row.target) / opens[r], 0.0);
+      const double d = next - row.impulse;
+      if (d == 0)
+        continue;
+      apply(row, d);
+      row.impulse = next;
+      change = std::max(change, std::abs(d) * opens[r]);
+    }
+    project(u);
+    out.residual = 0.0;
+    for (const ContactRow& row : rows)
+      out.residual = std::max(out.residual, closingOf(row) - row.target);
+    if (change <= tolerance && out.residual <= tolerance)
+    {
+      out.converged = true;
+      break;
+    }
+  }
+  return out;
+}
+
+/// The same without a projection after each sweep.
+inline ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double>& inv_mass,
+                                  std::vector<ContactRow>& rows, double tolerance, int max_sweeps)
+{
+  return solveContacts(u, inv_mass, rows, tolerance, max_sweeps, [](std::vector<Vec3>&) {});
+}
+}  // namespace ball_collision_sim::core::step
