@@ -313,6 +313,30 @@ TEST(LongRun, DissipativePilesComeToRestAndSleep)
       }
 }
 
+// The same 200-ball pile at restitution 0.5 in the walled bowl, from five other random
+// starts: each comes to rest and sleeps within 30 s, whichever ball happens to end up
+// on the pile's edge (where a ball its neighbours hold still must not keep a speed it
+// does not move with, which kept the group awake for good).
+TEST(LongRun, BowlPilesSleepFromAnyStart)
+{
+  for (const std::uint64_t seed : {5u, 6u, 7u, 8u, 9u})
+  {
+    Scene scene;
+    scene.floor = bowl(3, 0.3);
+    addBox(scene, -1.5, 1.5, -1.5, 1.5, 1.0);
+    scene.restitution = 0.5;
+    scene.random_balls = randomBalls(200, seed, {0.05, 0.08}, {0.5, 2}, {0, 1});
+    World world(scene);
+    const double k0 = world.energy().kinetic;
+    const double rise = largestEnergyRise(world, 3000);
+    EXPECT_LT(rise, 1e-12 * std::abs(world.energy().total()) + 1e-12) << "seed " << seed;
+    EXPECT_EQ(world.stats().sleeping_balls, 200u) << "seed " << seed;
+    EXPECT_LE(world.energy().kinetic, 1e-12 * k0) << "seed " << seed;
+    EXPECT_LT(deepestOverlap(world.balls()), 1e-9) << "seed " << seed;
+    EXPECT_EQ(world.stats().frozen_balls, 0u) << "seed " << seed;
+  }
+}
+
 // A sleeping pile wakes where it is hit, and only the group it rests in. Two piles lie
 // asleep at the foot of a slope, parted by a wall down its middle; a ball sent uphill on
 // one side (an edit: everything wakes, and settles back to sleep at once) comes back

@@ -2,6 +2,7 @@
 // the queries; the edits between steps are in edits.cpp.
 #include "ball_collision_sim/core/world.hpp"
 
+#include "step/contact_group.hpp"
 #include "step/floor_motion.hpp"
 
 #include "ball_collision_sim/core/state_hash.hpp"

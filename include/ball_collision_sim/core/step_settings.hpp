@@ -28,6 +28,11 @@ struct StepSettings
   /// are in a jam that answers pair by pair only pass around: they are held for the rest
   /// of the step [events].
   std::uint32_t jam_events_per_ball_step = 16;
+  /// Sweeps of the contact solver over a group's contacts (projected Gauss-Seidel) before
+  /// it stops with closing left (counted: WorldStats::unsettled_contacts); each sweep
+  /// takes a jam's closing down by a steady factor, and piles of hundreds settle in tens
+  /// [sweeps].
+  int contact_sweeps = 100;
   /// Passes of alternating corrections (onto the floor, out of blocked directions, the
   /// approach of a resting pair) before giving up: each pass halves what is left in
   /// practice, and 32 halvings reach round-off [passes].

@@ -63,6 +63,9 @@ struct WorldStats
   std::uint64_t sleeping_balls = 0;  ///< balls asleep after the last step (not a sum)
   std::uint64_t woken_balls = 0;     ///< balls woken by impacts
   std::uint64_t transitions = 0;     ///< changes of a ball's motion kind (friction)
+  /// solves of a group's resting contacts that ran out of sweeps with closing left
+  /// (StepSettings::contact_sweeps)
+  std::uint64_t unsettled_contacts = 0;
 };
 
 /// Result of adding or editing an object: ok, or the reason it was refused (the world
@@ -270,7 +273,13 @@ private:
     std::size_t other;
     Vec3 dir_ball;   ///< direction of the normal impulse on `ball`
     Vec3 dir_other;  ///< ... and, reversed, on `other`
+    Vec3 normal;       ///< from `ball` toward `other`
+    Vec3 along_ball;   ///< the normal's part along the floor under `ball`
+    Vec3 along_other;  ///< ... and under `other`
   };
+  /// A group of balls joined by resting contacts, as the contact solver takes it
+  /// (src/core/step/contact_group.hpp).
+  struct ContactGroup;
 
   void load(const std::vector<PlacedBall>& balls);
   /// After an edit: the next step visits the balls in id order and predicts afresh.
@@ -318,8 +327,9 @@ private:
     Vec3 normal;
   };
   Committed commitBall(std::size_t i, bool settle);
-  /// Velocities across the step's resting contacts: out of blocked directions, no
-  /// closing speed left (or bounced), along the floor.
+  /// Velocities across the step's resting contacts: out of blocked directions, bounced
+  /// where gravity closed a pair fast enough, then no closing speed left at any contact
+  /// (the contact solver), along the floor.
   void settleRestingVelocities();
   /// Turns ball i by its rolling over the step's move d (its angular velocity follows
   /// from its velocity when asked for: angularVelocity()).
@@ -361,8 +371,9 @@ private:
   /// go, and a ball still held after it keeps no motion for the rest of the step.
   void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact);
   void countEvent(std::size_t i);
-  /// Ball i stays where it is through the step's resting contacts (counted once a step);
-  /// with friction its spin then follows its contacts (constrainSpin()).
+  /// Ball i stays where it is through the step's resting contacts (counted once a step)
+  /// and ends the step with no velocity; with friction its spin then follows its
+  /// contacts (constrainSpin()).
   void hold(std::size_t i);
   /// An impact between balls i and j closing at `closing` along their normal wakes the
   /// group of the one asleep, where it is faster than the pair's resting speed.
@@ -541,6 +552,8 @@ private:
   std::vector<CollisionEvent> events_;
   bool record_events_ = true;
   std::vector<RestingContact> resting_;
+  /// the contact solver's work space (one, once a step has had resting contacts)
+  std::vector<ContactGroup> contact_groups_;
   std::vector<BlockedSet> blocked_sets_;
 
   /// With friction: the laws under the plane's normal, each ball's spin beside balls_,

@@ -1,7 +1,9 @@
 // Stage 5, commit: every ball to the step's end, back on the floor, its velocity
-// there (settled across the step's resting contacts), its turn by rolling; and, while the
-// visiting order stays, the next step's prediction. Reads motions_, states_, resting_;
-// writes balls_, feet_.
+// there (solved across the step's resting contacts by the contact solver), its turn by
+// rolling; and, while the visiting order stays, the next step's prediction. Reads
+// motions_, states_, resting_, blocked_sets_; writes balls_, feet_, the contact solver's
+// work space.
+#include "contact_group.hpp"
 #include "spin_phase.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
@@ -93,7 +95,9 @@ World::Committed World::commitBall(std::size_t i, bool settle)
     floor_normals_[i] = end.normal;
   const Vec3 moved = end.centre - ball.position;
   ball.position = end.centre;
-  ball.velocity = states_[i].frozen ? Vec3::Zero() : onFloorVelocity(i, 1.0, end.centre, end.normal);
+  // (a ball that ends the step without motion, frozen or held still by its contacts,
+  // keeps no speed it does not move with)
+  ball.velocity = states_[i].frozen || states_[i].held ? Vec3::Zero() : onFloorVelocity(i, 1.0, end.centre, end.normal);
   if (friction_)
   {
     // its own spin at the end, and its turn over the step by the mean of its spins
@@ -116,6 +120,16 @@ void World::settleRestingVelocities()
   // Resting contacts keep no closing speed into the step that follows.
   for (std::size_t i = 0; i < balls_.size(); ++i)
     balls_[i].velocity = redirected(i, balls_[i].velocity);
+  if (resting_.empty())
+    return;
+  // The closing speed that gravity gave a pair in the step, where it is faster than the
+  // pair's resting speed, bounces as an impact would, pair by pair in the order they
+  // met; then every contact of the step is a constraint (no closing speed), and so is
+  // every direction a ball leans on, solved together (contact_solver.hpp).
+  if (contact_groups_.empty())
+    contact_groups_.emplace_back();
+  ContactGroup& group = contact_groups_.front();
+  group.clear();
   for (const RestingContact& contact : resting_)
   {
     Ball& a = balls_[contact.ball];
@@ -123,21 +137,31 @@ void World::settleRestingVelocities()
     const double inv_a = states_[contact.ball].frozen ? 0.0 : 1.0 / a.mass;
     const double inv_b = states_[contact.other].frozen ? 0.0 : 1.0 / b.mass;
     const double closing = a.velocity.dot(contact.dir_ball) - b.velocity.dot(contact.dir_other);
-    if (closing > 0)
+    const double rest = pairRestingSpeed(floor_normals_[contact.ball], a.position, a.radius,
+                                         floor_normals_[contact.other], b.position, b.radius);
+    if (closing > rest)
     {
-      // the closing speed that gravity gave them in the step: bounced as an impact
-      // would be, or summed to rest (both balls' floors alike, whichever is which)
-      const Vec3& na = floor_normals_[contact.ball];
-      const Vec3& nb = floor_normals_[contact.other];
-      const double rest = pairRestingSpeed(na, a.position, a.radius, nb, b.position, b.radius);
-      const double e = closing <= rest ? 0.0 : scene_.restitution;
-      const double j = collisionImpulse(closing, inv_a, contact.dir_ball, inv_b, contact.dir_other, e);
+      const double j = collisionImpulse(closing, inv_a, contact.dir_ball, inv_b, contact.dir_other, scene_.restitution);
       a.velocity -= (j * inv_a) * contact.dir_ball;
       b.velocity += (j * inv_b) * contact.dir_other;
     }
+    group.addPair(contact.ball, contact.other, contact.normal, contact.along_ball, contact.along_other);
   }
-  if (resting_.empty())
-    return;
+  for (std::size_t k = 0; k < group.size(); ++k)
+  {
+    const std::size_t i = group.ballAt(k);
+    const MotionState& state = states_[i];
+    group.u[k] = balls_[i].velocity;
+    group.inv_mass[k] = state.frozen ? 0.0 : 1.0 / balls_[i].mass;
+    if (state.blocked >= 0)
+      group.addBlocked(k, blocked_sets_[static_cast<std::size_t>(state.blocked)]);
+  }
+  const ContactSolve solve =
+      solveContacts(group.u, group.inv_mass, group.rows, settings_.resting_speed_floor, settings_.contact_sweeps);
+  if (!solve.converged)
+    ++stats_.unsettled_contacts;
+  for (std::size_t k = 0; k < group.size(); ++k)
+    balls_[group.ballAt(k)].velocity = group.u[k];
   for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     // the impulses across the contacts may leave a velocity a part along the floor's

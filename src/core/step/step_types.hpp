@@ -50,7 +50,7 @@ struct World::MotionState
   bool accelerates : 1;
   /// Held (see hold()): in a jam at a resting contact, or left no motion its energy allows;
   /// it stays where it is through resting contacts for the rest of the step (an impact
-  /// lets it go).
+  /// lets it go), and ends the step with no velocity.
   bool held : 1;
   std::int32_t blocked = -1;     ///< its BlockedSet this step, if any
 
