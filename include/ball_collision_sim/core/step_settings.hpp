@@ -33,6 +33,10 @@ struct StepSettings
   /// takes a jam's closing down by a steady factor, and piles of hundreds settle in tens
   /// [sweeps].
   int contact_sweeps = 100;
+  /// ... and a solve is done once no sweep changes a closing speed, nor leaves one, by
+  /// more than this part of the largest it started with (or resting_speed_floor): the
+  /// usual relative tolerance of an iterative solver [ratio].
+  double contact_tolerance = 1e-6;
   /// Passes of alternating corrections (onto the floor, out of blocked directions, the
   /// approach of a resting pair) before giving up: each pass halves what is left in
   /// practice, and 32 halvings reach round-off [passes].

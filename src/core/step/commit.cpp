@@ -8,7 +8,9 @@
 
 #include "ball_collision_sim/core/response.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace ball_collision_sim::core
 {
@@ -122,16 +124,39 @@ void World::settleRestingVelocities()
     balls_[i].velocity = redirected(i, balls_[i].velocity);
   if (resting_.empty())
     return;
+  ContactGroup& group = velocityGroup();
+  // (done where what closing is left is round-off of speeds, or of the closing there was)
+  const double tolerance =
+      std::max(settings_.resting_speed_floor, settings_.contact_tolerance * largestClosing(group.u, group.rows));
+  if (!solveContacts(group.u, group.inv_mass, group.rows, tolerance, settings_.contact_sweeps).converged)
+    ++stats_.unsettled_contacts;
+  for (std::size_t k = 0; k < group.size(); ++k)
+    balls_[group.ballAt(k)].velocity = group.u[k];
+  for (std::size_t i = 0; i < balls_.size(); ++i)
+  {
+    // the impulses across the contacts may leave a velocity a part along the floor's
+    // normal, which the floor takes (where speeds are the energy's, it keeps the speed)
+    Ball& ball = balls_[i];
+    ball.velocity = ground_.turned(ball.velocity, ground_.along(ball.velocity, floor_normals_[i]));
+  }
+}
+
+World::ContactGroup& World::velocityGroup()
+{
   // The closing speed that gravity gave a pair in the step, where it is faster than the
   // pair's resting speed, bounces as an impact would, pair by pair in the order they
-  // met; then every contact of the step is a constraint (no closing speed), and so is
-  // every direction a ball leans on, solved together (contact_solver.hpp).
+  // met; then every pair that rested in the step (by its last resting contact: the
+  // normal where they last met) is a constraint (no closing speed), and so is every
+  // direction a ball leans on a wall along, solved together (contact_solver.hpp).
   if (contact_groups_.empty())
     contact_groups_.emplace_back();
   ContactGroup& group = contact_groups_.front();
   group.clear();
-  for (const RestingContact& contact : resting_)
+  lastOfPair(resting_, last_of_pair_);
+  std::size_t next_last = 0;
+  for (std::size_t r = 0; r < resting_.size(); ++r)
   {
+    const RestingContact& contact = resting_[r];
     Ball& a = balls_[contact.ball];
     Ball& b = balls_[contact.other];
     const double inv_a = states_[contact.ball].frozen ? 0.0 : 1.0 / a.mass;
@@ -145,7 +170,11 @@ void World::settleRestingVelocities()
       a.velocity -= (j * inv_a) * contact.dir_ball;
       b.velocity += (j * inv_b) * contact.dir_other;
     }
-    group.addPair(contact.ball, contact.other, contact.normal, contact.along_ball, contact.along_other);
+    if (next_last < last_of_pair_.size() && last_of_pair_[next_last] == r)
+    {
+      ++next_last;
+      group.addPair(contact.ball, contact.other, contact.normal, contact.along_ball, contact.along_other);
+    }
   }
   for (std::size_t k = 0; k < group.size(); ++k)
   {
@@ -154,21 +183,32 @@ void World::settleRestingVelocities()
     group.u[k] = balls_[i].velocity;
     group.inv_mass[k] = state.frozen ? 0.0 : 1.0 / balls_[i].mass;
     if (state.blocked >= 0)
-      group.addBlocked(k, blocked_sets_[static_cast<std::size_t>(state.blocked)]);
+      group.addBlocked(k, blocked_sets_[static_cast<std::size_t>(state.blocked)], 2 * std::uint64_t{walls_.size()});
   }
-  const ContactSolve solve =
-      solveContacts(group.u, group.inv_mass, group.rows, settings_.resting_speed_floor, settings_.contact_sweeps);
-  if (!solve.converged)
-    ++stats_.unsettled_contacts;
-  for (std::size_t k = 0; k < group.size(); ++k)
-    balls_[group.ballAt(k)].velocity = group.u[k];
-  for (std::size_t i = 0; i < balls_.size(); ++i)
+  return group;
+}
+
+void World::lastOfPair(const std::vector<RestingContact>& contacts, std::vector<std::size_t>& last)
+{
+  // (pairs by their smaller and larger visiting index, then the order they met in)
+  last.resize(contacts.size());
+  for (std::size_t r = 0; r < contacts.size(); ++r)
+    last[r] = r;
+  const auto key = [&](std::size_t r) {
+    const RestingContact& c = contacts[r];
+    return std::make_tuple(std::min(c.ball, c.other), std::max(c.ball, c.other), r);
+  };
+  std::sort(last.begin(), last.end(), [&](std::size_t p, std::size_t q) { return key(p) < key(q); });
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < last.size(); ++k)
   {
-    // the impulses across the contacts may leave a velocity a part along the floor's
-    // normal, which the floor takes (where speeds are the energy's, it keeps the speed)
-    Ball& ball = balls_[i];
-    ball.velocity = ground_.turned(ball.velocity, ground_.along(ball.velocity, floor_normals_[i]));
+    const bool final = k + 1 == last.size() || std::get<0>(key(last[k + 1])) != std::get<0>(key(last[k])) ||
+                       std::get<1>(key(last[k + 1])) != std::get<1>(key(last[k]));
+    if (final)
+      last[kept++] = last[k];
   }
+  last.resize(kept);
+  std::sort(last.begin(), last.end());
 }
 
 void World::roll(std::size_t i, const Vec3& normal, const Vec3& d)

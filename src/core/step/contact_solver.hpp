@@ -33,6 +33,23 @@ struct ContactRow
   double impulse = 0.0;
 };
 
+/// The closing of `row` where the bodies' vectors are u.
+inline double closingOf(const std::vector<Vec3>& u, const ContactRow& row)
+{
+  const double va = u[row.a].dot(row.normal);
+  const double vb = row.b == ContactRow::kImmovable ? 0.0 : u[row.b].dot(row.normal);
+  return va - vb;
+}
+
+/// The largest closing among `rows` (0 when none closes).
+inline double largestClosing(const std::vector<Vec3>& u, const std::vector<ContactRow>& rows)
+{
+  double largest = 0.0;
+  for (const ContactRow& row : rows)
+    largest = std::max(largest, closingOf(u, row));
+  return largest;
+}
+
 /// How a solve went: sweeps taken, and the largest closing left beyond a row's target.
 struct ContactSolve
 {
@@ -52,11 +69,6 @@ ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double>& inv_
                            double tolerance, int max_sweeps, Project&& project)
 {
   const auto invOf = [&](std::uint32_t k) { return k == ContactRow::kImmovable ? 0.0 : inv_mass[k]; };
-  const auto closingOf = [&](const ContactRow& row) {
-    const double va = u[row.a].dot(row.normal);
-    const double vb = row.b == ContactRow::kImmovable ? 0.0 : u[row.b].dot(row.normal);
-    return va - vb;
-  };
   const auto apply = [&](const ContactRow& row, double d) {
     u[row.a] -= (d * invOf(row.a)) * row.push_a;
     if (row.b != ContactRow::kImmovable)
@@ -85,7 +97,7 @@ ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double>& inv_
       ContactRow& row = rows[r];
       if (!(opens[r] > 0))
         continue;  // neither body can give way along it
-      const double next = std::max(row.impulse + (closingOf(row) - row.target) / opens[r], 0.0);
+      const double next = std::max(row.impulse + (closingOf(u, row) - row.target) / opens[r], 0.0);
       const double d = next - row.impulse;
       if (d == 0)
         continue;
@@ -96,7 +108,7 @@ ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double>& inv_
     project(u);
     out.residual = 0.0;
     for (const ContactRow& row : rows)
-      out.residual = std::max(out.residual, closingOf(row) - row.target);
+      out.residual = std::max(out.residual, closingOf(u, row) - row.target);
     if (change <= tolerance && out.residual <= tolerance)
     {
       out.converged = true;
