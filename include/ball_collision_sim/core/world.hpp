@@ -273,7 +273,6 @@ private:
     std::size_t other;
     Vec3 dir_ball;   ///< direction of the normal impulse on `ball`
     Vec3 dir_other;  ///< ... and, reversed, on `other`
-    Vec3 normal;       ///< from `ball` toward `other`
     Vec3 along_ball;   ///< the normal's part along the floor under `ball`
     Vec3 along_other;  ///< ... and under `other`
   };

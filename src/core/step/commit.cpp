@@ -173,7 +173,7 @@ World::ContactGroup& World::velocityGroup()
     if (next_last < last_of_pair_.size() && last_of_pair_[next_last] == r)
     {
       ++next_last;
-      group.addPair(contact.ball, contact.other, contact.normal, contact.along_ball, contact.along_other);
+      group.addPair(contact.ball, contact.other, contact.along_ball, contact.along_other);
     }
   }
   for (std::size_t k = 0; k < group.size(); ++k)

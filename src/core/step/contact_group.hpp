@@ -32,14 +32,13 @@ struct World::ContactGroup
     }
     return local_[i];
   }
-  /// A contact between balls i and j (visiting indices), n from i toward j, pushed apart
-  /// along push_i and push_j.
-  void addPair(std::size_t i, std::size_t j, const Vec3& n, const Vec3& push_i, const Vec3& push_j)
+  /// A contact between balls i and j (visiting indices), pushed apart along push_i and
+  /// push_j (the normal from i toward j, along each one's floor).
+  void addPair(std::size_t i, std::size_t j, const Vec3& push_i, const Vec3& push_j)
   {
     step::ContactRow row;
     row.a = localOf(i);
     row.b = localOf(j);
-    row.normal = n;
     row.push_a = push_i;
     row.push_b = push_j;
     rows.push_back(row);
@@ -55,7 +54,7 @@ struct World::ContactGroup
         continue;
       step::ContactRow row;
       row.a = k;
-      row.normal = row.push_a = set.directions[d];
+      row.push_a = set.directions[d];
       rows.push_back(row);
     }
   }

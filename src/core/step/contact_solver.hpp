@@ -15,16 +15,18 @@
 
 namespace ball_collision_sim::core::step
 {
-/// One contact between bodies a and b (b may be kImmovable: a wall, or a body that does
-/// not give way). Its closing is <u_a - u_b, normal>, the normal pointing from a toward b;
-/// its impulse moves a by -impulse * inv_mass_a * push_a and b by +impulse * inv_mass_b *
-/// push_b (the pushes are the normal as each body can take it: along its floor).
+/// One contact between bodies a and b (b may be kImmovable: a wall; a body of inverse
+/// mass 0 does not give way either, and is taken to be at rest). Its impulse moves a by -impulse * inv_mass_a * push_a and b by
+/// +impulse * inv_mass_b * push_b (the pushes are the contact's normal, from a toward b,
+/// as each body can take it: along its floor), and its closing is <u_a, push_a> -
+/// <u_b, push_b>, measured along the same directions: so each update of one contact
+/// changes the bodies' kinetic energy by -c^2 / 2K (c its closing, K its inverse mass
+/// along the pushes), never more, whatever the vectors.
 struct ContactRow
 {
   static constexpr std::uint32_t kImmovable = 0xffffffffu;
   std::uint32_t a = 0;
   std::uint32_t b = kImmovable;
-  Vec3 normal = Vec3::UnitX();
   Vec3 push_a = Vec3::UnitX();
   Vec3 push_b = Vec3::UnitX();
   /// the closing the contact allows: 0 for rest; below zero, a bounce's separation
@@ -36,8 +38,8 @@ struct ContactRow
 /// The closing of `row` where the bodies' vectors are u.
 inline double closingOf(const std::vector<Vec3>& u, const ContactRow& row)
 {
-  const double va = u[row.a].dot(row.normal);
-  const double vb = row.b == ContactRow::kImmovable ? 0.0 : u[row.b].dot(row.normal);
+  const double va = u[row.a].dot(row.push_a);
+  const double vb = row.b == ContactRow::kImmovable ? 0.0 : u[row.b].dot(row.push_b);
   return va - vb;
 }
 
@@ -79,8 +81,8 @@ ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double>& inv_
   for (std::size_t r = 0; r < rows.size(); ++r)
   {
     ContactRow& row = rows[r];
-    opens[r] = invOf(row.a) * row.push_a.dot(row.normal) +
-               (row.b == ContactRow::kImmovable ? 0.0 : invOf(row.b) * row.push_b.dot(row.normal));
+    opens[r] = invOf(row.a) * row.push_a.squaredNorm() +
+               (row.b == ContactRow::kImmovable ? 0.0 : invOf(row.b) * row.push_b.squaredNorm());
     row.impulse = std::max(row.impulse, 0.0);
     if (row.impulse > 0 && opens[r] > 0)
       apply(row, row.impulse);

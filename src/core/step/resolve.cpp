@@ -256,6 +256,6 @@ void World::settleRestingPair(const PairContact& c, double x, const Vec3& pa, co
     hold(i);
     hold(j);
   }
-  resting_.push_back({i, j, ta, tb, n, c.along_a, c.along_b});
+  resting_.push_back({i, j, ta, tb, c.along_a, c.along_b});
 }
 }  // namespace ball_collision_sim::core
