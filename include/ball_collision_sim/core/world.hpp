@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -94,6 +95,31 @@ constexpr int kFirstId = 1;
 /// The balls in id order: a view of the world's records, which the step keeps in the
 /// order it visits them in (neighbours in space are neighbours in memory). Valid until
 /// the world steps or is edited.
+/// Working memory a World keeps between steps only so as not to allocate it again: not
+/// part of its state, so a copy starts without it. T may be incomplete where this is
+/// declared, and complete where the owner's special members are defined.
+template <class T>
+class Scratch
+{
+public:
+  Scratch() = default;
+  Scratch(const Scratch& /*other*/) {}
+  Scratch& operator=(const Scratch& /*other*/) { return *this; }
+  Scratch(Scratch&&) noexcept = default;
+  Scratch& operator=(Scratch&&) noexcept = default;
+  ~Scratch() = default;
+  /// The work space, made on first use.
+  T& get()
+  {
+    if (!held_)
+      held_ = std::make_unique<T>();
+    return *held_;
+  }
+
+private:
+  std::unique_ptr<T> held_;
+};
+
 class BallList
 {
 public:
@@ -473,6 +499,10 @@ private:
   {
     return 2 * (std::uint64_t{walls_.size()} + static_cast<std::uint64_t>(balls_[j].id));
   }
+  /// Whether a blocked direction's source is a wall (else a ball).
+  bool isWallSource(std::uint64_t source) const { return source < 2 * std::uint64_t{walls_.size()}; }
+  /// Ball i's inverse mass in the step's responses: 0 while frozen (it does not give way).
+  double inverseMass(std::size_t i) const;  // (step_types.hpp)
   /// While the step runs, a ball's velocity is the one at the start of its motion.
   Vec3& startVelocity(std::size_t i) { return balls_[i].velocity; }
   const Vec3& startVelocity(std::size_t i) const { return balls_[i].velocity; }
@@ -556,8 +586,8 @@ private:
   std::vector<CollisionEvent> events_;
   bool record_events_ = true;
   std::vector<RestingContact> resting_;
-  /// the contact solver's work space (one, once a step has had resting contacts)
-  std::vector<ContactGroup> contact_groups_;
+  /// the contact solver's work space
+  Scratch<ContactGroup> contact_group_;
   std::vector<std::size_t> last_of_pair_;  ///< lastOfPair()'s, kept between steps
   std::vector<BlockedSet> blocked_sets_;
 

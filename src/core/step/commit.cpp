@@ -148,9 +148,7 @@ World::ContactGroup& World::velocityGroup()
   // met; then every pair that rested in the step (by its last resting contact: the
   // normal where they last met) is a constraint (no closing speed), and so is every
   // direction a ball leans on a wall along, solved together (contact_solver.hpp).
-  if (contact_groups_.empty())
-    contact_groups_.emplace_back();
-  ContactGroup& group = contact_groups_.front();
+  ContactGroup& group = contact_group_.get();
   group.clear();
   lastOfPair(resting_, last_of_pair_);
   std::size_t next_last = 0;
@@ -159,8 +157,8 @@ World::ContactGroup& World::velocityGroup()
     const RestingContact& contact = resting_[r];
     Ball& a = balls_[contact.ball];
     Ball& b = balls_[contact.other];
-    const double inv_a = states_[contact.ball].frozen ? 0.0 : 1.0 / a.mass;
-    const double inv_b = states_[contact.other].frozen ? 0.0 : 1.0 / b.mass;
+    const double inv_a = inverseMass(contact.ball);
+    const double inv_b = inverseMass(contact.other);
     const double closing = a.velocity.dot(contact.dir_ball) - b.velocity.dot(contact.dir_other);
     const double rest = pairRestingSpeed(floor_normals_[contact.ball], a.position, a.radius,
                                          floor_normals_[contact.other], b.position, b.radius);
@@ -179,11 +177,11 @@ World::ContactGroup& World::velocityGroup()
   for (std::size_t k = 0; k < group.size(); ++k)
   {
     const std::size_t i = group.ballAt(k);
-    const MotionState& state = states_[i];
     group.u[k] = balls_[i].velocity;
-    group.inv_mass[k] = state.frozen ? 0.0 : 1.0 / balls_[i].mass;
-    if (state.blocked >= 0)
-      group.addBlocked(k, blocked_sets_[static_cast<std::size_t>(state.blocked)], 2 * std::uint64_t{walls_.size()});
+    group.inv_mass[k] = inverseMass(i);
+    if (states_[i].blocked >= 0)
+      group.addBlocked(k, blocked_sets_[static_cast<std::size_t>(states_[i].blocked)],
+                       [this](std::uint64_t source) { return isWallSource(source); });
   }
   return group;
 }

@@ -43,14 +43,15 @@ struct World::ContactGroup
     row.push_b = push_j;
     rows.push_back(row);
   }
-  /// The directions the group's k-th ball may not move along because of a wall (their
-  /// sources below `walls_end`; a ball's are the pair's own rows), each a contact with
-  /// something that does not give way.
-  void addBlocked(std::uint32_t k, const BlockedSet& set, std::uint64_t walls_end)
+  /// The directions the group's k-th ball may not move along because of a wall (those
+  /// whose source from_wall(source) says is one; a ball's are the pair's own rows), each
+  /// a contact with something that does not give way.
+  template <class FromWall>
+  void addBlocked(std::uint32_t k, const BlockedSet& set, FromWall&& from_wall)
   {
     for (std::uint8_t d = 0; d < set.count; ++d)
     {
-      if (set.sources[d] >= walls_end)
+      if (!from_wall(set.sources[d]))
         continue;
       step::ContactRow row;
       row.a = k;

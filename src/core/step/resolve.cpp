@@ -62,7 +62,7 @@ void World::resolveBallWall(const Event& event)
   dir.normalize();
   const double closing = v.dot(dir);
   const bool resting = closing <= restingSpeed(floor_normal, wall.restitution, p, ball.radius);
-  const double inv_mass = states_[i].frozen ? 0.0 : 1.0 / ball.mass;
+  const double inv_mass = inverseMass(i);
   const double impulse =
       collisionImpulse(std::max(closing, 0.0), inv_mass, dir, 0.0, dir, resting ? 0.0 : wall.restitution);
   v -= (impulse * inv_mass) * dir;
@@ -127,8 +127,8 @@ void World::resolveBallBall(const Event& event)
   const Vec3 along_b = ground_.along(n, nb);
   const Vec3 ta = -allowed(i, -along_a);
   const Vec3 tb = allowed(j, along_b);
-  const double inv_a = states_[i].frozen ? 0.0 : 1.0 / a.mass;
-  const double inv_b = states_[j].frozen ? 0.0 : 1.0 / b.mass;
+  const double inv_a = inverseMass(i);
+  const double inv_b = inverseMass(j);
   const double closing = va.dot(ta) - vb.dot(tb);
   const bool resting = closing <= rest_speed;
   const double impulse =

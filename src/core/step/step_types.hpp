@@ -56,6 +56,11 @@ struct World::MotionState
 
   MotionState() : frozen(false), asleep(false), accelerates(false), held(false) {}
 };
+
+inline double World::inverseMass(std::size_t i) const
+{
+  return states_[i].frozen ? 0.0 : 1.0 / balls_[i].mass;
+}
 /// A ball's friction phase in the step (worlds with friction), by visiting index: while
 /// `free`, its motion's parabola term is c = a dt^2 / 2 and its spin at x is
 /// w0 + alpha (x - x0) dt, until x_end, where the phase ends as `ends` says.
