@@ -276,3 +276,83 @@ TEST(ContactSolver, NoSweepAddsKineticEnergy)
     }
   }
 }
+
+// A ball pushed into a wedge of two walls (blocked along x, and along (1, 1, 0) / sqrt(2)),
+// with w = (1, 0.2, 0.3): w is a positive sum of the two directions plus its part along z,
+// so all it keeps is (0, 0, 0.3). Projecting out of one direction after the other instead
+// stops at (-0.1, 0.1, 0.3), a velocity along the second wall that w never had.
+TEST(KeptOut, AWedgeTakesAllButWhatRunsAlongItsEdge)
+{
+  const std::array<Vec3, 2> d{Vec3(1, 0, 0), Vec3(1, 1, 0).normalized()};
+  const Vec3 w(1, 0.2, 0.3);
+  const Vec3 u = step::keptOut(w, d.data(), d.size(), 1e-14);
+  EXPECT_NEAR((u - Vec3(0, 0, 0.3)).norm(), 0.0, 1e-15);
+
+  Vec3 cyclic = w;
+  for (int pass = 0; pass < 16; ++pass)
+    for (const Vec3& k : d)
+      cyclic -= std::max(0.0, cyclic.dot(k)) * k;
+  EXPECT_NEAR((cyclic - Vec3(-0.1, 0.1, 0.3)).norm(), 0.0, 1e-12);
+  EXPECT_GT((cyclic - u).norm(), 0.1);
+}
+
+// The projection onto the cone {u : <u, d> <= 0} is w less the projection of w onto the
+// cone the d span (Moreau's decomposition): the sum of lambda_k d_k, lambda_k >= 0, nearest
+// to w, found here by trying every set of up to three independent directions (Caratheodory).
+// Random sets of 1 to 6 directions, in the floor's plane or in space, and random w.
+TEST(KeptOut, MatchesTheNearestSumOfDirectionsTakenOffW)
+{
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_int_distribution<int> how_many(1, 6);
+  int zero = 0, whole = 0, cut = 0;
+  for (int trial = 0; trial < 2000; ++trial)
+  {
+    const bool flat = trial % 2 == 0;
+    std::vector<Vec3> d(static_cast<std::size_t>(how_many(rng)));
+    for (Vec3& k : d)
+      k = Vec3(normal(rng), normal(rng), flat ? 0.0 : normal(rng)).normalized();
+    const Vec3 w(normal(rng), normal(rng), normal(rng));
+
+    Vec3 best_sum = Vec3::Zero();
+    double best = w.squaredNorm();
+    const std::size_t n = d.size();
+    for (std::uint32_t set = 1; set < (1u << n); ++set)
+    {
+      std::vector<std::size_t> in;
+      for (std::size_t k = 0; k < n; ++k)
+        if (set & (1u << k))
+          in.push_back(k);
+      if (in.size() > 3)
+        continue;
+      Eigen::MatrixXd a(3, static_cast<Eigen::Index>(in.size()));
+      for (std::size_t c = 0; c < in.size(); ++c)
+        a.col(static_cast<Eigen::Index>(c)) = d[in[c]];
+      const Eigen::MatrixXd gram = a.transpose() * a;
+      if (std::abs(gram.determinant()) < 1e-9)
+        continue;
+      const Eigen::VectorXd lambda = gram.ldlt().solve(a.transpose() * w);
+      if ((lambda.array() < 0).any())
+        continue;
+      const Vec3 sum = a * lambda;
+      if ((w - sum).squaredNorm() < best)
+      {
+        best = (w - sum).squaredNorm();
+        best_sum = sum;
+      }
+    }
+    const Vec3 expected = w - best_sum;
+    const Vec3 u = step::keptOut(w, d.data(), d.size(), 1e-14);
+    ASSERT_NEAR((u - expected).norm(), 0.0, 1e-10 * w.norm()) << "trial " << trial;
+    ASSERT_LE(u.norm(), w.norm() * (1 + 1e-15));
+    for (const Vec3& k : d)
+      ASSERT_LE(u.dot(k), 1e-14 * w.norm());
+    zero += u.norm() < 1e-12 ? 1 : 0;
+    whole += u == w ? 1 : 0;
+    cut += (u.norm() >= 1e-12 && u != w) ? 1 : 0;
+  }
+  // (every kind of answer comes up: zero, w itself, and w cut to a face or an edge)
+  EXPECT_GT(zero, 100);
+  EXPECT_GT(whole, 100);
+  EXPECT_GT(cut, 100);
+}

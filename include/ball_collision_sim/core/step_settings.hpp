@@ -41,11 +41,8 @@ struct StepSettings
   /// approach of a resting pair) before giving up: each pass halves what is left in
   /// practice, and 32 halvings reach round-off [passes].
   int correction_passes = 32;
-  /// Cyclic projections out of a ball's blocked directions before it is given no motion
-  /// at all (which always satisfies them) [passes].
-  int blocked_projection_passes = 16;
   /// A motion kept out of its blocked directions may still point into one by this much
-  /// of its length, round-off of the projections [ratio].
+  /// of its length, round-off of the projection (BlockedSet::allowed()) [ratio].
   double blocked_slack = 1e-14;
   /// Two blocked directions this close to parallel are one (1 - cosine) [ratio].
   double same_direction = 1e-12;

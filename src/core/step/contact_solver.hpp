@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -125,5 +126,53 @@ inline ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double
                                   std::vector<ContactRow>& rows, double tolerance, int max_sweeps)
 {
   return solveContacts(u, inv_mass, rows, tolerance, max_sweeps, [](std::vector<Vec3>&) {});
+}
+/// A single body against contacts that do not give way, exactly: the nearest vector to
+/// `w` with <u, d> <= 0 for each of the `count` unit directions d, its Euclidean
+/// projection onto that cone. That is the solution of the contacts' linear
+/// complementarity problem for a body of any mass (u = w - sum of lambda_k d_k, each
+/// lambda_k >= 0 and zero where u moves off d_k), which the solver above would approach
+/// sweep by sweep; cyclic projection, one direction after another, instead stops at some
+/// vector of the cone, not the nearest (in a wedge it can leave a velocity w never had).
+/// The projection lies on one of the cone's faces, so it is, of w itself, w less its part
+/// along one d, its part along the line where two of the planes meet, and zero, the
+/// nearest that keeps out of every d to `slack` of |w| (round-off) [ratio]. It never
+/// lengthens w.
+inline Vec3 keptOut(const Vec3& w, const Vec3* directions, std::size_t count, double slack)
+{
+  const double allowance = slack * w.norm();
+  const auto keepsOut = [&](const Vec3& u) {
+    for (std::size_t k = 0; k < count; ++k)
+      if (u.dot(directions[k]) > allowance)
+        return false;
+    return true;
+  };
+  if (keepsOut(w))
+    return w;
+  Vec3 nearest = Vec3::Zero();
+  double gap = w.squaredNorm();
+  const auto consider = [&](const Vec3& u) {
+    const double g = (w - u).squaredNorm();
+    if (g < gap && keepsOut(u))
+    {
+      nearest = u;
+      gap = g;
+    }
+  };
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const double into = w.dot(directions[k]);
+    if (into > 0)
+      consider(w - into * directions[k]);
+  }
+  for (std::size_t a = 0; a < count; ++a)
+    for (std::size_t b = a + 1; b < count; ++b)
+    {
+      const Vec3 line = directions[a].cross(directions[b]);
+      const double length_squared = line.squaredNorm();
+      if (length_squared > 0)
+        consider((w.dot(line) / length_squared) * line);
+    }
+  return nearest;
 }
 }  // namespace ball_collision_sim::core::step

@@ -5,6 +5,8 @@
 
 #include "ball_collision_sim/core/world.hpp"
 
+#include "contact_solver.hpp"
+
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -115,31 +117,10 @@ struct World::BlockedSet
   /// the sum of the bounces that a resting contact stands for.
   bool elastic = true;
 
-  /// `w` without its parts along the blocked directions: the nearest vector with
-  /// <w, d> <= 0 for every blocked d, by cyclic projection; zero (which always qualifies)
-  /// when that does not settle.
-  Vec3 allowed(Vec3 w, const StepSettings& settings) const
+  /// The nearest vector to `w` with <u, d> <= 0 for every blocked d (step::keptOut()).
+  Vec3 allowed(const Vec3& w, const StepSettings& settings) const
   {
-    const double scale = w.norm();
-    for (int pass = 0; pass < settings.blocked_projection_passes; ++pass)
-    {
-      bool changed = false;
-      for (std::uint8_t k = 0; k < count; ++k)
-      {
-        const double into = w.dot(directions[k]);
-        if (into > 0)
-        {
-          w -= into * directions[k];
-          changed = true;
-        }
-      }
-      if (!changed)
-        return w;
-    }
-    for (std::uint8_t k = 0; k < count; ++k)
-      if (w.dot(directions[k]) > settings.blocked_slack * scale)
-        return Vec3::Zero();
-    return w;
+    return step::keptOut(w, directions.data(), count, settings.blocked_slack);
   }
   void add(const Vec3& direction, std::uint64_t source, const StepSettings& settings)
   {
