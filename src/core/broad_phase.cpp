@@ -234,11 +234,10 @@ std::size_t StepGrid::assignCells()
   return slots;
 }
 
-void StepGrid::reorder(std::vector<std::uint32_t>& values)
+void StepGrid::takeCellOrder(std::vector<std::uint32_t>& order)
 {
-  for (std::uint32_t& item : entries_)
-    item = values[item];
-  values.swap(entries_);
+  order.swap(entries_);
+  entries_.clear();
 }
 
 void StepGrid::markObstacles(const std::vector<Box32>& obstacles)
@@ -285,7 +284,8 @@ void StepGrid::moveOut(std::uint32_t i)
     if (moved_list_.size() == kFewMoved + 1)
     {
       // too many to scan from now on: the moved grid takes over, with the boxes so far
-      moved_grid_.reset(cell_, items_.size() / 8 + 16);
+      // (sized for a few times as many: it grows as more move, and most steps move few)
+      moved_grid_.reset(cell_, 4 * moved_list_.size());
       for (std::uint32_t j : moved_list_)
         moved_grid_.insert(j, items_[j].box.toAabb());
       return;

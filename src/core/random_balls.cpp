@@ -60,10 +60,13 @@ public:
   {
     // The explicit balls, placed, are obstacles too; the balls placed here follow them.
     max_radius_ = scene.random_balls->radius.max;
+    // (room for all asked for, and for the scene's own balls again ahead of them, up to a
+    // point: memory reserved and not filled is not touched; past it the list grows)
+    balls_.reserve(2 * scene.balls.size() + std::min<std::size_t>(asked, kReservedUpTo));
     for (BallDef ball : scene.balls)
       if (placement.place(ball).empty())
       {
-        balls_.push_back(ball);
+        balls_.push_back({ball});
         max_radius_ = std::max(max_radius_, ball.radius);
       }
     listed_ = balls_.size();
@@ -71,7 +74,7 @@ public:
     // far beyond the room is refused without its table)
     grid_.reset(2 * max_radius_, balls_.size() + std::min<std::size_t>(asked, 1 << 16));
     for (std::size_t k = 0; k < balls_.size(); ++k)
-      grid_.insert(static_cast<std::uint32_t>(k), sweptBox(balls_[k].position, balls_[k].position, 0));
+      grid_.insert(static_cast<std::uint32_t>(k), sweptBox(balls_[k].def.position, balls_[k].def.position, 0));
   }
   /// Whether `ball` keeps its clearance from every wall and every ball placed so far.
   bool clear(const BallDef& ball) const
@@ -83,7 +86,7 @@ public:
     bool clear = true;
     const Aabb box = sweptBox(ball.position, ball.position, ball.radius + max_radius_ + kClearance);
     grid_.query(box, [&](std::uint32_t k) {
-      const BallDef& o = balls_[k];
+      const BallDef& o = balls_[k].def;
       if ((o.position - ball.position).norm() < o.radius + ball.radius + kClearance)
         clear = false;
     });
@@ -91,12 +94,12 @@ public:
   }
   void add(const BallDef& ball)
   {
-    balls_.push_back(ball);
+    balls_.push_back({ball});
     grid_.insert(static_cast<std::uint32_t>(balls_.size() - 1), sweptBox(ball.position, ball.position, 0));
   }
   long placed() const { return static_cast<long>(balls_.size() - listed_); }
   /// The balls placed here, without the scene's own.
-  std::vector<BallDef> take()
+  std::vector<PlacedBall> take()
   {
     balls_.erase(balls_.begin(), balls_.begin() + static_cast<std::ptrdiff_t>(listed_));
     return std::move(balls_);
@@ -104,7 +107,8 @@ public:
 
 private:
   const Placement& placement_;
-  std::vector<BallDef> balls_;
+  static constexpr std::size_t kReservedUpTo = std::size_t{1} << 22;
+  std::vector<PlacedBall> balls_;
   std::size_t listed_ = 0;
   double max_radius_ = 0.0;
   UniformGrid grid_;
@@ -130,6 +134,14 @@ std::optional<BallDef> drawBall(std::mt19937_64& rng, const RandomBallsDef& def,
 }  // namespace
 
 std::vector<BallDef> placeRandomBalls(const Scene& scene)
+{
+  std::vector<BallDef> out;
+  for (PlacedBall& ball : placeRandomBallsWithFeet(scene))
+    out.push_back(ball.def);
+  return out;
+}
+
+std::vector<PlacedBall> placeRandomBallsWithFeet(const Scene& scene)
 {
   if (!scene.random_balls || !scene.floor || scene.random_balls->count <= 0)
     return {};

@@ -275,9 +275,9 @@ void checkPlacement(Checker& check, const Scene& scene, std::vector<bool>& usabl
 
 /// The random balls' definition, and (when the rest of the scene is fine) whether they
 /// all fit: the balls placed.
-std::vector<BallDef> checkRandomBalls(Checker& check, const Scene& scene, bool fine_so_far)
+std::vector<PlacedBall> checkRandomBalls(Checker& check, const Scene& scene, bool fine_so_far)
 {
-  std::vector<BallDef> random;
+  std::vector<PlacedBall> random;
   const RandomBallsDef& rb = *scene.random_balls;
   bool ok = true;
   if (rb.count < 0 || rb.count > 10'000'000)
@@ -307,7 +307,7 @@ std::vector<BallDef> checkRandomBalls(Checker& check, const Scene& scene, bool f
   }
   if (ok && fine_so_far && rb.count > 0)
   {
-    random = placeRandomBalls(scene);
+    random = placeRandomBallsWithFeet(scene);
     if (random.size() < static_cast<std::size_t>(rb.count))
       check.fail("random_balls.count", "room for only " + std::to_string(random.size()) + " of " +
                                            std::to_string(rb.count) +
@@ -344,22 +344,27 @@ std::string joinIssues(const std::vector<SceneIssue>& issues)
 
 namespace
 {
-/// The scene's explicit balls, and then `random` ones, each put on the floor.
-std::vector<PlacedBall> land(const Scene& scene, const std::vector<BallDef>& random)
+/// The scene's explicit balls, and then `random` ones, each put on the floor: in the
+/// list of the random ones, which has room for the others ahead of them.
+std::vector<PlacedBall> land(const Scene& scene, std::vector<PlacedBall> random)
 {
   std::optional<Floor> floor;
   if (scene.floor)
     floor.emplace(*scene.floor, scene.gravity);
-  std::vector<PlacedBall> out;
-  out.reserve(scene.balls.size() + random.size());
-  for (const std::vector<BallDef>* list : {&scene.balls, &random})
-    for (const BallDef& def : *list)
-    {
-      PlacedBall ball{def, Vec2(0.5, 0.5)};
-      placeOnFloor(ball.def, floor, &ball.foot);
-      out.push_back(ball);
-    }
-  return out;
+  const auto put = [&](PlacedBall& ball) {
+    ball.foot = Vec2(0.5, 0.5);  // (the first guess of the foot point)
+    placeOnFloor(ball.def, floor, &ball.foot);
+  };
+  for (PlacedBall& ball : random)
+    put(ball);
+  std::vector<PlacedBall> own(scene.balls.size());
+  for (std::size_t k = 0; k < own.size(); ++k)
+  {
+    own[k].def = scene.balls[k];
+    put(own[k]);
+  }
+  random.insert(random.begin(), own.begin(), own.end());
+  return random;
 }
 }  // namespace
 
@@ -370,7 +375,7 @@ std::vector<SceneIssue> validate(const Scene& scene)
 
 std::vector<PlacedBall> placeBalls(const Scene& scene)
 {
-  return land(scene, placeRandomBalls(scene));
+  return land(scene, placeRandomBallsWithFeet(scene));
 }
 
 SceneCheck check(const Scene& scene)
@@ -409,10 +414,10 @@ SceneCheck check(const Scene& scene)
   // Geometry only once the objects themselves are sound, so one mistake gives one issue.
   if (gravity_ok && floor_ok && walls_ok)
     checkPlacement(check, scene, usable);
-  const std::vector<BallDef> random =
-      scene.random_balls ? checkRandomBalls(check, scene, issues.empty()) : std::vector<BallDef>();
+  std::vector<PlacedBall> random =
+      scene.random_balls ? checkRandomBalls(check, scene, issues.empty()) : std::vector<PlacedBall>();
   if (issues.empty())
-    out.balls = land(scene, random);
+    out.balls = land(scene, std::move(random));
   return out;
 }
 

@@ -99,58 +99,6 @@ void World::forgetOrder()
   motions_ready_ = false;
 }
 
-void World::sortById()
-{
-  bool sorted = true;
-  for (std::size_t k = 0; k < by_id_.size() && sorted; ++k)
-    sorted = by_id_[k] == k;
-  if (sorted)
-    return;
-  std::vector<std::uint32_t> from = by_id_;  // slot k takes the k-th by id
-  permute(from);
-}
-
-void World::permute(std::vector<std::uint32_t>& from)
-{
-  // Where each slot's record goes, for by_id_: slot from[k] -> slot k.
-  std::vector<std::uint32_t> to(from.size());
-  for (std::size_t k = 0; k < from.size(); ++k)
-    to[from[k]] = static_cast<std::uint32_t>(k);
-  for (std::uint32_t& slot : by_id_)
-    slot = to[slot];
-  to = {};
-  // In place, cycle by cycle: slot k takes from[k]'s record, and from[k] = k marks it done.
-  const auto move = [&](std::uint32_t into, std::uint32_t out) {
-    balls_[into] = balls_[out];
-    if (!feet_.empty())
-      feet_[into] = feet_[out];
-    if (!spins_.empty())
-      spins_[into] = spins_[out];
-  };
-  for (std::uint32_t k = 0; k < from.size(); ++k)
-  {
-    if (from[k] == k)
-      continue;
-    const Ball ball = balls_[k];
-    const Vec2 foot = feet_.empty() ? no_foot_ : feet_[k];
-    const BallSpin spin = spins_.empty() ? BallSpin{} : spins_[k];
-    std::uint32_t at = k;
-    while (from[at] != k)
-    {
-      const std::uint32_t next = from[at];
-      move(at, next);
-      from[at] = at;
-      at = next;
-    }
-    from[at] = at;
-    balls_[at] = ball;
-    if (!feet_.empty())
-      feet_[at] = foot;
-    if (!spins_.empty())
-      spins_[at] = spin;
-  }
-}
-
 Ball World::makeBall(int id, const BallDef& placed)
 {
   Ball ball;
@@ -192,10 +140,8 @@ void World::step()
   commitToFloor(!reorder);     // every ball to the step's end, back on the floor
   if (reorder)
   {
-    std::vector<std::uint32_t> from(balls_.size());
-    for (std::size_t k = 0; k < from.size(); ++k)
-      from[k] = static_cast<std::uint32_t>(k);
-    grid_.reorder(from);  // the slots in the grid's cell order
+    std::vector<std::uint32_t> from;
+    grid_.takeCellOrder(from);  // the slots in the grid's cell order
     permute(from);
   }
   order_age_ = reorder ? 1 : order_age_ + 1;

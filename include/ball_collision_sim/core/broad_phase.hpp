@@ -156,9 +156,9 @@ public:
   const Box32& box(std::uint32_t i) const { return items_[i].box; }
   /// True when the grid lists the items cell by cell, row by row.
   bool inCellOrder() const { return dense_; }
-  /// Puts `values` (one per item) in the grid's order of the items, in the grid's own
-  /// storage for that order: the grid needs build() again after this.
-  void reorder(std::vector<std::uint32_t>& values);
+  /// Moves the grid's order of the items (cell by cell, every item once) into `order`,
+  /// without a copy: the grid needs build() again after this.
+  void takeCellOrder(std::vector<std::uint32_t>& order);
   /// Notes which cells binned items could reach the given boxes (walls) from.
   void markObstacles(const std::vector<Box32>& obstacles);
   /// False when item i's box cannot overlap any of the boxes given to markObstacles().

@@ -153,6 +153,9 @@ std::string joinIssues(const std::vector<SceneIssue>& issues);
 /// The balls of `random_balls`, placed as the scene says (deterministic in its seed).
 /// Fewer than `count` come back when there is no room; validate() reports that.
 std::vector<BallDef> placeRandomBalls(const Scene& scene);
+/// ... each with room for its foot point (not set yet), and room kept ahead of them for
+/// the scene's own balls, so that check() puts all on the floor in one list, in place.
+std::vector<PlacedBall> placeRandomBallsWithFeet(const Scene& scene);
 
 /// The scene's explicit balls followed by its random ones.
 std::vector<BallDef> allBalls(const Scene& scene);
