@@ -356,3 +356,26 @@ TEST(KeptOut, MatchesTheNearestSumOfDirectionsTakenOffW)
   EXPECT_GT(whole, 100);
   EXPECT_GT(cut, 100);
 }
+
+// Two planes at a small angle (nearly parallel directions, or nearly opposite: a thin
+// wedge), turned to no axis so that the line where they meet carries round-off:
+// w = 0.6 d1 + 0.8 d2 + 0.7 e, e along that line, keeps exactly 0.7 e. (The line's
+// direction is off by round-off over the angle, so its own two planes must not judge it:
+// checked against them to 1e-14 of |w| it was refused, and w stopped dead.)
+TEST(KeptOut, TwoPlanesAtASmallAngleKeepWhatRunsAlongWhereTheyMeet)
+{
+  const Eigen::Matrix3d turn =
+      (Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()) * Eigen::AngleAxisd(1.9, Vec3(-2, 1, 0.5).normalized()))
+          .toRotationMatrix();
+  for (const double angle : {1e-2, 1e-3, 1e-4, 1e-6})
+    for (const double side : {1.0, -1.0})
+    {
+      const Vec3 d1 = turn * Vec3(1, 0, 0);
+      const Vec3 d2 = turn * (side * Vec3(std::cos(angle), std::sin(angle), 0));
+      const Vec3 e = turn * Vec3(0, 0, 1);
+      const std::array<Vec3, 2> d{d1, d2};
+      const Vec3 w = 0.6 * d1 + 0.8 * d2 + 0.7 * e;
+      const Vec3 u = step::keptOut(w, d.data(), d.size(), 1e-14);
+      EXPECT_NEAR((u - 0.7 * e).norm(), 0.0, 1e-9 * w.norm()) << "angle " << angle << " side " << side;
+    }
+}

@@ -107,7 +107,7 @@ public:
 
 private:
   const Placement& placement_;
-  static constexpr std::size_t kReservedUpTo = std::size_t{1} << 22;
+  static constexpr std::size_t kReservedUpTo = std::size_t{1} << 20;  ///< 128 MiB of room at most
   std::vector<PlacedBall> balls_;
   std::size_t listed_ = 0;
   double max_radius_ = 0.0;

@@ -92,9 +92,6 @@ struct LostBall
 /// names no object.
 constexpr int kFirstId = 1;
 
-/// The balls in id order: a view of the world's records, which the step keeps in the
-/// order it visits them in (neighbours in space are neighbours in memory). Valid until
-/// the world steps or is edited.
 /// Working memory a World keeps between steps only so as not to allocate it again: not
 /// part of its state, so a copy starts without it. T may be incomplete where this is
 /// declared, and complete where the owner's special members are defined.
@@ -120,6 +117,9 @@ private:
   std::unique_ptr<T> held_;
 };
 
+/// The balls in id order: a view of the world's records, which the step keeps in the
+/// order it visits them in (neighbours in space are neighbours in memory). Valid until
+/// the world steps or is edited.
 class BallList
 {
 public:

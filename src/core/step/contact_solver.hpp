@@ -136,24 +136,28 @@ inline ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double
 /// vector of the cone, not the nearest (in a wedge it can leave a velocity w never had).
 /// The projection lies on one of the cone's faces, so it is, of w itself, w less its part
 /// along one d, its part along the line where two of the planes meet, and zero, the
-/// nearest that keeps out of every d to `slack` of |w| (round-off) [ratio]. It never
-/// lengthens w.
+/// nearest that keeps out of every other d to `slack` of |w| (round-off) [ratio]. It
+/// never lengthens w.
 inline Vec3 keptOut(const Vec3& w, const Vec3* directions, std::size_t count, double slack)
 {
+  // (a candidate is checked against every direction but those it lies square to by its
+  // making: its part along them is round-off, which for the line where two nearly
+  // parallel planes meet grows as their angle shrinks)
+  constexpr std::size_t kNone = ~std::size_t{0};
   const double allowance = slack * w.norm();
-  const auto keepsOut = [&](const Vec3& u) {
+  const auto keepsOut = [&](const Vec3& u, std::size_t made_a, std::size_t made_b) {
     for (std::size_t k = 0; k < count; ++k)
-      if (u.dot(directions[k]) > allowance)
+      if (k != made_a && k != made_b && u.dot(directions[k]) > allowance)
         return false;
     return true;
   };
-  if (keepsOut(w))
+  if (keepsOut(w, kNone, kNone))
     return w;
   Vec3 nearest = Vec3::Zero();
   double gap = w.squaredNorm();
-  const auto consider = [&](const Vec3& u) {
+  const auto consider = [&](const Vec3& u, std::size_t made_a, std::size_t made_b) {
     const double g = (w - u).squaredNorm();
-    if (g < gap && keepsOut(u))
+    if (g < gap && keepsOut(u, made_a, made_b))
     {
       nearest = u;
       gap = g;
@@ -163,7 +167,7 @@ inline Vec3 keptOut(const Vec3& w, const Vec3* directions, std::size_t count, do
   {
     const double into = w.dot(directions[k]);
     if (into > 0)
-      consider(w - into * directions[k]);
+      consider(w - into * directions[k], k, kNone);
   }
   for (std::size_t a = 0; a < count; ++a)
     for (std::size_t b = a + 1; b < count; ++b)
@@ -171,7 +175,7 @@ inline Vec3 keptOut(const Vec3& w, const Vec3* directions, std::size_t count, do
       const Vec3 line = directions[a].cross(directions[b]);
       const double length_squared = line.squaredNorm();
       if (length_squared > 0)
-        consider((w.dot(line) / length_squared) * line);
+        consider((w.dot(line) / length_squared) * line, a, b);
     }
   return nearest;
 }
