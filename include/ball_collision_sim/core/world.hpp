@@ -361,8 +361,6 @@ private:
   /// The step's resting contacts as the contact solver takes them, for the velocities
   /// at the step's end (after the bounces that gravity's closing speed makes).
   ContactGroup& velocityGroup();
-  /// The index of each pair's last contact in `contacts`, in ascending order.
-  static void lastOfPair(const std::vector<RestingContact>& contacts, std::vector<std::size_t>& last);
   /// Turns ball i by its rolling over the step's move d (its angular velocity follows
   /// from its velocity when asked for: angularVelocity()).
   void roll(std::size_t i, const Vec3& floor_normal, const Vec3& d);
@@ -590,7 +588,7 @@ private:
   std::vector<RestingContact> resting_;
   /// the contact solver's work space
   Scratch<ContactGroup> contact_group_;
-  std::vector<std::size_t> last_of_pair_;  ///< lastOfPair()'s, kept between steps
+  std::vector<std::size_t> last_of_pair_;  ///< step::lastOfEachPair()'s, kept between steps
   std::vector<BlockedSet> blocked_sets_;
 
   /// With friction: the laws under the plane's normal, each ball's spin beside balls_,
