@@ -1,6 +1,8 @@
 // The contact solver (src/core/step/contact_solver.hpp) on its own: closed forms of
 // jams at rest, and the unique solution of a linear complementarity problem found by
-// trying every set of active contacts.
+// trying every set of active contacts; the directions a ball may not move along
+// (src/core/step/blocked_directions.hpp), kept out of exactly, as many as it has.
+#include "core/step/blocked_directions.hpp"
 #include "core/step/contact_solver.hpp"
 
 #include <gtest/gtest.h>
@@ -10,6 +12,7 @@
 #include <random>
 
 using namespace ball_collision_sim::core;
+using step::BlockedDirections;
 using step::ContactRow;
 using step::solveContacts;
 
@@ -378,4 +381,70 @@ TEST(KeptOut, TwoPlanesAtASmallAngleKeepWhatRunsAlongWhereTheyMeet)
       const Vec3 u = step::keptOut(w, d.data(), d.size(), 1e-14);
       EXPECT_NEAR((u - 0.7 * e).norm(), 0.0, 1e-9 * w.norm()) << "angle " << angle << " side " << side;
     }
+}
+
+TEST(BlockedDirections, ARingOfTwelveWallsLeavesOnlyTheWayUp)
+{
+  // A ball ringed by twelve contacts along the floor (every 30 degrees), in a set grown
+  // while other balls' sets grow beside it: every one is kept, and the motion left is
+  // w's part straight up, the closed form. A set that kept fewer would let w through
+  // toward the ones it lost.
+  const double pi = 3.14159265358979323846;
+  BlockedDirections blocked;
+  const std::int32_t ring = blocked.open();
+  const std::int32_t other = blocked.open();
+  for (int k = 0; k < 12; ++k)
+  {
+    const double a = k * pi / 6;
+    blocked.add(ring, Vec3(std::cos(a), std::sin(a), 0), 100 + static_cast<std::uint64_t>(k), 1e-12);
+    if (k % 4 == 0)
+      blocked.add(other, Vec3(0, 0, k % 8 == 0 ? 1 : -1), 200 + static_cast<std::uint64_t>(k), 1e-12);
+  }
+  ASSERT_EQ(blocked.count(ring), 12u);
+  ASSERT_EQ(blocked.count(other), 2u);  // (the third is the first's direction again)
+  for (int k = 0; k < 12; ++k)
+  {
+    const double a = k * pi / 6;
+    EXPECT_EQ(blocked.direction(ring, static_cast<std::size_t>(k)), Vec3(std::cos(a), std::sin(a), 0));
+    EXPECT_EQ(blocked.source(ring, static_cast<std::size_t>(k)), 100 + static_cast<std::uint64_t>(k));
+  }
+  EXPECT_EQ(blocked.direction(other, 0), Vec3(0, 0, 1));
+  EXPECT_EQ(blocked.direction(other, 1), Vec3(0, 0, -1));
+  for (const Vec3& w : {Vec3(1, 2, 3), Vec3(-0.5, 0.1, -2), Vec3(0.3, -4, 0)})
+  {
+    const Vec3 u = blocked.allowed(ring, w, 1e-14);
+    EXPECT_LT((u - Vec3(0, 0, w.z())).norm(), 1e-15 * w.norm()) << w.transpose() << " -> " << u.transpose();
+  }
+  EXPECT_EQ(blocked.allowed(other, Vec3(1, 2, 3), 1e-14), Vec3(1, 2, 0));
+}
+
+TEST(BlockedDirections, ASourcesLatestContactReplacesItsDirection)
+{
+  // The same source again (the ball has moved round a wall's edge): its direction turns,
+  // none is added. A new source's direction that is one the set has already: not added.
+  // Elastic until an inelastic contact blocks it, set by set; cleared, the sets start
+  // again from the first.
+  BlockedDirections blocked;
+  const std::int32_t s = blocked.open();
+  const std::int32_t t = blocked.open();
+  blocked.add(s, Vec3(1, 0, 0), 7, 1e-12);
+  blocked.add(s, Vec3(0, 1, 0), 8, 1e-12);
+  blocked.add(s, Vec3(0.6, 0.8, 0), 7, 1e-12);
+  ASSERT_EQ(blocked.count(s), 2u);
+  EXPECT_EQ(blocked.direction(s, 0), Vec3(0.6, 0.8, 0));
+  blocked.add(s, Vec3(0, 1, 1e-7).normalized(), 9, 1e-12);
+  EXPECT_EQ(blocked.count(s), 2u);
+  blocked.add(s, Vec3(0, 1, 1e-5).normalized(), 9, 1e-12);
+  EXPECT_EQ(blocked.count(s), 3u);
+  EXPECT_TRUE(blocked.elastic(s));
+  blocked.markInelastic(t);
+  EXPECT_TRUE(blocked.elastic(s));
+  EXPECT_FALSE(blocked.elastic(t));
+  EXPECT_EQ(blocked.count(t), 0u);
+  EXPECT_EQ(blocked.allowed(t, Vec3(1, -2, 3), 1e-14), Vec3(1, -2, 3));
+  blocked.clear();
+  EXPECT_TRUE(blocked.empty());
+  EXPECT_EQ(blocked.open(), 0);
+  EXPECT_EQ(blocked.count(0), 0u);
+  EXPECT_TRUE(blocked.elastic(0));
 }

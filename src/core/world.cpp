@@ -127,7 +127,7 @@ void World::step()
   events_.clear();
   transitions_.clear();
   resting_.clear();
-  blocked_sets_.clear();
+  blocked_.get().clear();
   predictMotions();            // each ball's free motion over the step, on the floor, and its swept box
   buildBroadPhase();           // the swept boxes into a uniform grid
   findFirstImpacts();          // exact times of impact of nearby pairs and walls

@@ -42,7 +42,7 @@ struct StepSettings
   /// practice, and 32 halvings reach round-off [passes].
   int correction_passes = 32;
   /// A motion kept out of its blocked directions may still point into one by this much
-  /// of its length, round-off of the projection (BlockedSet::allowed()) [ratio].
+  /// of its length, round-off of the projection (step::BlockedDirections::allowed()) [ratio].
   double blocked_slack = 1e-14;
   /// Two blocked directions this close to parallel are one (1 - cosine) [ratio].
   double same_direction = 1e-12;

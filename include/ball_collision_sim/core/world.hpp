@@ -24,6 +24,11 @@
 
 namespace ball_collision_sim::core
 {
+namespace step
+{
+class BlockedDirections;  // src/core/step/blocked_directions.hpp
+}
+
 /// Energy of the world; potential is measured from the origin along gravity.
 struct Energy
 {
@@ -112,6 +117,8 @@ public:
       held_ = std::make_unique<T>();
     return *held_;
   }
+  /// The work space a get() made before.
+  const T& made() const { return *held_; }
 
 private:
   std::unique_ptr<T> held_;
@@ -284,7 +291,6 @@ private:
   /// How a ball's motion and spin go within the step with friction
   /// (src/core/step/spin_phase.hpp): a type per phase, not a branch in the step.
   struct SpinPhase;
-  struct BlockedSet;
   /// How balls move on this world's ground within a step (src/core/step/floor_motion.hpp):
   /// a type the ground provides, exact paths on a plane or without a floor, chords on a
   /// curved floor.
@@ -589,7 +595,8 @@ private:
   /// the contact solver's work space
   Scratch<ContactGroup> contact_group_;
   std::vector<std::size_t> last_of_pair_;  ///< step::lastOfEachPair()'s, kept between steps
-  std::vector<BlockedSet> blocked_sets_;
+  /// the directions balls may not move along for the rest of the step, emptied at its start
+  Scratch<step::BlockedDirections> blocked_;
 
   /// With friction: the laws under the plane's normal, each ball's spin beside balls_,
   /// the step's phases by visiting index, and the step's changes of kind.

@@ -1,7 +1,7 @@
 // Stage 5, commit: every ball to the step's end, back on the floor, its velocity
 // there (solved across the step's resting contacts by the contact solver), its turn by
 // rolling; and, while the visiting order stays, the next step's prediction. Reads
-// motions_, states_, resting_, blocked_sets_; writes balls_, feet_, the contact solver's
+// motions_, states_, resting_, blocked_; writes balls_, feet_, the contact solver's
 // work space.
 #include "contact_group.hpp"
 #include "rolling.hpp"
@@ -19,7 +19,7 @@ void World::commitToFloor(bool predict_next)
 {
   // Without resting contacts every ball is finished in one pass; with them, velocities
   // are settled across the contacts first.
-  const bool settle = !resting_.empty() || !blocked_sets_.empty();
+  const bool settle = !resting_.empty() || !blocked_.get().empty();
   std::uint64_t asleep = 0;
   if (settle)
     floor_normals_.resize(balls_.size());
@@ -150,8 +150,8 @@ World::ContactGroup& World::velocityGroup()
     const std::size_t i = group.ballAt(k);
     group.u[k] = balls_[i].velocity;
     group.inv_mass[k] = inverseMass(i);
-    if (states_[i].blocked >= 0)
-      group.addBlocked(k, blocked_sets_[static_cast<std::size_t>(states_[i].blocked)],
+    if (const std::int32_t blocked = states_[i].blocked; blocked >= 0)
+      group.addBlocked(k, blocked_.get(), blocked,
                        [this](std::uint64_t source) { return isWallSource(source); });
   }
   return group;

@@ -47,15 +47,15 @@ struct World::ContactGroup
   /// whose source from_wall(source) says is one; a ball's are the pair's own rows), each
   /// a contact with something that does not give way.
   template <class FromWall>
-  void addBlocked(std::uint32_t k, const BlockedSet& set, FromWall&& from_wall)
+  void addBlocked(std::uint32_t k, const step::BlockedDirections& blocked, std::int32_t set, FromWall&& from_wall)
   {
-    for (std::uint8_t d = 0; d < set.count; ++d)
+    for (std::size_t d = 0; d < blocked.count(set); ++d)
     {
-      if (!from_wall(set.sources[d]))
+      if (!from_wall(blocked.source(set, d)))
         continue;
       step::ContactRow row;
       row.a = k;
-      row.push_a = set.directions[d];
+      row.push_a = blocked.direction(set, d);
       rows.push_back(row);
     }
   }

@@ -1,7 +1,7 @@
 // Resting contacts: the directions a ball may not move along for the rest of the step,
 // holding balls still, and what a motion's energy allows (FloorMotion::keepEnergy(), with
 // the floor's motion type saying where its motion ends and how it is cut short).
-// Reads and writes motions_, states_, blocked_sets_, and a held ball's spin_motions_.
+// Reads and writes motions_, states_, blocked_, and a held ball's spin_motions_.
 #include "spin_phase.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
@@ -21,7 +21,7 @@ Vec3 World::allowed(std::size_t i, const Vec3& w) const
   // A wall's own normal is blocked beside its direction along the floor (for chords off
   // a curved floor); on a plane it lets a motion out of the plane through (a ball in a
   // corner of two walls would move straight up or down), which the plane takes.
-  return ground_.inPlane(blocked_sets_[static_cast<std::size_t>(blocked)].allowed(w, settings_));
+  return ground_.inPlane(blocked_.made().allowed(blocked, w, settings_.blocked_slack));
 }
 
 Vec3 World::redirected(std::size_t i, const Vec3& v) const
@@ -32,7 +32,7 @@ Vec3 World::redirected(std::size_t i, const Vec3& v) const
   // energy's (onFloorVelocity), and the turn keeps it.
   const std::int32_t blocked = states_[i].blocked;
   const Vec3 free = allowed(i, v);
-  if (blocked < 0 || !blocked_sets_[static_cast<std::size_t>(blocked)].elastic)
+  if (blocked < 0 || !blocked_.made().elastic(blocked))
     return free;
   return ground_.turned(v, free);
 }
@@ -40,14 +40,12 @@ Vec3 World::redirected(std::size_t i, const Vec3& v) const
 void World::addBlocked(std::size_t i, const Vec3& direction, std::uint64_t source, double restitution)
 {
   MotionState& m = states_[i];
+  BlockedDirections& blocked = blocked_.get();
   if (m.blocked < 0)
-  {
-    m.blocked = static_cast<std::int32_t>(blocked_sets_.size());
-    blocked_sets_.emplace_back();
-  }
-  BlockedSet& set = blocked_sets_[static_cast<std::size_t>(m.blocked)];
-  set.add(direction, source, settings_);
-  set.elastic = set.elastic && !(restitution < 1);
+    m.blocked = blocked.open();
+  blocked.add(m.blocked, direction, source, settings_.same_direction);
+  if (restitution < 1)
+    blocked.markInelastic(m.blocked);
 }
 
 void World::wakeGroup(std::size_t first)

@@ -5,9 +5,9 @@
 
 #include "ball_collision_sim/core/world.hpp"
 
+#include "blocked_directions.hpp"
 #include "contact_solver.hpp"
 
-#include <array>
 #include <cstdint>
 #include <limits>
 
@@ -54,7 +54,7 @@ struct World::MotionState
   /// it stays where it is through resting contacts for the rest of the step (an impact
   /// lets it go), and ends the step with no velocity.
   bool held : 1;
-  std::int32_t blocked = -1;     ///< its BlockedSet this step, if any
+  std::int32_t blocked = -1;     ///< its set of blocked directions this step (BlockedDirections), if any
 
   MotionState() : frozen(false), asleep(false), accelerates(false), held(false) {}
 };
@@ -100,45 +100,4 @@ struct World::SpinMotion
   /// curved floors, rolling: mu_r g_n [m/s^2]
   double roll_resistance = 0.0;
 };
-
-/// Unit directions a ball may not move along for the rest of the step: toward a wall it
-/// leans on, or toward a ball that cannot give way. A ball in a corner or in a pile at
-/// rest has several; most balls have none, and no set. Each comes from a source (a wall's
-/// direction along the floor, a wall's own normal, another ball: World::wallSource(), World::ballSource()),
-/// and a source's latest contact replaces its direction: the ball has moved since, and
-/// on a curved floor, or around a wall's edge or corner, the direction has turned with it.
-struct World::BlockedSet
-{
-  std::array<Vec3, 8> directions;
-  std::array<std::uint64_t, 8> sources;
-  std::uint8_t count = 0;
-  /// Every contact that blocks it is elastic (e = 1): it turns the ball's velocity and
-  /// takes none of its speed. An inelastic one takes the part of the velocity into it,
-  /// the sum of the bounces that a resting contact stands for.
-  bool elastic = true;
-
-  /// The nearest vector to `w` with <u, d> <= 0 for every blocked d (step::keptOut()).
-  Vec3 allowed(const Vec3& w, const StepSettings& settings) const
-  {
-    return step::keptOut(w, directions.data(), count, settings.blocked_slack);
-  }
-  void add(const Vec3& direction, std::uint64_t source, const StepSettings& settings)
-  {
-    for (std::uint8_t k = 0; k < count; ++k)
-      if (sources[k] == source)
-      {
-        directions[k] = direction;
-        return;
-      }
-    for (std::uint8_t k = 0; k < count; ++k)
-      if (directions[k].dot(direction) > 1 - settings.same_direction)
-        return;
-    if (count < directions.size())
-    {
-      directions[count] = direction;
-      sources[count++] = source;
-    }
-  }
-};
-
 }  // namespace ball_collision_sim::core
