@@ -2,6 +2,8 @@
 // cells, so that neighbours in space are neighbours in memory; an edit puts them back in
 // id order. Reads and writes balls_, feet_, spins_ and by_id_ (the slot of each ball by
 // its place in id order).
+#include "permutation.hpp"
+
 #include "ball_collision_sim/core/world.hpp"
 
 namespace ball_collision_sim::core
@@ -17,30 +19,6 @@ void World::sortById()
   permute(from);
 }
 
-void World::invertInPlace(std::vector<std::uint32_t>& p)
-{
-  // Cycle by cycle: along k -> p[k] -> p[p[k]] -> ..., each entry takes the index before
-  // it, marked done in its top bit (free: slots are below 2^31).
-  constexpr std::uint32_t kDone = 0x80000000u;
-  for (std::uint32_t start = 0; start < p.size(); ++start)
-  {
-    if (p[start] & kDone)
-      continue;
-    std::uint32_t before = start;
-    std::uint32_t at = p[start];
-    while (at != start)
-    {
-      const std::uint32_t next = p[at];
-      p[at] = before | kDone;
-      before = at;
-      at = next;
-    }
-    p[start] = before | kDone;
-  }
-  for (std::uint32_t& k : p)
-    k &= ~kDone;
-}
-
 void World::permute(std::vector<std::uint32_t>& from)
 {
   // Where each slot's record goes, for by_id_: slot from[k] -> slot k (the inverse of
@@ -49,35 +27,36 @@ void World::permute(std::vector<std::uint32_t>& from)
   for (std::uint32_t& slot : by_id_)
     slot = from[slot];
   invertInPlace(from);
-  // In place, cycle by cycle: slot k takes from[k]'s record, and from[k] = k marks it done.
-  const auto move = [&](std::uint32_t into, std::uint32_t out) {
-    balls_[into] = balls_[out];
-    if (!feet_.empty())
-      feet_[into] = feet_[out];
-    if (!spins_.empty())
-      spins_[into] = spins_[out];
-  };
-  for (std::uint32_t k = 0; k < from.size(); ++k)
+  // In place, cycle by cycle (each ball's foot point and spin with it, where kept)
+  struct Records
   {
-    if (from[k] == k)
-      continue;
-    const Ball ball = balls_[k];
-    const Vec2 foot = feet_.empty() ? no_foot_ : feet_[k];
-    const BallSpin spin = spins_.empty() ? BallSpin{} : spins_[k];
-    std::uint32_t at = k;
-    while (from[at] != k)
+    World& w;
+    Ball ball;
+    Vec2 foot;
+    BallSpin spin;
+    void save(std::uint32_t k)
     {
-      const std::uint32_t next = from[at];
-      move(at, next);
-      from[at] = at;
-      at = next;
+      ball = w.balls_[k];
+      foot = w.feet_.empty() ? w.no_foot_ : w.feet_[k];
+      spin = w.spins_.empty() ? BallSpin{} : w.spins_[k];
     }
-    from[at] = at;
-    balls_[at] = ball;
-    if (!feet_.empty())
-      feet_[at] = foot;
-    if (!spins_.empty())
-      spins_[at] = spin;
-  }
+    void move(std::uint32_t into, std::uint32_t out)
+    {
+      w.balls_[into] = w.balls_[out];
+      if (!w.feet_.empty())
+        w.feet_[into] = w.feet_[out];
+      if (!w.spins_.empty())
+        w.spins_[into] = w.spins_[out];
+    }
+    void restore(std::uint32_t k)
+    {
+      w.balls_[k] = ball;
+      if (!w.feet_.empty())
+        w.feet_[k] = foot;
+      if (!w.spins_.empty())
+        w.spins_[k] = spin;
+    }
+  } records{*this, Ball{}, Vec2::Zero(), BallSpin{}};
+  gatherInPlace(from, records);
 }
 }  // namespace ball_collision_sim::core

@@ -333,8 +333,6 @@ private:
   /// Moves the records (balls_, feet_, spins_) so that slot k holds the one that was in
   /// slot from[k]; `from` is used up.
   void permute(std::vector<std::uint32_t>& from);
-  /// p becomes its inverse permutation (q[p[k]] = k), in place; p.size() below 2^31.
-  static void invertInPlace(std::vector<std::uint32_t>& p);
   /// Ball i's foot point guess in this step (curved floors), or a value the ground does
   /// not read.
   const Vec2& guessOf(std::size_t i) const { return floor_uv_.empty() ? no_foot_ : floor_uv_[i]; }
