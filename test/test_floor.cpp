@@ -46,6 +46,54 @@ TEST(Floor, ProjectionFindsTheFootPoint)
   }
 }
 
+TEST(Floor, AGuessFarOffTheFloorStillFindsTheNearestFootOnIt)
+{
+  // A strongly curved net 0.65 m wide (heights -0.24 to 0.1 m), and points just above
+  // it. From guesses far off the floor (as the foot of a fast ball's uncut chord's end
+  // leaves them), Newton's method alone can end at a point square to q - S on the
+  // polynomial past the floor's edge, 1.4 m away, with q 14 mm above the floor (found by
+  // fuzzing: the ball counted as lost). The foot found is the nearest point of the floor
+  // within round-off of a dense search over [0, 1]^2, whatever the guess.
+  FloorDef def;
+  def.type = FloorDef::Type::kBiquadratic;
+  const double h = 0.3255893797207599;
+  const double z[3][3] = {{0.09237811749684383, -0.1845041853929953, 0.05849489579145739},
+                          {0.038517056671961925, 0.09553455403474548, -0.06622700200346707},
+                          {-0.24417402009229566, -0.066366598705389, 0.06276810594473453}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      def.control_points[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = Vec3((i - 1) * h, (j - 1) * h, z[i][j]);
+  const Floor floor(def, Vec3(0, 0, -19.66));
+  const auto nearestOnGrid = [&](const Vec3& q) {
+    double best = std::numeric_limits<double>::infinity();
+    for (int a = 0; a <= 400; ++a)
+      for (int b = 0; b <= 400; ++b)
+        best = std::min(best, (floor.point(Vec2(a / 400.0, b / 400.0)) - q).norm());
+    return best;
+  };
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> on(0.05, 0.95), off(-2.5, 3.5);
+  int far_guesses = 0;
+  for (int k = 0; k < 40; ++k)
+  {
+    const Vec2 uv = k == 0 ? Vec2(0.967, 0.798) : Vec2(on(rng), on(rng));
+    const Vec3 q = floor.point(uv) + 0.015 * floor.normal(uv);
+    const double nearest = nearestOnGrid(q);
+    for (int g = 0; g < 25; ++g)
+    {
+      const Vec2 guess = k == 0 && g == 0 ? Vec2(2.0, -1.0) : Vec2(off(rng), off(rng));
+      far_guesses += !Floor::inside(guess);
+      const FloorFoot foot = floor.project(q, guess);
+      ASSERT_TRUE(foot.inside) << "k " << k << ", guess " << guess.transpose() << " -> " << foot.uv.transpose();
+      // no point of the grid is nearer; q was put 15 mm along the normal at uv
+      ASSERT_LE((foot.point - q).norm(), nearest + 1e-12) << "k " << k << ", guess " << guess.transpose();
+      ASSERT_NEAR((foot.point - q).norm(), 0.015, 1e-12) << "k " << k;
+      ASSERT_LT((foot.uv - uv).norm(), 1e-9) << "k " << k;
+    }
+  }
+  EXPECT_GT(far_guesses, 500);
+}
+
 // A twisted net, unlike the bowl symmetric in neither u and v nor x and y: S is the sum
 // of B_i(u) B_j(v) P_ij, its five derivatives are those of central differences, its
 // normal is square to the tangents, and projections find foot points whose offset lies

@@ -151,41 +151,59 @@ FloorFoot Floor::project(const Vec3& q, const Vec2& guess) const
   }
   else
   {
-    // Newton's method on the gradient of |S(u, v) - q|^2 / 2; where its Hessian is not
-    // positive definite (far from the surface), the Gauss-Newton step instead.
-    // It stops where the next step would be below kFootStepTolerance, without taking it: the
-    // derivatives at hand are then those at the foot point (and a guess that is already
-    // the foot, as for a ball at rest, costs one evaluation).
-    Vec2 uv = guess;
-    Vec3 s, su, sv, suu, suv, svv;
-    bool converged = false;
-    for (int it = 0; it < kMaxNewtonIterations; ++it)
+    foot = nearestFrom(q, guess);
+    // Newton's method finds the point where it starts nearest to q of the surface's
+    // points square to q - S, not the nearest of all: from a guess off the floor (the
+    // foot of a point far away, as a fast ball's uncut chord ends) it can end far off
+    // the floor on the polynomial past its edge, with q right above the floor. Then it
+    // starts again on the floor's edge nearest the guess, and the nearer foot counts.
+    const Vec2 on_floor = guess.cwiseMax(0.0).cwiseMin(1.0);
+    if (!inside(foot.uv) && on_floor != guess)
     {
-      derivatives(uv, s, su, sv, suu, suv, svv);
-      const Vec3 r = s - q;
-      const Vec2 grad(r.dot(su), r.dot(sv));
-      Mat2 h;
-      h << su.dot(su) + r.dot(suu), su.dot(sv) + r.dot(suv), su.dot(sv) + r.dot(suv),
-          sv.dot(sv) + r.dot(svv);
-      if (h.determinant() <= 0 || h(0, 0) <= 0)
-        h << su.dot(su), su.dot(sv), su.dot(sv), sv.dot(sv);
-      Vec2 step = -h.inverse() * grad;
-      const double len = step.norm();
-      converged = len < kFootStepTolerance;
-      if (converged)
-        break;
-      if (len > 0.5)
-        step *= 0.5 / len;
-      uv += step;
+      const FloorFoot again = nearestFrom(q, on_floor);
+      if ((again.point - q).squaredNorm() < (foot.point - q).squaredNorm())
+        foot = again;
     }
-    if (!converged)
-      derivatives(uv, s, su, sv, suu, suv, svv);
-    foot.uv = uv;
-    foot.point = s;
-    foot.normal = orient(su.cross(sv).normalized());
-    foot.height = (q - s).dot(foot.normal);
   }
   foot.inside = inside(foot.uv);
+  return foot;
+}
+
+FloorFoot Floor::nearestFrom(const Vec3& q, const Vec2& start) const
+{
+  // Newton's method on the gradient of |S(u, v) - q|^2 / 2; where its Hessian is not
+  // positive definite (far from the surface), the Gauss-Newton step instead.
+  // It stops where the next step would be below kFootStepTolerance, without taking it: the
+  // derivatives at hand are then those at the foot point (and a start that is already
+  // the foot, as for a ball at rest, costs one evaluation).
+  Vec2 uv = start;
+  Vec3 s, su, sv, suu, suv, svv;
+  bool converged = false;
+  for (int it = 0; it < kMaxNewtonIterations; ++it)
+  {
+    derivatives(uv, s, su, sv, suu, suv, svv);
+    const Vec3 r = s - q;
+    const Vec2 grad(r.dot(su), r.dot(sv));
+    Mat2 h;
+    h << su.dot(su) + r.dot(suu), su.dot(sv) + r.dot(suv), su.dot(sv) + r.dot(suv), sv.dot(sv) + r.dot(svv);
+    if (h.determinant() <= 0 || h(0, 0) <= 0)
+      h << su.dot(su), su.dot(sv), su.dot(sv), sv.dot(sv);
+    Vec2 step = -h.inverse() * grad;
+    const double len = step.norm();
+    converged = len < kFootStepTolerance;
+    if (converged)
+      break;
+    if (len > 0.5)
+      step *= 0.5 / len;
+    uv += step;
+  }
+  if (!converged)
+    derivatives(uv, s, su, sv, suu, suv, svv);
+  FloorFoot foot;
+  foot.uv = uv;
+  foot.point = s;
+  foot.normal = orient(su.cross(sv).normalized());
+  foot.height = (q - s).dot(foot.normal);
   return foot;
 }
 }  // namespace ball_collision_sim::core

@@ -42,9 +42,10 @@ public:
   Vec3 normal(const Vec2& uv) const;
   /// S(u, v) and its first and second partial derivatives there.
   void derivatives(const Vec2& uv, Vec3& s, Vec3& su, Vec3& sv, Vec3& suu, Vec3& suv, Vec3& svv) const;
-  /// The foot point of q (nearest surface point), by Newton's method from `guess`.
-  /// The polynomial surface is used past its edges too, so `inside` tells whether
-  /// the foot is on the floor proper.
+  /// The foot point of q (nearest surface point), by Newton's method from `guess`, and,
+  /// where that ends off the floor from a guess off it, from the floor's edge nearest the
+  /// guess as well (the nearer of the two). The polynomial surface is used past its edges
+  /// too, so `inside` tells whether the foot is on the floor proper.
   FloorFoot project(const Vec3& q, const Vec2& guess) const;
   /// The centre of a ball of radius r nearest to q: foot + r n.
   Vec3 ballCentre(const FloorFoot& foot, double radius) const { return foot.point + radius * foot.normal; }
@@ -65,6 +66,8 @@ public:
 
 private:
   Vec3 orient(Vec3 n) const;
+  /// Biquadratic only: the foot point Newton's method finds from `start` (not `inside`).
+  FloorFoot nearestFrom(const Vec3& q, const Vec2& start) const;
 
   FloorDef def_;
   Vec3 up_;
