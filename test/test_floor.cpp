@@ -66,9 +66,9 @@ TEST(Floor, AGuessFarOffTheFloorStillFindsTheNearestFootOnIt)
   const Floor floor(def, Vec3(0, 0, -19.66));
   const auto nearestOnGrid = [&](const Vec3& q) {
     double best = std::numeric_limits<double>::infinity();
-    for (int a = 0; a <= 400; ++a)
-      for (int b = 0; b <= 400; ++b)
-        best = std::min(best, (floor.point(Vec2(a / 400.0, b / 400.0)) - q).norm());
+    for (int a = 0; a <= 100; ++a)
+      for (int b = 0; b <= 100; ++b)
+        best = std::min(best, (floor.point(Vec2(a / 100.0, b / 100.0)) - q).norm());
     return best;
   };
   std::mt19937_64 rng(4);

@@ -14,6 +14,7 @@
 #include "ball_collision_sim/core/wall.hpp"
 
 #include <cstddef>
+#include <cassert>
 #include <cstdint>
 #include <iterator>
 #include <memory>
@@ -118,7 +119,11 @@ public:
     return *held_;
   }
   /// The work space a get() made before.
-  const T& made() const { return *held_; }
+  const T& made() const
+  {
+    assert(held_);
+    return *held_;
+  }
 
 private:
   std::unique_ptr<T> held_;
@@ -331,7 +336,7 @@ private:
   /// The records in id order again, as an edit leaves them (the next step visits them so).
   void sortById();
   /// Moves the records (balls_, feet_, spins_) so that slot k holds the one that was in
-  /// slot from[k]; `from` is used up.
+  /// slot from[k]; `from` is left as the identity.
   void permute(std::vector<std::uint32_t>& from);
   /// Ball i's foot point guess in this step (curved floors), or a value the ground does
   /// not read.

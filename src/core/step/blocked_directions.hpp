@@ -80,8 +80,9 @@ private:
     std::uint32_t room = 0;
     bool elastic = true;
   };
-  /// Set's directions moved to twice the room at the pool's end (most sets hold one to
-  /// four; the room they leave behind is reused at the next step).
+  /// Set's directions moved to the pool's end, with room for 4 at first and twice as many
+  /// at each move after (most sets hold one to four; the room they leave behind is reused
+  /// at the next step).
   void grow(Set& set)
   {
     const std::uint32_t first = static_cast<std::uint32_t>(directions_.size());
