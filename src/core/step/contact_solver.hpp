@@ -136,8 +136,8 @@ inline ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double
 /// vector of the cone, not the nearest (in a wedge it can leave a velocity w never had).
 /// The projection lies on one of the cone's faces, so it is, of w itself, w less its part
 /// along one d, its part along the line where two of the planes meet, and zero, the
-/// nearest that keeps out of every other d to `slack` of |w| (round-off) [ratio]. It
-/// never lengthens w.
+/// nearest that keeps out of every other d to `slack` of |w| (round-off) [ratio], and
+/// zero where that is no longer than this round-off. It never lengthens w.
 inline Vec3 keptOut(const Vec3& w, const Vec3* directions, std::size_t count, double slack)
 {
   // (a candidate is checked against every direction but those it lies square to by its
@@ -177,6 +177,10 @@ inline Vec3 keptOut(const Vec3& w, const Vec3* directions, std::size_t count, do
       if (length_squared > 0)
         consider((w.dot(line) / length_squared) * line, a, b);
     }
+  // A candidate no longer than the round-off it was judged to is zero: it has no
+  // direction (a caller that keeps a speed would turn w into it).
+  if (!(nearest.norm() > allowance))
+    return Vec3::Zero();
   return nearest;
 }
 }  // namespace ball_collision_sim::core::step
