@@ -13,8 +13,8 @@
 #include "ball_collision_sim/core/types.hpp"
 #include "ball_collision_sim/core/wall.hpp"
 
-#include <cstddef>
 #include <cassert>
+#include <cstddef>
 #include <cstdint>
 #include <iterator>
 #include <memory>

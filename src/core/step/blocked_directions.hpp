@@ -61,8 +61,14 @@ public:
   void markInelastic(std::int32_t s) { sets_[static_cast<std::size_t>(s)].elastic = false; }
 
   std::size_t count(std::int32_t s) const { return sets_[static_cast<std::size_t>(s)].count; }
-  const Vec3& direction(std::int32_t s, std::size_t k) const { return directions_[sets_[static_cast<std::size_t>(s)].first + k]; }
-  std::uint64_t source(std::int32_t s, std::size_t k) const { return sources_[sets_[static_cast<std::size_t>(s)].first + k]; }
+  const Vec3& direction(std::int32_t s, std::size_t k) const
+  {
+    return directions_[sets_[static_cast<std::size_t>(s)].first + k];
+  }
+  std::uint64_t source(std::int32_t s, std::size_t k) const
+  {
+    return sources_[sets_[static_cast<std::size_t>(s)].first + k];
+  }
 
   /// The nearest vector to `w` with <u, d> <= 0 for every direction d of set s
   /// (keptOut(), which lets through `slack` of |w| as round-off).
