@@ -104,3 +104,54 @@ TEST(EventQueue, DrainsInOrderWithSlotsReused)
   std::shuffle(shuffled.begin(), shuffled.end(), rng);
   EXPECT_FALSE(std::is_sorted(shuffled.begin(), shuffled.end()));
 }
+
+// Every event comes out as it went in, fields and all: a wall event's normal is kept
+// apart from the queued record, in places that are freed and reused as events come and
+// go; each must come back with its own.
+TEST(EventQueue, EachEventComesBackWithItsOwnNormalAndFields)
+{
+  const std::vector<Ball> balls = ballsWithIds({0, 1, 2, 3, 4, 5, 6, 7});
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<std::uint32_t> ball(0, 7);
+  EventQueue queue;
+  queue.start(&balls);
+  // each event is told apart by its epochs, which carry its number
+  std::vector<StepEvent> sent;
+  std::size_t checked = 0;
+  const auto take = [&] {
+    const StepEvent out = queue.pop();
+    ASSERT_LT(out.epoch_i, sent.size());
+    const StepEvent& in = sent[out.epoch_i];
+    EXPECT_EQ(out.x, in.x);
+    EXPECT_EQ(out.i, in.i);
+    EXPECT_EQ(out.j, in.j);
+    EXPECT_EQ(out.epoch_j, in.epoch_j);
+    EXPECT_EQ(out.wall, in.wall);
+    EXPECT_EQ(out.feature, in.feature);
+    EXPECT_EQ(out.transition, in.transition);
+    EXPECT_EQ(out.cut, in.cut);
+    EXPECT_EQ(out.normal, in.normal) << "event " << out.epoch_i;
+    ++checked;
+  };
+  for (std::uint32_t k = 0; k < 3000; ++k)
+  {
+    const double x = 0.5 + 0.5 * u(rng);
+    StepEvent e = k % 2 == 0 ? wallEvent(x, ball(rng), k % 5) : ballEvent(x, ball(rng), ball(rng));
+    if (e.wall)
+    {
+      e.normal = Vec3(u(rng), u(rng), u(rng)).normalized();
+      e.feature = k % 3 == 0 ? WallFeature::kEdge : WallFeature::kFace;
+    }
+    e.epoch_i = k;
+    e.epoch_j = 7 * k;
+    e.cut = k % 7 == 0;
+    sent.push_back(e);
+    queue.push(e);
+    if (k % 3 == 2)
+      take();
+  }
+  while (!queue.empty())
+    take();
+  EXPECT_EQ(checked, sent.size());
+}

@@ -12,15 +12,17 @@ void EventQueue::start(const std::vector<Ball>* balls)
   heap_.clear();
   pool_.clear();
   free_slots_.clear();
+  normals_.clear();
+  free_normals_.clear();
 }
 
 bool EventQueue::later(const Entry& qa, const Entry& qb) const
 {
   if (qa.x != qb.x)
     return qa.x > qb.x;
-  const StepEvent& a = pool_[qa.slot];
-  const StepEvent& b = pool_[qb.slot];
-  const auto key = [&](const StepEvent& e) {
+  const Queued& a = pool_[qa.slot];
+  const Queued& b = pool_[qb.slot];
+  const auto key = [&](const Queued& e) {
     // (ids are positive)
     const auto i = static_cast<std::uint32_t>((*balls_)[e.i].id);
     const auto j = e.wall ? e.j : static_cast<std::uint32_t>((*balls_)[e.j].id);
@@ -34,17 +36,34 @@ bool EventQueue::later(const Entry& qa, const Entry& qb) const
 
 void EventQueue::push(const StepEvent& event)
 {
+  static_assert(sizeof(Queued) == 32, "a queued event fills half a cache line");
+  Queued queued{event.x,    event.i,       event.j,          event.epoch_i, event.epoch_j,
+                event.wall, event.feature, event.transition, event.cut,     0};
+  if (event.wall)
+  {
+    if (free_normals_.empty())
+    {
+      queued.normal = static_cast<std::uint32_t>(normals_.size());
+      normals_.push_back(event.normal);
+    }
+    else
+    {
+      queued.normal = free_normals_.back();
+      free_normals_.pop_back();
+      normals_[queued.normal] = event.normal;
+    }
+  }
   std::uint32_t slot = 0;
   if (free_slots_.empty())
   {
     slot = static_cast<std::uint32_t>(pool_.size());
-    pool_.push_back(event);
+    pool_.push_back(queued);
   }
   else
   {
     slot = free_slots_.back();
     free_slots_.pop_back();
-    pool_[slot] = event;
+    pool_[slot] = queued;
   }
   heap_.push_back({event.x, slot});
   std::push_heap(heap_.begin(), heap_.end(), [this](const Entry& a, const Entry& b) { return later(a, b); });
@@ -60,6 +79,13 @@ StepEvent EventQueue::pop()
   // one is handled (events in time order reach the balls' data at random).
   if (!heap_.empty())
     __builtin_prefetch(&pool_[heap_.front().slot]);
-  return pool_[slot];
+  const Queued& q = pool_[slot];
+  StepEvent event{q.x, q.i, q.j, q.epoch_i, q.epoch_j, q.wall, q.feature, q.transition, q.cut, Vec3::Zero()};
+  if (q.wall)
+  {
+    event.normal = normals_[q.normal];
+    free_normals_.push_back(q.normal);
+  }
+  return event;
 }
 }  // namespace ball_collision_sim::core

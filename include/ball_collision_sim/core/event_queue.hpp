@@ -41,8 +41,23 @@ public:
   void push(const StepEvent& event);
   bool empty() const { return heap_.empty(); }
   std::size_t size() const { return heap_.size(); }
-  /// The earliest event, still queued.
-  const StepEvent& top() const { return pool_[heap_.front().slot]; }
+  /// An event as the queue keeps it, in half a cache line: StepEvent's fields but the
+  /// normal, which only a wall event has and which is kept apart (by its index).
+  struct Queued
+  {
+    double x;
+    std::uint32_t i;
+    std::uint32_t j;
+    std::uint32_t epoch_i;
+    std::uint32_t epoch_j;
+    bool wall;
+    WallFeature feature;
+    bool transition;
+    bool cut;
+    std::uint32_t normal;
+  };
+  /// The earliest event, still queued (without its normal).
+  const Queued& top() const { return pool_[heap_.front().slot]; }
   /// Takes the earliest event out.
   StepEvent pop();
 
@@ -57,7 +72,10 @@ private:
 
   const std::vector<Ball>* balls_ = nullptr;
   std::vector<Entry> heap_;
-  std::vector<StepEvent> pool_;
+  std::vector<Queued> pool_;
   std::vector<std::uint32_t> free_slots_;
+  /// the queued wall events' normals, and the free places among them
+  std::vector<Vec3> normals_;
+  std::vector<std::uint32_t> free_normals_;
 };
 }  // namespace ball_collision_sim::core

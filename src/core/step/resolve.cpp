@@ -24,7 +24,7 @@ void World::resolveEventsInTimeOrder()
         __builtin_prefetch(&motions_[k]);
         __builtin_prefetch(&balls_[k]);
       };
-      const Event& next = queue_.top();
+      const auto& next = queue_.top();
       fetch(next.i);
       if (!next.wall)
         fetch(next.j);
