@@ -16,6 +16,24 @@ void EventQueue::start(const std::vector<Ball>* balls)
   free_normals_.clear();
 }
 
+namespace
+{
+/// Puts `value` into `pool` at a free place (the last freed one), or at its end; its index.
+template <class T>
+std::uint32_t place(std::vector<T>& pool, std::vector<std::uint32_t>& free, const T& value)
+{
+  if (free.empty())
+  {
+    pool.push_back(value);
+    return static_cast<std::uint32_t>(pool.size() - 1);
+  }
+  const std::uint32_t at = free.back();
+  free.pop_back();
+  pool[at] = value;
+  return at;
+}
+}  // namespace
+
 bool EventQueue::later(const Entry& qa, const Entry& qb) const
 {
   if (qa.x != qb.x)
@@ -40,31 +58,8 @@ void EventQueue::push(const StepEvent& event)
   Queued queued{event.x,    event.i,       event.j,          event.epoch_i, event.epoch_j,
                 event.wall, event.feature, event.transition, event.cut,     0};
   if (event.wall)
-  {
-    if (free_normals_.empty())
-    {
-      queued.normal = static_cast<std::uint32_t>(normals_.size());
-      normals_.push_back(event.normal);
-    }
-    else
-    {
-      queued.normal = free_normals_.back();
-      free_normals_.pop_back();
-      normals_[queued.normal] = event.normal;
-    }
-  }
-  std::uint32_t slot = 0;
-  if (free_slots_.empty())
-  {
-    slot = static_cast<std::uint32_t>(pool_.size());
-    pool_.push_back(queued);
-  }
-  else
-  {
-    slot = free_slots_.back();
-    free_slots_.pop_back();
-    pool_[slot] = queued;
-  }
+    queued.normal = place(normals_, free_normals_, event.normal);
+  const std::uint32_t slot = place(pool_, free_slots_, queued);
   heap_.push_back({event.x, slot});
   std::push_heap(heap_.begin(), heap_.end(), [this](const Entry& a, const Entry& b) { return later(a, b); });
 }
