@@ -155,3 +155,59 @@ TEST(EventQueue, EachEventComesBackWithItsOwnNormalAndFields)
     take();
   EXPECT_EQ(checked, sent.size());
 }
+
+// forget(ball) drops that ball's events, wall, pair and transition alike, and keeps the
+// rest in order, each with its own fields; the places it frees are reused.
+TEST(EventQueue, ForgetDropsOneBallsEventsAndKeepsTheRestInOrder)
+{
+  const std::vector<Ball> balls = ballsWithIds({0, 1, 2, 3, 4, 5, 6, 7});
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::uniform_int_distribution<std::uint32_t> ball(0, 7);
+  EventQueue queue;
+  queue.start(&balls);
+  std::vector<StepEvent> sent;
+  const auto push = [&](StepEvent e) {
+    e.epoch_i = static_cast<std::uint32_t>(sent.size());  // its number
+    if (e.wall)
+      e.normal = Vec3(u(rng), u(rng), 1).normalized();
+    sent.push_back(e);
+    queue.push(e);
+  };
+  const auto involves = [](const StepEvent& e, std::uint32_t k) { return e.i == k || (!e.wall && e.j == k); };
+  for (int k = 0; k < 600; ++k)
+  {
+    const std::uint32_t a = ball(rng);
+    if (k % 7 == 0)
+      push(StepEvent{u(rng), a, a, 0, 0, false, WallFeature::kFace, true, false, Vec3::Zero()});
+    else
+      push(k % 3 == 0 ? wallEvent(u(rng), a, 3) : ballEvent(u(rng), a, ball(rng)));
+  }
+  queue.forget(3);
+  // more after the forgetting, into the freed places
+  for (int k = 0; k < 200; ++k)
+    push(k % 3 == 0 ? wallEvent(u(rng), ball(rng), 1) : ballEvent(u(rng), ball(rng), ball(rng)));
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < sent.size(); ++k)
+    kept += k >= 600 || !involves(sent[k], 3);
+  ASSERT_LT(kept, sent.size() - 50) << "ball 3 had events to forget";
+  std::size_t out = 0;
+  double last = -1;
+  while (!queue.empty())
+  {
+    const StepEvent e = queue.pop();
+    ASSERT_LT(e.epoch_i, sent.size());
+    const StepEvent& in = sent[e.epoch_i];
+    EXPECT_TRUE(e.epoch_i >= 600 || !involves(in, 3)) << "event " << e.epoch_i << " was forgotten";
+    EXPECT_GE(e.x, last);
+    EXPECT_EQ(e.x, in.x);
+    EXPECT_EQ(e.i, in.i);
+    EXPECT_EQ(e.j, in.j);
+    EXPECT_EQ(e.wall, in.wall);
+    EXPECT_EQ(e.transition, in.transition);
+    EXPECT_EQ(e.normal, in.normal) << "event " << e.epoch_i;
+    last = e.x;
+    ++out;
+  }
+  EXPECT_EQ(out, kept);
+}

@@ -763,8 +763,14 @@ TEST(StepSettings, TakenByTheWorldAtConstruction)
     world.step();
   EXPECT_GT(world.stats().frozen_balls, 0u);
   EXPECT_EQ(World(cradle).stats().frozen_balls, 0u);
-  capped.max_events_per_ball_step = 70000;
-  EXPECT_THROW(World(cradle, capped), std::invalid_argument);
+  // (a ball's count is kept in 12 bits, up to one past the cap)
+  capped.max_events_per_ball_step = 4094;
+  EXPECT_NO_THROW(World(cradle, capped));
+  for (const std::uint32_t too_many : {4095u, 70000u})
+  {
+    capped.max_events_per_ball_step = too_many;
+    EXPECT_THROW(World(cradle, capped), std::invalid_argument) << too_many;
+  }
   // chords of no length (or none at all) are refused too
   for (const double bad : {0.0, -0.01, std::nan("")})
   {

@@ -64,6 +64,21 @@ void EventQueue::push(const StepEvent& event)
   std::push_heap(heap_.begin(), heap_.end(), [this](const Entry& a, const Entry& b) { return later(a, b); });
 }
 
+void EventQueue::forget(std::uint32_t ball)
+{
+  const auto of_ball = [&](const Entry& entry) {
+    const Queued& q = pool_[entry.slot];
+    if (q.i != ball && (q.wall || q.j != ball))
+      return false;
+    free_slots_.push_back(entry.slot);
+    if (q.wall)
+      free_normals_.push_back(q.normal);
+    return true;
+  };
+  heap_.erase(std::remove_if(heap_.begin(), heap_.end(), of_ball), heap_.end());
+  std::make_heap(heap_.begin(), heap_.end(), [this](const Entry& a, const Entry& b) { return later(a, b); });
+}
+
 StepEvent EventQueue::pop()
 {
   std::pop_heap(heap_.begin(), heap_.end(), [this](const Entry& a, const Entry& b) { return later(a, b); });

@@ -36,9 +36,9 @@ World::World(const Scene& scene, SceneCheck checked, const StepSettings& setting
     friction_.emplace(*scene.friction, ground_.flatNormal(),
                       scene.gravity, ground_.pathAcceleration(), settings_.slip_tolerance,
                       settings_.resting_speed_floor);
-  // (a ball's event count is kept in 16 bits, up to one past the cap)
-  if (settings_.max_events_per_ball_step >= 0xffff)
-    throw std::invalid_argument("max_events_per_ball_step: must be below 65535");
+  // (a ball's event count is kept in 12 bits, up to one past the cap)
+  if (settings_.max_events_per_ball_step > kMaxEventCap)
+    throw std::invalid_argument("max_events_per_ball_step: must be at most " + std::to_string(kMaxEventCap));
   // (a chord of no length would be cut again and again where it starts)
   if (!(settings_.chord_turn > 0))
     throw std::invalid_argument("chord_turn: must be > 0");

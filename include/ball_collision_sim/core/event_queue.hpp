@@ -56,6 +56,8 @@ public:
     bool cut;
     std::uint32_t normal;
   };
+  /// Drops every queued event of the ball at visiting index `ball` (its transitions too).
+  void forget(std::uint32_t ball);
   /// The earliest event, still queued (without its normal).
   const Queued& top() const { return pool_[heap_.front().slot]; }
   /// Takes the earliest event out.

@@ -22,7 +22,8 @@ struct StepSettings
   /// floor at a reaches falling through a gap d of roundoff_epsilons of the positions.)
   double resting_speed_floor = 1e-9;
   /// A ball with more events than this in one step is stopped for the rest of the step
-  /// and acts as immovable: a guard against endless chatter in jammed piles [events].
+  /// and acts as immovable: a guard against endless chatter in jammed piles; at most 4094
+  /// (a ball's count is kept in 12 bits) [events].
   std::uint32_t max_events_per_ball_step = 256;
   /// Two balls at a resting contact, one of which has had this many events in the step,
   /// are in a jam that answers pair by pair only pass around: they are held for the rest

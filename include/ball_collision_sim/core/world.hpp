@@ -291,7 +291,6 @@ public:
 
 private:
   struct Motion;
-  struct MotionState;
   struct SpinMotion;
   /// How a ball's motion and spin go within the step with friction
   /// (src/core/step/spin_phase.hpp): a type per phase, not a branch in the step.
@@ -580,11 +579,10 @@ private:
   /// Steps since the records were put in cell order; they are so anew every
   /// settings_.reorder_steps steps.
   std::uint32_t order_age_ = 0;
-  /// motions_ (and states_, the grid's boxes) hold the next step's predicted motions.
+  /// motions_ (and the grid's boxes) hold the next step's predicted motions.
   bool motions_ready_ = false;
   // per-step work space, kept between steps to avoid allocation
   std::vector<Motion> motions_;
-  std::vector<MotionState> states_;
   EventQueue queue_;
   StepGrid grid_;
   std::vector<Box32> wall_boxes_;

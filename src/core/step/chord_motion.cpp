@@ -33,7 +33,7 @@ void World::ChordMotion::start(World& w, std::size_t i, double x, const Vec3& po
   m.b = w.allowed(i, m.b);
   endOnFloor(w, i);
   keepEnergy(w, i);
-  if (w.states_[i].held)
+  if (w.motions_[i].held)
     m.b = Vec3::Zero();
 }
 
@@ -47,10 +47,10 @@ void World::ChordMotion::endOnFloor(World& w, std::size_t i)
   // step, and again after that, an event each time that changes nothing.
   Motion& m = w.motions_[i];
   const double rest = w.chordEnd(i) - m.x0;
-  if (w.states_[i].frozen || !(rest > 0))
+  if (w.motions_[i].frozen || !(rest > 0))
     return;
   const StepSettings& settings = w.settings_;
-  const double roundoff = roundoffAt(m.p0, m.radius, settings);
+  const double roundoff = roundoffAt(m.p0, w.balls_[i].radius, settings);
   for (int pass = 0; pass < settings.correction_passes; ++pass)
   {
     const Vec3 on = (w.onFloor(i, m.p0 + rest * m.b) - m.p0) / rest;
@@ -124,9 +124,10 @@ void World::ChordMotion::slideDownhill(World& w, const EnergyCheck& energy, doub
   // longest has shown that one does finds the shortest that does; elsewhere it finds one
   // that does, or, where the longest does not, holds the ball (which makes no energy).
   const StepSettings& settings = w.settings_;
-  const double first = std::max(-start / slope, settings.slide_first_reach * m.radius);
+  const double first = std::max(-start / slope, settings.slide_first_reach * w.balls_[i].radius);
   int count = 0;
-  while (count < settings.slide_doublings && std::ldexp(first, count) < settings.slide_longest_reach * m.radius)
+  const double longest = settings.slide_longest_reach * w.balls_[i].radius;
+  while (count < settings.slide_doublings && std::ldexp(first, count) < longest)
     ++count;
   const auto motionTo = [&](int k) {
     return w.allowed(i, (w.onFloor(i, foot + (std::ldexp(first, k) / slope) * downhill) - m.p0) / rest);
@@ -160,7 +161,8 @@ void World::ChordMotion::separate(World& w, const PairContact& c, double rest, d
   // back: in turn, a few times, until what approach is left is round-off of the positions.
   Motion& ma = w.motions_[c.i];
   Motion& mb = w.motions_[c.j];
-  const double roundoff = roundoffAt(pa, ma.radius, w.settings_) + roundoffAt(pb, mb.radius, w.settings_);
+  const double roundoff =
+      roundoffAt(pa, w.balls_[c.i].radius, w.settings_) + roundoffAt(pb, w.balls_[c.j].radius, w.settings_);
   // A ball gives way only as far as the floor and what it leans on let it: where its part
   // of a correction, once they are done with it, closes the contact instead of opening it
   // (in any pair; in piles about one correction in eight; at its worst a light ball
@@ -188,9 +190,9 @@ void World::ChordMotion::separate(World& w, const PairContact& c, double rest, d
     const Vec3 before_a = ma.b, before_b = mb.b;
     ma.b -= (jb * give_a) * c.ta;
     mb.b += (jb * give_b) * c.tb;
-    if (!w.states_[c.i].held)
+    if (!w.motions_[c.i].held)
       endOnFloor(w, c.i);
-    if (!w.states_[c.j].held)
+    if (!w.motions_[c.j].held)
       endOnFloor(w, c.j);
     undoWhereClosing(ma, before_a, 1.0, give_a);
     undoWhereClosing(mb, before_b, -1.0, give_b);
@@ -208,7 +210,7 @@ void World::ChordMotion::rollOn(World& w, std::size_t i, const FrictionLaw& law)
   // (the normal turned under it since its phase began: the discrete path's turn, not a
   // slip; its spin about the normal is carried over, so |w| and the energy stay)
   SpinMotion& sm = w.spin_motions_[i];
-  sm.w0 = law.rollingSpin(w.motions_[i].radius, w.startVelocity(i), sm.w0, sm.w0.dot(sm.normal));
+  sm.w0 = law.rollingSpin(w.balls_[i].radius, w.startVelocity(i), sm.w0, sm.w0.dot(sm.normal));
 }
 
 bool World::ChordMotion::drivenMotion(World&, std::size_t, const FrictionLaw&) const
@@ -221,7 +223,7 @@ bool World::ChordMotion::stillMotion(World& w, std::size_t i, const FrictionLaw&
   // It stays where it is, with no speed (a chord's point below the floor, where a
   // phase ended mid-step, is not lifted onto it for nothing).
   w.startVelocity(i) = w.motions_[i].b = Vec3::Zero();
-  w.states_[i].accelerates = false;
+  w.motions_[i].accelerates = false;
   return false;
 }
 
@@ -251,7 +253,7 @@ double World::ChordMotion::speedSquaredAt(const World& w, std::size_t i, double 
   // slip's loss, mu_s g_n (|u0| t - rate t^2 / 2)
   const double t = std::min((x - m.x0) * w.dt_, std::max(sm.x_end - m.x0, 0.0) * w.dt_);
   const Vec3 spin = sm.w0 + t * sm.alpha;
-  const double spin_change = k * m.radius * m.radius * (spin.squaredNorm() - sm.w0.squaredNorm());
+  const double spin_change = k * w.balls_[i].radius * w.balls_[i].radius * (spin.squaredNorm() - sm.w0.squaredNorm());
   const double loss = sm.slip_force * (sm.slip0 * t - 0.5 * sm.slip_rate * t * t);
   return v0.squaredNorm() + 2 * w.gravity_.dot(p - m.p0) - spin_change - 2 * loss;
 }
@@ -263,6 +265,6 @@ Vec3 World::ChordMotion::spinThere(const World& w, std::size_t i, const Vec3& no
   // there)
   if (!rolling)
     return spin;
-  return lawUnder(w, normal).rollingSpin(w.motions_[i].radius, v, spin, spin.dot(w.spin_motions_[i].normal));
+  return lawUnder(w, normal).rollingSpin(w.balls_[i].radius, v, spin, spin.dot(w.spin_motions_[i].normal));
 }
 }  // namespace ball_collision_sim::core

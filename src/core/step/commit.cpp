@@ -60,8 +60,8 @@ World::Committed World::commitBall(std::size_t i, bool settle)
   Ball& ball = balls_[i];
   // (a ball asleep stays where it is, on the foot point it had; the floor's normal there
   // counts only across resting contacts: its spin is kept as it is, SpinPhase::kept())
-  const Ground::End end = states_[i].asleep ? ground_.stillEnd(ball.position, motions_[i].radius, guessOf(i), settle)
-                                            : ground_.end(positionAt(i, 1.0), motions_[i].radius, guessOf(i));
+  const Ground::End end = motions_[i].asleep ? ground_.stillEnd(ball.position, balls_[i].radius, guessOf(i), settle)
+                                            : ground_.end(positionAt(i, 1.0), balls_[i].radius, guessOf(i));
   if (!feet_.empty())
     feet_[i] = end.foot;
   if (settle)
@@ -70,7 +70,8 @@ World::Committed World::commitBall(std::size_t i, bool settle)
   ball.position = end.centre;
   // (a ball that ends the step without motion, frozen or held still by its contacts,
   // keeps no speed it does not move with)
-  ball.velocity = states_[i].frozen || states_[i].held ? Vec3::Zero() : onFloorVelocity(i, 1.0, end.centre, end.normal);
+  const Motion& m = motions_[i];
+  ball.velocity = m.frozen || m.held ? Vec3::Zero() : onFloorVelocity(i, 1.0, end.centre, end.normal);
   if (friction_)
   {
     // its own spin at the end, and its turn over the step by the mean of its spins
@@ -150,7 +151,7 @@ World::ContactGroup& World::velocityGroup()
     const std::size_t i = group.ballAt(k);
     group.u[k] = balls_[i].velocity;
     group.inv_mass[k] = inverseMass(i);
-    if (const std::int32_t blocked = states_[i].blocked; blocked >= 0)
+    if (const std::int32_t blocked = motions_[i].blocked; blocked >= 0)
       group.addBlocked(k, blocked_.get(), blocked,
                        [this](std::uint64_t source) { return isWallSource(source); });
   }

@@ -15,7 +15,7 @@ using namespace step;
 
 Vec3 World::allowed(std::size_t i, const Vec3& w) const
 {
-  const std::int32_t blocked = states_[i].blocked;
+  const std::int32_t blocked = motions_[i].blocked;
   if (blocked < 0)
     return w;
   // A wall's own normal is blocked beside its direction along the floor (for chords off
@@ -30,7 +30,7 @@ Vec3 World::redirected(std::size_t i, const Vec3& v) const
   // resting contact sums); an elastic contact (e = 1, where only speeds at round-off
   // rest) only turns it: where gravity pulls along the floor a ball's speed is its
   // energy's (onFloorVelocity), and the turn keeps it.
-  const std::int32_t blocked = states_[i].blocked;
+  const std::int32_t blocked = motions_[i].blocked;
   const Vec3 free = allowed(i, v);
   if (blocked < 0 || !blocked_.made().elastic(blocked))
     return free;
@@ -39,7 +39,7 @@ Vec3 World::redirected(std::size_t i, const Vec3& v) const
 
 void World::addBlocked(std::size_t i, const Vec3& direction, std::uint64_t source, double restitution)
 {
-  MotionState& m = states_[i];
+  Motion& m = motions_[i];
   BlockedDirections& blocked = blocked_.get();
   if (m.blocked < 0)
     m.blocked = blocked.open();
@@ -55,17 +55,17 @@ void World::wakeGroup(std::size_t first)
   {
     const std::size_t k = todo.back();
     todo.pop_back();
-    if (!states_[k].asleep)
+    if (!motions_[k].asleep)
       continue;
-    states_[k].frozen = states_[k].asleep = false;
+    motions_[k].frozen = motions_[k].asleep = false;
     Ball& ball = balls_[k];
     ball.asleep = false;
     ball.quiet_steps = 0;
     ++stats_.woken_balls;
     grid_.query(static_cast<std::uint32_t>(k), [&](std::uint32_t other) {
       const Ball& b = balls_[other];
-      if (states_[other].asleep && (b.position - ball.position).norm() <= b.radius + ball.radius + settings_.touch_slack &&
-          !wallBetween(ball, b))
+      const double reach = b.radius + ball.radius + settings_.touch_slack;
+      if (motions_[other].asleep && (b.position - ball.position).norm() <= reach && !wallBetween(ball, b))
         todo.push_back(other);
     });
   }
@@ -110,7 +110,7 @@ void World::sleepStillGroups()
   for (const RestingContact& c : resting_)
   {
     leans[c.ball] = leans[c.other] = 1;
-    if (states_[c.ball].asleep || states_[c.other].asleep)
+    if (motions_[c.ball].asleep || motions_[c.other].asleep)
       continue;  // a sleeping ball holds the other like a wall does
     const std::size_t a = root(c.ball), b = root(c.other);
     parent[std::max(a, b)] = static_cast<std::uint32_t>(std::min(a, b));
@@ -122,7 +122,7 @@ void World::sleepStillGroups()
     Ball& ball = balls_[k];
     if (ball.asleep)
       continue;
-    const bool still = (leans[k] || states_[k].blocked >= 0) && ball.velocity.norm() <= settings_.sleep_speed;
+    const bool still = (leans[k] || motions_[k].blocked >= 0) && ball.velocity.norm() <= settings_.sleep_speed;
     ball.quiet_steps = still ? static_cast<std::uint16_t>(std::min<int>(ball.quiet_steps + 1, 0xffff)) : 0;
     if (ball.quiet_steps < sleep_steps_)
       restless[root(k)] = 1;
@@ -143,9 +143,9 @@ void World::sleepStillGroups()
 
 void World::hold(std::size_t i)
 {
-  if (!states_[i].held)
+  if (!motions_[i].held)
     ++stats_.held_balls;
-  states_[i].held = true;
+  motions_[i].held = true;
   // (with friction its spin then follows from its contacts too, not from a phase whose
   // motion it does not make: FrictionLaw::constrained())
   if (friction_ && spin_motions_[i].phase->ownsMotion())
@@ -179,7 +179,7 @@ void World::keepEnergy(std::size_t i)
 void World::FloorMotion::keepEnergy(World& w, std::size_t i) const
 {
   const double rest = w.chordEnd(i) - w.motions_[i].x0;
-  if (w.ground_.straight() || w.states_[i].frozen || !(rest > 0))
+  if (w.ground_.straight() || w.motions_[i].frozen || !(rest > 0))
     return;
   const EnergyCheck energy{&w, i, rest};
   const double full = endSpeedSquared(w, i, energy);

@@ -45,7 +45,7 @@ void World::detect(std::size_t i)
 void World::detectWalls(std::size_t i)
 {
   const Motion& m = motions_[i];
-  if (states_[i].frozen || !grid_.nearObstacle(static_cast<std::uint32_t>(i)))
+  if (motions_[i].frozen || !grid_.nearObstacle(static_cast<std::uint32_t>(i)))
     return;
   const Box32& box = grid_.box(static_cast<std::uint32_t>(i));
   for (std::size_t w = 0; w < wall_boxes_.size(); ++w)
@@ -53,11 +53,12 @@ void World::detectWalls(std::size_t i)
     if (!box.overlaps(wall_boxes_[w]))
       continue;
     const Wall& wall = walls_[w];
-    const auto hit = parabolas_ ? sweepWall(wall, m.p0, m.b, parabolaOf(i), m.radius, 1 - m.x0, settings_.closing_slop)
-                                : sweepWall(wall, m.p0, m.b, m.radius, 1 - m.x0, settings_.closing_slop);
+    const double r = balls_[i].radius;
+    const auto hit = parabolas_ ? sweepWall(wall, m.p0, m.b, parabolaOf(i), r, 1 - m.x0, settings_.closing_slop)
+                                : sweepWall(wall, m.p0, m.b, r, 1 - m.x0, settings_.closing_slop);
     if (hit)
-      queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), states_[i].epoch, 0,
-                      true, hit->feature, false, false, hit->normal});
+      queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0, true,
+                        hit->feature, false, false, hit->normal});
   }
 }
 
@@ -65,27 +66,28 @@ void World::detectBall(std::size_t i, std::size_t j)
 {
   // Always in index order, so that the same pair gives the same bits whoever asks.
   const std::size_t a = std::min(i, j), b = std::max(i, j);
-  if (states_[a].frozen && states_[b].frozen)
+  if (motions_[a].frozen && motions_[b].frozen)
     return;  // neither moves (asleep, or stopped by the cap): no impact
   const Motion& ma = motions_[a];
   const Motion& mb = motions_[b];
   const double xs = std::max(ma.x0, mb.x0);
+  const double reach = balls_[a].radius + balls_[b].radius;
   std::optional<double> t;
   if (!parabolas_)
   {
     const Vec3 d = (ma.p0 + (xs - ma.x0) * ma.b) - (mb.p0 + (xs - mb.x0) * mb.b);
-    t = sphereSweep(d, ma.b - mb.b, ma.radius + mb.radius, 1 - xs, settings_.closing_slop);
+    t = sphereSweep(d, ma.b - mb.b, reach, 1 - xs, settings_.closing_slop);
   }
   else
   {
     // two parabolas: their difference is a straight motion (the same c); a parabola and
     // a chord: a quartic
     const Vec3 d = positionAt(a, xs) - positionAt(b, xs);
-    t = sphereSweepAccelerated(d, rateAt(a, xs) - rateAt(b, xs), parabolaOf(a) - parabolaOf(b), ma.radius + mb.radius,
-                               1 - xs, settings_.closing_slop);
+    t = sphereSweepAccelerated(d, rateAt(a, xs) - rateAt(b, xs), parabolaOf(a) - parabolaOf(b), reach, 1 - xs,
+                               settings_.closing_slop);
   }
   if (t)
-    queue_.push(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), states_[a].epoch, states_[b].epoch,
-                    false, WallFeature::kFace, false, false, Vec3::Zero()});
+    queue_.push(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), ma.epoch, mb.epoch, false,
+                      WallFeature::kFace, false, false, Vec3::Zero()});
 }
 }  // namespace ball_collision_sim::core

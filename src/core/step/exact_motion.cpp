@@ -23,7 +23,7 @@ void World::ExactMotion::predict(World& w, std::size_t i, const Vec3& v) const
   if (w.free_parabolas_)
   {
     m.b = w.dt_ * v;  // the parabola the ground gives a free ball
-    w.states_[i].accelerates = true;
+    w.motions_[i].accelerates = true;
     return;
   }
   m.b = w.predictedEnd(i, m.p0, v, w.dt_) - m.p0;
@@ -32,11 +32,11 @@ void World::ExactMotion::predict(World& w, std::size_t i, const Vec3& v) const
 void World::ExactMotion::start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const
 {
   Motion& m = w.motions_[i];
-  if (w.free_parabolas_ && w.states_[i].blocked < 0)
+  if (w.free_parabolas_ && w.motions_[i].blocked < 0)
   {
     // free: the parabola the ground gives it, exactly
     m.b = w.dt_ * v0;
-    w.states_[i].accelerates = true;
+    w.motions_[i].accelerates = true;
     return;
   }
   const double rest = 1 - x;
@@ -92,7 +92,7 @@ bool World::ExactMotion::drivenMotion(World& w, std::size_t i, const FrictionLaw
   Vec3& v = w.startVelocity(i);
   v = law.along(v);
   w.motions_[i].b = w.dt_ * v;
-  w.states_[i].accelerates = true;
+  w.motions_[i].accelerates = true;
   return false;
 }
 

@@ -67,7 +67,7 @@ bool World::startFriction(std::size_t i, double x, bool record, bool impact)
   const FrictionLaw law = frictionUnder(floorNormalAt(i, m.p0));
   if (!impact && sm.kind == MotionKind::kRolling)
     floor_motion_->rollOn(*this, i, law);  // (under the normal where it is now)
-  const FrictionPhase phase = law.start(spin.inertia, m.radius, v, sm.w0);
+  const FrictionPhase phase = law.start(spin.inertia, balls_[i].radius, v, sm.w0);
   sm.normal = law.normal();
 
   // (a curved floor's chord: its share of gravity itself, and the friction force; so the
@@ -84,7 +84,7 @@ bool World::startFriction(std::size_t i, double x, bool record, bool impact)
   sm.ends = phase.ends;
   sm.x_end = x + phase.duration / dt_;
   // (what a sliding phase's slip takes on a curved floor: speedSquaredAt())
-  sm.slip0 = law.slip(m.radius, v, sm.w0).norm();
+  sm.slip0 = law.slip(balls_[i].radius, v, sm.w0).norm();
   sm.slip_force = scene_.friction->sliding * std::max(0.0, -gravity_.dot(law.normal()));
   sm.roll_resistance = scene_.friction->rolling * std::max(0.0, -gravity_.dot(law.normal()));
   sm.slip_rate = sm.slip_force * (1 + spin.inertia) / spin.inertia - law.gravityAlong().dot(phase.slip_direction);
@@ -110,7 +110,7 @@ void World::constrainSpin(std::size_t i)
   const FrictionLaw law = frictionUnder(floorNormalAt(i, motions_[i].p0));
   sm.normal = law.normal();
   const FrictionLaw::ConstrainedSpin spin =
-      law.constrained(spins_[i].inertia, motions_[i].radius, startVelocity(i), sm.w0);
+      law.constrained(spins_[i].inertia, balls_[i].radius, startVelocity(i), sm.w0);
   sm.alpha = spin.along_rate;
   sm.along_time = spin.along_time;
   sm.normal_rate = spin.normal_rate;
@@ -134,10 +134,10 @@ Vec3 World::spinAt(std::size_t i, double x) const
 void World::queueTransition(std::size_t i)
 {
   const SpinMotion& sm = spin_motions_[i];
-  if (!sm.phase->ownsMotion() || states_[i].frozen || !(sm.x_end <= 1))
+  if (!sm.phase->ownsMotion() || motions_[i].frozen || !(sm.x_end <= 1))
     return;
   const auto k = static_cast<std::uint32_t>(i);
-  queue_.push(Event{sm.x_end, k, k, states_[i].epoch, states_[i].epoch, false, WallFeature::kFace, true, false,
+  queue_.push(Event{sm.x_end, k, k, motions_[i].epoch, motions_[i].epoch, false, WallFeature::kFace, true, false,
                      Vec3::Zero()});
 }
 
@@ -154,12 +154,12 @@ void World::ballBallFriction(const PairContact& c, double normal_impulse, Vec3& 
   if (!(mu > 0) || !(e_norm > 0))
     return;
   e /= e_norm;
-  const double ra = motions_[c.i].radius, rb = motions_[c.j].radius;
+  const double ra = balls_[c.i].radius, rb = balls_[c.j].radius;
   const double ka = spins_[c.i].inertia, kb = spins_[c.j].inertia;
   // the touching points' velocities: a's at ra n from its centre, b's at -rb n from its
   // (a ball without motion, asleep or stopped by the cap, is still: its surface too,
   // else it would drive the other like a belt)
-  const Vec3 spin_a = states_[c.i].frozen ? Vec3::Zero() : wa, spin_b = states_[c.j].frozen ? Vec3::Zero() : wb;
+  const Vec3 spin_a = motions_[c.i].frozen ? Vec3::Zero() : wa, spin_b = motions_[c.j].frozen ? Vec3::Zero() : wb;
   const double slip = ((va + spin_a.cross(ra * c.n)) - (vb - spin_b.cross(rb * c.n))).dot(e);
   const double inverse_mass = c.inv_a * (1 + 1 / ka) + c.inv_b * (1 + 1 / kb);
   const double jt = tangentialImpulse(slip * e, mu, normal_impulse, inverse_mass);
@@ -179,10 +179,10 @@ void World::ballWallFriction(std::size_t i, const Vec3& n, const Vec3& floor_nor
   // (along the line both along the wall and along the floor, as between balls)
   Vec3 e = floor_normal.cross(n);
   const double e_norm = e.norm();
-  if (!(mu > 0) || states_[i].frozen || !(e_norm > 0))
+  if (!(mu > 0) || motions_[i].frozen || !(e_norm > 0))
     return;
   e /= e_norm;
-  const double r = motions_[i].radius;
+  const double r = balls_[i].radius;
   const double k = spins_[i].inertia;
   const double inv = 1.0 / balls_[i].mass;
   const double slip = (v + w.cross(r * n)).dot(e);  // the touching point's, n toward the wall

@@ -19,7 +19,7 @@ Vec3 World::positionAt(std::size_t i, double x) const
 {
   const Motion& m = motions_[i];
   const Vec3 p = m.p0 + (x - m.x0) * m.b;
-  if (!parabolas_ || !states_[i].accelerates)
+  if (!parabolas_ || !motions_[i].accelerates)
     return p;
   const double s = x - m.x0;
   return p + (s * s) * pathTerm(i);
@@ -28,22 +28,22 @@ Vec3 World::positionAt(std::size_t i, double x) const
 Vec3 World::rateAt(std::size_t i, double x) const
 {
   const Motion& m = motions_[i];
-  return parabolas_ && states_[i].accelerates ? Vec3(m.b + (2 * (x - m.x0)) * pathTerm(i)) : m.b;
+  return parabolas_ && motions_[i].accelerates ? Vec3(m.b + (2 * (x - m.x0)) * pathTerm(i)) : m.b;
 }
 
 Vec3 World::parabolaOf(std::size_t i) const
 {
-  return parabolas_ && states_[i].accelerates ? pathTerm(i) : Vec3::Zero();
+  return parabolas_ && motions_[i].accelerates ? pathTerm(i) : Vec3::Zero();
 }
 
 void World::toChord(std::size_t i)
 {
-  const bool parabola = states_[i].accelerates;
+  const bool parabola = motions_[i].accelerates;
   if (parabola)
   {
     Motion& m = motions_[i];
     m.b += (1 - m.x0) * pathTerm(i);
-    states_[i].accelerates = false;
+    motions_[i].accelerates = false;
   }
   // (its contacts decide its motion from now on, and what it costs: gravity's work, not
   // its phase's pull, which for a still ball leaves gravity along the floor out)
@@ -99,13 +99,13 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   Motion& m = motions_[i];
   Vec3& v0 = startVelocity(i);
   if (impact)
-    states_[i].held = false;
-  states_[i].accelerates = false;
+    motions_[i].held = false;
+  motions_[i].accelerates = false;
   m.x0 = x;
   m.p0 = position;
   if (!chord_ends_.empty())
     chord_ends_[i] = 1.0;
-  if (states_[i].frozen)
+  if (motions_[i].frozen)
   {
     v0 = m.b = Vec3::Zero();
     if (friction_)
@@ -113,14 +113,14 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
     return;
   }
   v0 = redirected(i, velocity);
-  if (states_[i].held)
+  if (motions_[i].held)
   {
     m.b = Vec3::Zero();  // still held (no impact let it go): it keeps no motion
     if (friction_)
       constrainSpin(i);
     return;
   }
-  if (friction_ && states_[i].blocked < 0)
+  if (friction_ && motions_[i].blocked < 0)
   {
     if (!startFriction(i, x, true, impact))  // the phase its velocity and spin give it
       return;                                // (else the chord below, under the phase's pull)
@@ -139,7 +139,7 @@ void World::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)
   // path's put back on the floor, which can lie far from it)
   const double rest = 1 - m.x0;
   const double length = rest * std::max(m.b.norm(), dt_ * v0.norm());
-  const double longest = ground_.longestChord(m.radius);
+  const double longest = ground_.longestChord(balls_[i].radius);
   if (!(length > longest))
     return;
   // (the path beyond the cut is not the chord's: the cut's event makes the chord after it)
@@ -151,10 +151,11 @@ void World::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)
 void World::queueCut(std::size_t i)
 {
   const double x = chord_ends_[i];
-  if (!(x < 1) || states_[i].frozen)
+  if (!(x < 1) || motions_[i].frozen)
     return;
   const auto k = static_cast<std::uint32_t>(i);
-  queue_.push(Event{x, k, k, states_[i].epoch, states_[i].epoch, false, WallFeature::kFace, true, true, Vec3::Zero()});
+  const std::uint32_t epoch = motions_[i].epoch;
+  queue_.push(Event{x, k, k, epoch, epoch, false, WallFeature::kFace, true, true, Vec3::Zero()});
 }
 
 void World::resolveMotionEnd(const Event& event)
@@ -173,8 +174,8 @@ void World::resolveMotionEnd(const Event& event)
     {
       // (under the normal where it is now: its velocity there lies along that floor)
       const FrictionLaw law = frictionUnder(normal);
-      const double speeds = law.speeds(motions_[i].radius, startVelocity(i), sm.w0);
-      law.finish(sm.ends, spins_[i].inertia, motions_[i].radius, speeds, v, w);
+      const double speeds = law.speeds(balls_[i].radius, startVelocity(i), sm.w0);
+      law.finish(sm.ends, spins_[i].inertia, balls_[i].radius, speeds, v, w);
       if (sm.ends & kSlipStops)
         sm.kind = MotionKind::kRolling;  // (its slip is gone: it rolls, or finds it cannot)
     }
@@ -187,6 +188,6 @@ void World::resolveMotionEnd(const Event& event)
 
 Vec3 World::onFloor(std::size_t i, const Vec3& q) const
 {
-  return ground_.land(q, motions_[i].radius, guessOf(i));
+  return ground_.land(q, balls_[i].radius, guessOf(i));
 }
 }  // namespace ball_collision_sim::core

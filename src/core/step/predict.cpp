@@ -13,13 +13,11 @@ using namespace step;
 void World::predictMotions()
 {
   static_assert(sizeof(Motion) == 64, "a Motion fills one cache line");
-  static_assert(sizeof(MotionState) == 12, "a MotionState packs into 12 bytes");
   grid_.start(balls_.size(), ground_.up(), settings_);
   // (taken back at once, so that a step cut short by an exception leaves none ready)
   if (std::exchange(motions_ready_, false))
     return;  // the last step's commit predicted them
   motions_.resize(balls_.size());
-  states_.resize(balls_.size());
   spin_motions_.resize(friction_ ? balls_.size() : 0);
   floor_uv_.resize(feet_.empty() ? 0 : balls_.size());  // where balls keep foot points
   chord_ends_.assign(feet_.empty() ? 0 : balls_.size(), 1.0);
@@ -32,8 +30,6 @@ void World::predictMotion(std::size_t i)
   const Ball& ball = balls_[i];
   Motion& m = motions_[i];
   m = Motion{};
-  states_[i] = MotionState{};
-  m.radius = ball.radius;
   m.p0 = ball.position;
   if (!chord_ends_.empty())
     chord_ends_[i] = 1.0;
@@ -41,7 +37,7 @@ void World::predictMotion(std::size_t i)
     floor_uv_[i] = feet_[i];
   if (ball.asleep)
   {
-    states_[i].frozen = states_[i].asleep = true;  // where it is, an obstacle, until woken
+    motions_[i].frozen = motions_[i].asleep = true;  // where it is, an obstacle, until woken
     if (friction_)
     {
       spin_motions_[i].w0 = spins_[i].angular_velocity;
@@ -67,24 +63,24 @@ void World::predictMotion(std::size_t i)
   floor_motion_->predict(*this, i, ball.velocity);
   // (a chord's box reaches the uncut chord's end)
   grid_.setBox(static_cast<std::uint32_t>(i),
-               states_[i].accelerates ? currentBox(i) : sweptBox(m.p0, m.p0 + m.b, ball.radius));
+               motions_[i].accelerates ? currentBox(i) : sweptBox(m.p0, m.p0 + m.b, ball.radius));
 }
 
 Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span)
 {
   // seed (1): ds = dt v + dt^2 g / 2, then back onto the floor, seed (2)-(4)
   const Vec3 q = p + span * v + (0.5 * span * span) * pullOf(i);
-  return ground_.landKeepingFoot(q, motions_[i].radius, guessOf(i));
+  return ground_.landKeepingFoot(q, balls_[i].radius, guessOf(i));
 }
 
 Aabb World::currentBox(std::size_t i) const
 {
   const Motion& m = motions_[i];
   const double rest = 1 - m.x0;
-  if (!parabolas_ || !states_[i].accelerates)
-    return sweptBox(m.p0, m.p0 + (chordEnd(i) - m.x0) * m.b, m.radius);
+  if (!parabolas_ || !motions_[i].accelerates)
+    return sweptBox(m.p0, m.p0 + (chordEnd(i) - m.x0) * m.b, balls_[i].radius);
   // the parabola lies within (rest^2 / 4) |c| of its chord, along each axis
-  Aabb box = sweptBox(m.p0, positionAt(i, 1.0), m.radius);
+  Aabb box = sweptBox(m.p0, positionAt(i, 1.0), balls_[i].radius);
   const Vec3 sag = (0.25 * rest * rest) * pathTerm(i).cwiseAbs();
   box.min -= sag;
   box.max += sag;

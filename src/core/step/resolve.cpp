@@ -20,7 +20,7 @@ void World::resolveEventsInTimeOrder()
     {
       // the first event's balls' data are fetched while the queue is put in order
       const auto fetch = [&](std::uint32_t k) {
-        __builtin_prefetch(&states_[k]);
+        __builtin_prefetch(&motions_[k]);
         __builtin_prefetch(&motions_[k]);
         __builtin_prefetch(&balls_[k]);
       };
@@ -30,7 +30,7 @@ void World::resolveEventsInTimeOrder()
         fetch(next.j);
     }
     const Event event = queue_.pop();
-    if (states_[event.i].epoch != event.epoch_i || (!event.wall && states_[event.j].epoch != event.epoch_j))
+    if (motions_[event.i].epoch != event.epoch_i || (!event.wall && motions_[event.j].epoch != event.epoch_j))
     {
       ++stats_.stale_events;  // a ball involved has had an event since this was found
       continue;
@@ -88,8 +88,8 @@ void World::wakeOnImpact(std::size_t i, std::size_t j, double closing, double re
 {
   // An impact on a sleeping ball (not one that would rest on it) wakes its group; the
   // sleeping ball's velocity is zero.
-  if (states_[i].asleep != states_[j].asleep && closing > rest_speed)
-    wakeGroup(states_[j].asleep ? j : i);
+  if (motions_[i].asleep != motions_[j].asleep && closing > rest_speed)
+    wakeGroup(motions_[j].asleep ? j : i);
 }
 
 void World::resolveBallBall(const Event& event)
@@ -103,9 +103,9 @@ void World::resolveBallBall(const Event& event)
   const Vec3 nb = floorNormalAt(j, pb);
   Vec3 va = onFloorVelocity(i, event.x, pa, na);
   Vec3 vb = onFloorVelocity(j, event.x, pb, nb);
-  if (states_[i].frozen)
+  if (motions_[i].frozen)
     va = Vec3::Zero();
-  if (states_[j].frozen)
+  if (motions_[j].frozen)
     vb = Vec3::Zero();
   if (friction_)
   {
@@ -153,8 +153,11 @@ void World::resolveBallBall(const Event& event)
 
 void World::countEvent(std::size_t i)
 {
-  MotionState& m = states_[i];
-  ++m.epoch;  // what was predicted for this ball before is stale now
+  Motion& m = motions_[i];
+  // What was predicted for this ball before is stale now. Where the 16-bit epoch wraps,
+  // the events queued under the one it is back at would pass for current: none is.
+  if (++m.epoch == 0)
+    queue_.forget(static_cast<std::uint32_t>(i));
   // (counted up to one past the cap only: a frozen ball can still be hit by many others)
   if (!m.frozen && ++m.events > settings_.max_events_per_ball_step)
   {
@@ -213,8 +216,8 @@ bool World::blockAtRest(const PairContact& c, const Vec3& va, const Vec3& vb)
   // each ball by how far it can go, FloorMotion::separate().)
   const double still = std::max(stillSpeed(c.na), stillSpeed(c.nb));
   const bool both_still = va.norm() <= still && vb.norm() <= still;
-  const bool a_fixed = both_still || states_[i].held || states_[i].frozen;
-  const bool b_fixed = both_still || states_[j].held || states_[j].frozen;
+  const bool a_fixed = both_still || motions_[i].held || motions_[i].frozen;
+  const bool b_fixed = both_still || motions_[j].held || motions_[j].frozen;
   if (a_fixed && along_b.squaredNorm() > 0)
     addBlocked(j, -along_b.normalized(), ballSource(i), scene_.restitution);
   if (b_fixed && along_a.squaredNorm() > 0)
@@ -229,14 +232,12 @@ void World::settleRestingPair(const PairContact& c, double x, const Vec3& pa, co
   const double inv_a = c.inv_a, inv_b = c.inv_b;
   Motion& ma = motions_[i];
   Motion& mb = motions_[j];
-  MotionState& sa = states_[i];
-  MotionState& sb = states_[j];
   toChord(i);
   toChord(j);
   // No approach left in the motions either (gravity along the floor would press them
   // together again at once); a held ball does not give way.
   const double rest = 1 - x;
-  floor_motion_->separate(*this, c, rest, sa.held ? 0.0 : inv_a, sb.held ? 0.0 : inv_b, pa, pb);
+  floor_motion_->separate(*this, c, rest, ma.held ? 0.0 : inv_a, mb.held ? 0.0 : inv_b, pa, pb);
   // Two balls all but still whose motions still close in (a pile in a corner of a
   // curved floor, where the floor, the walls and each other leave no room to settle
   // into), or that are in a jam: they stay where they are for the rest of the step,
@@ -247,9 +248,10 @@ void World::settleRestingPair(const PairContact& c, double x, const Vec3& pa, co
   // FloorMotion::separate()): it would find this contact again at once, and again.
   keepEnergy(i);
   keepEnergy(j);
-  const bool jammed = sa.events >= settings_.jam_events_per_ball_step || sb.events >= settings_.jam_events_per_ball_step;
+  const std::uint32_t jam = settings_.jam_events_per_ball_step;
+  const bool jammed = ma.events >= jam || mb.events >= jam;
   const double closing_in = rest * (ma.b.dot(n) - mb.b.dot(n));
-  const bool again = closing_in > settings_.closing_slop * (ma.radius + mb.radius);
+  const bool again = closing_in > settings_.closing_slop * (balls_[i].radius + balls_[j].radius);
   if (jammed || (both_still && closing_in > 0) || again)
   {
     ma.b = mb.b = Vec3::Zero();

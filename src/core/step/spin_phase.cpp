@@ -43,7 +43,7 @@ struct World::SpinPhase::Constrained final : World::SpinPhase
   MotionKind kindAtEnd(const World& w, std::size_t i, const SpinMotion&, const Vec3& normal, const Vec3& v,
                        const Vec3& spin) const override
   {
-    return w.frictionUnder(normal).constrainedKind(w.motions_[i].radius, v, spin);
+    return w.frictionUnder(normal).constrainedKind(w.balls_[i].radius, v, spin);
   }
 };
 

@@ -28,40 +28,39 @@ inline double roundoffAt(const Vec3& p, double r, const StepSettings& settings)
 /// centre c(x) = p0 + (x - x0) b for x in [x0, 1], a chord; or, for a free ball where
 /// the ground gives its path an acceleration (a sloped plane, no floor), the parabola
 /// c(x) = p0 + (x - x0) b + (x - x0)^2 c with the world's common c = a dt^2 / 2
-/// (MotionState::accelerates). A new one starts at every event.
-/// It holds what detection reads, in one cache line; the ball's velocity at x0 is kept in
-/// the ball itself while the step runs (startVelocity()), its counters in a MotionState.
+/// (accelerates). A new one starts at every event.
+/// It holds what detection reads and the ball's counters in the step, in one cache line;
+/// the ball's velocity at x0 and its radius are read from the ball itself (startVelocity()).
 struct alignas(64) World::Motion
 {
+  Motion() : events(0), frozen(0), asleep(0), accelerates(0), held(0) {}
   double x0 = 0.0;               ///< where this motion starts, fraction of the step
   Vec3 p0 = Vec3::Zero();        ///< centre at x0 [m]
   Vec3 b = Vec3::Zero();         ///< displacement per unit of x [m]; zero while frozen
-  double radius = 0.0;           ///< the ball's [m]
-};
-
-/// The rest of a ball's state in the step, in 12 bytes (its flags one bit each).
-struct World::MotionState
-{
-  std::uint32_t epoch = 0;       ///< bumped at every event of this ball
-  std::uint16_t events = 0;      ///< events of this ball in this step, up to one past the cap
+  /// Bumped at every event of this ball: what was predicted before is stale. It counts
+  /// from 0 each step; where it wraps, the queue forgets the ball's events (countEvent()).
+  std::uint16_t epoch = 0;
+  /// events of this ball in this step, up to one past the cap (kMaxEventCap)
+  std::uint16_t events : 12;
   /// no motion for the rest of the step, immovable (inverse mass 0): stopped by the event
   /// cap, or asleep
-  bool frozen : 1;
-  bool asleep : 1;               ///< frozen because the ball sleeps: an impact wakes it
+  std::uint16_t frozen : 1;
+  std::uint16_t asleep : 1;      ///< frozen because the ball sleeps: an impact wakes it
   /// its motion is the parabola of a free ball (World::path_c_), not a chord
-  bool accelerates : 1;
+  std::uint16_t accelerates : 1;
   /// Held (see hold()): in a jam at a resting contact, or left no motion its energy allows;
   /// it stays where it is through resting contacts for the rest of the step (an impact
   /// lets it go), and ends the step with no velocity.
-  bool held : 1;
+  std::uint16_t held : 1;
   std::int32_t blocked = -1;     ///< its set of blocked directions this step (BlockedDirections), if any
-
-  MotionState() : frozen(false), asleep(false), accelerates(false), held(false) {}
 };
+
+/// The largest event cap a Motion's 12-bit count holds with one past it [events].
+constexpr std::uint32_t kMaxEventCap = (1u << 12) - 2;
 
 inline double World::inverseMass(std::size_t i) const
 {
-  return states_[i].frozen ? 0.0 : 1.0 / balls_[i].mass;
+  return motions_[i].frozen ? 0.0 : 1.0 / balls_[i].mass;
 }
 /// A ball's friction phase in the step (worlds with friction), by visiting index: while
 /// `free`, its motion's parabola term is c = a dt^2 / 2 and its spin at x is
