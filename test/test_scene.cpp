@@ -134,12 +134,18 @@ TEST(Check, PlacesEveryBallOnceForTheWorld)
   ASSERT_TRUE(checked.issues.empty()) << joinIssues(checked.issues);
   ASSERT_EQ(checked.balls.size(), 42u);
   const Floor floor(*scene.floor, scene.gravity);
-  for (const PlacedBall& b : checked.balls)
+  ASSERT_EQ(checked.balls.feet.size(), 42u);
+  for (std::size_t k = 0; k < checked.balls.size(); ++k)
   {
     // its centre one radius above its foot point, along the normal there
-    const Vec3 centre = floor.point(b.foot) + b.def.radius * floor.normal(b.foot);
-    EXPECT_LT((b.def.position - centre).norm(), 1e-12);
+    const Ball& b = checked.balls.balls[k];
+    const Vec2& foot = checked.balls.feet[k];
+    const Vec3 centre = floor.point(foot) + b.radius * floor.normal(foot);
+    EXPECT_LT((b.position - centre).norm(), 1e-12);
   }
+  // the scene's own balls first, as the scene gives them but put on the floor
+  EXPECT_EQ(checked.balls.balls[0].radius, scene.balls[0].radius);
+  EXPECT_EQ(checked.balls.balls[1].mass, scene.balls[1].mass);
   World from_check(scene, check(scene)), from_scene(scene);
   EXPECT_EQ(from_check.stateHash(), from_scene.stateHash());
   for (int k = 0; k < 50; ++k)

@@ -66,7 +66,7 @@ public:
     for (BallDef ball : scene.balls)
       if (placement.place(ball).empty())
       {
-        balls_.push_back({ball});
+        record(ball);
         max_radius_ = std::max(max_radius_, ball.radius);
       }
     listed_ = balls_.size();
@@ -74,7 +74,7 @@ public:
     // far beyond the room is refused without its table)
     grid_.reset(2 * max_radius_, balls_.size() + std::min<std::size_t>(asked, 1 << 16));
     for (std::size_t k = 0; k < balls_.size(); ++k)
-      grid_.insert(static_cast<std::uint32_t>(k), sweptBox(balls_[k].def.position, balls_[k].def.position, 0));
+      grid_.insert(static_cast<std::uint32_t>(k), sweptBox(balls_[k].position, balls_[k].position, 0));
   }
   /// Whether `ball` keeps its clearance from every wall and every ball placed so far.
   bool clear(const BallDef& ball) const
@@ -86,29 +86,40 @@ public:
     bool clear = true;
     const Aabb box = sweptBox(ball.position, ball.position, ball.radius + max_radius_ + kClearance);
     grid_.query(box, [&](std::uint32_t k) {
-      const BallDef& o = balls_[k].def;
+      const Ball& o = balls_[k];
       if ((o.position - ball.position).norm() < o.radius + ball.radius + kClearance)
         clear = false;
     });
     return clear;
   }
-  void add(const BallDef& ball)
+  void add(const BallDef& def)
   {
-    balls_.push_back({ball});
+    const Ball& ball = record(def);
     grid_.insert(static_cast<std::uint32_t>(balls_.size() - 1), sweptBox(ball.position, ball.position, 0));
   }
   long placed() const { return static_cast<long>(balls_.size() - listed_); }
   /// The balls placed here, without the scene's own.
-  std::vector<PlacedBall> take()
+  std::vector<Ball> take()
   {
     balls_.erase(balls_.begin(), balls_.begin() + static_cast<std::ptrdiff_t>(listed_));
     return std::move(balls_);
   }
 
 private:
+  /// The ball's record at the end of the list.
+  const Ball& record(const BallDef& def)
+  {
+    Ball& ball = balls_.emplace_back();
+    ball.position = def.position;
+    ball.velocity = def.velocity;
+    ball.radius = def.radius;
+    ball.mass = def.mass;
+    return ball;
+  }
+
   const Placement& placement_;
-  static constexpr std::size_t kReservedUpTo = std::size_t{1} << 20;  ///< 128 MiB of room at most
-  std::vector<PlacedBall> balls_;
+  static constexpr std::size_t kReservedUpTo = std::size_t{1} << 20;  ///< 104 MiB of room at most
+  std::vector<Ball> balls_;
   std::size_t listed_ = 0;
   double max_radius_ = 0.0;
   UniformGrid grid_;
@@ -136,12 +147,23 @@ std::optional<BallDef> drawBall(std::mt19937_64& rng, const RandomBallsDef& def,
 std::vector<BallDef> placeRandomBalls(const Scene& scene)
 {
   std::vector<BallDef> out;
-  for (PlacedBall& ball : placeRandomBallsWithFeet(scene))
-    out.push_back(ball.def);
+  for (const Ball& ball : placeRandomBallRecords(scene))
+    out.push_back(randomBallDef(scene, ball));
   return out;
 }
 
-std::vector<PlacedBall> placeRandomBallsWithFeet(const Scene& scene)
+BallDef randomBallDef(const Scene& scene, const Ball& ball)
+{
+  BallDef def;
+  def.position = ball.position;
+  def.velocity = ball.velocity;
+  def.radius = ball.radius;
+  def.mass = ball.mass;
+  def.inertia = scene.random_balls ? scene.random_balls->inertia : kSolidInertia;
+  return def;
+}
+
+std::vector<Ball> placeRandomBallRecords(const Scene& scene)
 {
   if (!scene.random_balls || !scene.floor || scene.random_balls->count <= 0)
     return {};
@@ -174,7 +196,6 @@ std::vector<PlacedBall> placeRandomBallsWithFeet(const Scene& scene)
     Vec3 e1, e2;
     tangentBasis(n, e1, e2);
     ball->velocity = speed * (std::cos(angle) * e1 + std::sin(angle) * e2);
-    ball->inertia = def.inertia;
     obstacles.add(*ball);
     misses = 0;
   }

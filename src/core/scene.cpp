@@ -275,9 +275,9 @@ void checkPlacement(Checker& check, const Scene& scene, std::vector<bool>& usabl
 
 /// The random balls' definition, and (when the rest of the scene is fine) whether they
 /// all fit: the balls placed.
-std::vector<PlacedBall> checkRandomBalls(Checker& check, const Scene& scene, bool fine_so_far)
+std::vector<Ball> checkRandomBalls(Checker& check, const Scene& scene, bool fine_so_far)
 {
-  std::vector<PlacedBall> random;
+  std::vector<Ball> random;
   const RandomBallsDef& rb = *scene.random_balls;
   bool ok = true;
   if (rb.count < 0 || rb.count > 10'000'000)
@@ -307,7 +307,7 @@ std::vector<PlacedBall> checkRandomBalls(Checker& check, const Scene& scene, boo
   }
   if (ok && fine_so_far && rb.count > 0)
   {
-    random = placeRandomBallsWithFeet(scene);
+    random = placeRandomBallRecords(scene);
     if (random.size() < static_cast<std::size_t>(rb.count))
       check.fail("random_balls.count", "room for only " + std::to_string(random.size()) + " of " +
                                            std::to_string(rb.count) +
@@ -346,25 +346,28 @@ namespace
 {
 /// The scene's explicit balls, and then `random` ones, each put on the floor: in the
 /// list of the random ones, which has room for the others ahead of them.
-std::vector<PlacedBall> land(const Scene& scene, std::vector<PlacedBall> random)
+PlacedBalls land(const Scene& scene, std::vector<Ball> random)
 {
   std::optional<Floor> floor;
   if (scene.floor)
     floor.emplace(*scene.floor, scene.gravity);
-  const auto put = [&](PlacedBall& ball) {
-    ball.foot = Vec2(0.5, 0.5);  // (the first guess of the foot point)
-    placeOnFloor(ball.def, floor, &ball.foot);
+  const std::size_t own = scene.balls.size();
+  PlacedBalls out;
+  out.feet.assign(own + random.size(), Vec2(0.5, 0.5));  // (the first guess of each foot point)
+  const auto put = [&](BallDef def, Ball& ball, Vec2& foot) {
+    placeOnFloor(def, floor, &foot);
+    ball.position = def.position;
+    ball.velocity = def.velocity;
+    ball.radius = def.radius;
+    ball.mass = def.mass;
   };
-  for (PlacedBall& ball : random)
-    put(ball);
-  std::vector<PlacedBall> own(scene.balls.size());
-  for (std::size_t k = 0; k < own.size(); ++k)
-  {
-    own[k].def = scene.balls[k];
-    put(own[k]);
-  }
-  random.insert(random.begin(), own.begin(), own.end());
-  return random;
+  for (std::size_t k = 0; k < random.size(); ++k)
+    put(randomBallDef(scene, random[k]), random[k], out.feet[own + k]);
+  random.insert(random.begin(), own, Ball{});
+  for (std::size_t k = 0; k < own; ++k)
+    put(scene.balls[k], random[k], out.feet[k]);
+  out.balls = std::move(random);
+  return out;
 }
 }  // namespace
 
@@ -373,9 +376,9 @@ std::vector<SceneIssue> validate(const Scene& scene)
   return check(scene).issues;
 }
 
-std::vector<PlacedBall> placeBalls(const Scene& scene)
+PlacedBalls placeBalls(const Scene& scene)
 {
-  return land(scene, placeRandomBallsWithFeet(scene));
+  return land(scene, placeRandomBallRecords(scene));
 }
 
 SceneCheck check(const Scene& scene)
@@ -414,8 +417,8 @@ SceneCheck check(const Scene& scene)
   // Geometry only once the objects themselves are sound, so one mistake gives one issue.
   if (gravity_ok && floor_ok && walls_ok)
     checkPlacement(check, scene, usable);
-  std::vector<PlacedBall> random =
-      scene.random_balls ? checkRandomBalls(check, scene, issues.empty()) : std::vector<PlacedBall>();
+  std::vector<Ball> random =
+      scene.random_balls ? checkRandomBalls(check, scene, issues.empty()) : std::vector<Ball>();
   if (issues.empty())
     out.balls = land(scene, std::move(random));
   return out;

@@ -45,7 +45,7 @@ World::World(const Scene& scene, SceneCheck checked, const StepSettings& setting
   if (!(settings_.chord_sag > 0))
     throw std::invalid_argument("chord_sag: must be > 0");
   sleep_steps_ = static_cast<std::uint16_t>(std::clamp(std::ceil(settings_.sleep_time / dt_), 1.0, 65535.0));
-  load(checked.balls);
+  load(std::move(checked.balls));
 }
 
 World::World(const World&) = default;
@@ -54,7 +54,7 @@ World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 World::~World() = default;
 
-void World::load(const std::vector<PlacedBall>& balls)
+void World::load(PlacedBalls placed)
 {
   walls_.clear();
   next_wall_id_ = kFirstId;
@@ -65,21 +65,28 @@ void World::load(const std::vector<PlacedBall>& balls)
   feet_.clear();
   spins_.clear();
   next_ball_id_ = kFirstId;
-  balls_.reserve(balls.size());
-  by_id_.reserve(balls.size());
-  if (friction_)
-    spins_.reserve(balls.size());
-  if (floor_motion_->keepsFeet())
-    feet_.reserve(balls.size());
-  for (const PlacedBall& ball : balls)
+  // (the records taken over as they are, not copied: loading holds one list of them)
+  balls_ = std::move(placed.balls);
+  by_id_.resize(balls_.size());
+  for (std::size_t k = 0; k < balls_.size(); ++k)
   {
-    by_id_.push_back(static_cast<std::uint32_t>(balls_.size()));
-    balls_.push_back(makeBall(next_ball_id_++, ball.def));
-    if (floor_motion_->keepsFeet())
-      feet_.push_back(ball.foot);
-    if (friction_)
-      spins_.push_back(makeSpin(ball.def, ball.foot));
+    by_id_[k] = static_cast<std::uint32_t>(k);
+    balls_[k].id = next_ball_id_++;
   }
+  if (friction_)
+  {
+    spins_.reserve(balls_.size());
+    for (std::size_t k = 0; k < balls_.size(); ++k)
+    {
+      // (its definition: the scene's own ball, or a random one's, where the record has it now)
+      BallDef def = k < scene_.balls.size() ? scene_.balls[k] : randomBallDef(scene_, balls_[k]);
+      def.position = balls_[k].position;
+      def.velocity = balls_[k].velocity;
+      spins_.push_back(makeSpin(def, placed.feet[k]));
+    }
+  }
+  if (floor_motion_->keepsFeet())
+    feet_ = std::move(placed.feet);
   stats_ = WorldStats{};
   events_.clear();
   transitions_.clear();

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "ball_collision_sim/core/ball.hpp"
 #include "ball_collision_sim/core/types.hpp"
 
 #include <array>
@@ -114,11 +115,17 @@ struct SceneIssue
   std::string str() const { return key + ": " + reason; }
 };
 
-/// A ball as a scene starts it: put on the floor, with its foot point (u, v) there.
-struct PlacedBall
+/// The balls as a scene starts them, explicit ones first, then random ones: each put on
+/// the floor, as the record a World keeps (centre, velocity, radius, mass; the World gives
+/// the ids), with its foot point (u, v) there. A World takes the records over as they
+/// are. Their spins come from the scene: an explicit ball's own, a random ball's from
+/// random_balls.inertia.
+struct PlacedBalls
 {
-  BallDef def;
-  Vec2 foot = Vec2(0.5, 0.5);
+  std::vector<Ball> balls;
+  std::vector<Vec2> feet;
+  std::size_t size() const { return balls.size(); }
+  bool empty() const { return balls.empty(); }
 };
 
 /// What checking a scene finds: every problem, in key order; or, when there is none,
@@ -127,7 +134,7 @@ struct PlacedBall
 struct SceneCheck
 {
   std::vector<SceneIssue> issues;
-  std::vector<PlacedBall> balls;
+  PlacedBalls balls;
 };
 
 /// Checks the scene and places its balls. Pure: it reads the scene and nothing else.
@@ -138,7 +145,7 @@ std::vector<SceneIssue> validate(const Scene& scene);
 
 /// The balls of a scene that passed check(), placed as check() places them (a World's
 /// reset places them again from its scene).
-std::vector<PlacedBall> placeBalls(const Scene& scene);
+PlacedBalls placeBalls(const Scene& scene);
 
 /// Problems of one ball's own fields (finite, radius and mass > 0, sizes in range).
 /// Keys are `prefix` + field name, e.g. prefix "balls[3]." gives "balls[3].radius".
@@ -153,9 +160,12 @@ std::string joinIssues(const std::vector<SceneIssue>& issues);
 /// The balls of `random_balls`, placed as the scene says (deterministic in its seed).
 /// Fewer than `count` come back when there is no room; validate() reports that.
 std::vector<BallDef> placeRandomBalls(const Scene& scene);
-/// ... each with room for its foot point (not set yet), and room kept ahead of them for
-/// the scene's own balls, so that check() puts all on the floor in one list, in place.
-std::vector<PlacedBall> placeRandomBallsWithFeet(const Scene& scene);
+/// ... as the records a World keeps, with room kept ahead of them for the scene's own
+/// balls, so that check() puts all on the floor in one list, in place.
+std::vector<Ball> placeRandomBallRecords(const Scene& scene);
+/// The definition of a random ball with this record: its fields, no spin of its own, and
+/// random_balls.inertia.
+BallDef randomBallDef(const Scene& scene, const Ball& ball);
 
 /// The scene's explicit balls followed by its random ones.
 std::vector<BallDef> allBalls(const Scene& scene);

@@ -316,7 +316,7 @@ private:
   /// (src/core/step/contact_group.hpp).
   struct ContactGroup;
 
-  void load(const std::vector<PlacedBall>& balls);
+  void load(PlacedBalls placed);
   /// After an edit: the next step visits the balls in id order and predicts afresh.
   void forgetOrder();
   /// The ball of `placed`, a definition already put on the floor.
