@@ -129,6 +129,7 @@ void UniformGrid::insert(std::uint32_t item, const Aabb& box)
 
 void StepGrid::start(std::size_t n, const Vec3& up, const StepSettings& settings)
 {
+  static_assert(sizeof(Item) == 28, "a grid item is its box and its slot");
   // Grid axes: drop the one most nearly along "up", where balls on a floor barely spread.
   int drop = 0;
   up.cwiseAbs().maxCoeff(&drop);
@@ -161,11 +162,11 @@ void StepGrid::build()
   // then (each item put in front of its slot's, last item first) where it starts.
   starts_.assign(slots + 1, 0);
   for (std::size_t i = 0; i < n; ++i)
-    ++starts_[slotOf(items_[i].cx, items_[i].cy)];
+    ++starts_[items_[i].slot];
   for (std::size_t b = 0; b < slots; ++b)
     starts_[b + 1] += starts_[b];
   for (std::size_t i = n; i-- > 0;)
-    entries_[--starts_[slotOf(items_[i].cx, items_[i].cy)]] = static_cast<std::uint32_t>(i);
+    entries_[--starts_[items_[i].slot]] = static_cast<std::uint32_t>(i);
   // the boxes left out of the cell's width are listed as moved
   if (outliers)
     for (std::size_t i = 0; i < n; ++i)
@@ -202,34 +203,62 @@ double StepGrid::chooseCell(bool& outliers)
 
 std::size_t StepGrid::assignCells()
 {
+  // Each item's cell, kept in its slot for now as two 16-bit offsets from the first
+  // item's cell where they fit (rows of a dense array rarely span more): the slots are
+  // then found with integers alone, once the array's bounds are known.
   const std::size_t n = items_.size();
-  std::int64_t max_x = 0, max_y = 0;
-  for (std::size_t i = 0; i < n; ++i)
+  const auto [x_ref, y_ref] = cellAt(items_[0].box);
+  std::int64_t max_x = x_ref, max_y = y_ref;
+  min_x_ = x_ref;
+  min_y_ = y_ref;
+  bool packed = true;
+  for (Item& item : items_)
   {
-    const Box32& box = items_[i].box;
-    const std::int64_t x = index(std::floor(0.5 * (static_cast<double>(box.min[ax_]) + box.max[ax_]) * inv_cell_));
-    const std::int64_t y = index(std::floor(0.5 * (static_cast<double>(box.min[ay_]) + box.max[ay_]) * inv_cell_));
-    items_[i].cx = static_cast<std::int32_t>(x);
-    items_[i].cy = static_cast<std::int32_t>(y);
-    min_x_ = i == 0 ? x : std::min(min_x_, x);
-    min_y_ = i == 0 ? y : std::min(min_y_, y);
-    max_x = i == 0 ? x : std::max(max_x, x);
-    max_y = i == 0 ? y : std::max(max_y, y);
+    const auto [x, y] = cellAt(item.box);
+    min_x_ = std::min(min_x_, x);
+    min_y_ = std::min(min_y_, y);
+    max_x = std::max(max_x, x);
+    max_y = std::max(max_y, y);
+    const std::int64_t dx = x - x_ref + kOffset, dy = y - y_ref + kOffset;
+    packed = packed && dx >= 0 && dx <= 0xffff && dy >= 0 && dy <= 0xffff;
+    item.slot = static_cast<std::uint32_t>(dx & 0xffff) | static_cast<std::uint32_t>((dy & 0xffff) << 16);
   }
+  const auto cellOfPacked = [&, x_ref = x_ref, y_ref = y_ref](const Item& item) -> std::array<std::int64_t, 2> {
+    if (!packed)
+      return cellAt(item.box);
+    return {static_cast<std::int64_t>(item.slot & 0xffff) - kOffset + x_ref,
+            static_cast<std::int64_t>(item.slot >> 16) - kOffset + y_ref};
+  };
   // A dense array of cells (with a border of one) when the items are not spread too
   // thin, else hashed buckets, at least twice as many as items.
   width_ = max_x - min_x_ + 3;
   height_ = max_y - min_y_ + 3;
-  dense_ = static_cast<double>(width_) * static_cast<double>(height_) <=
-           dense_cells_per_item_ * static_cast<double>(n) + dense_extra_cells_;
+  // (an item keeps its cell's slot in 32 bits)
+  const double cells = static_cast<double>(width_) * static_cast<double>(height_);
+  dense_ = cells <= dense_cells_per_item_ * static_cast<double>(n) + dense_extra_cells_ && cells < kMoved;
   if (dense_)
+  {
+    cells_.clear();
+    for (Item& item : items_)
+    {
+      const auto [x, y] = cellOfPacked(item);
+      item.slot = static_cast<std::uint32_t>(slotOf(x, y));
+    }
     return static_cast<std::size_t>(width_ * height_);
+  }
   std::size_t slots = 16;
   shift_ = 60;
   while (slots < 2 * n)
   {
     slots *= 2;
     --shift_;
+  }
+  cells_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const auto [x, y] = cellOfPacked(items_[i]);
+    cells_[i] = {static_cast<std::int32_t>(x), static_cast<std::int32_t>(y)};
+    items_[i].slot = static_cast<std::uint32_t>(bucketOf(x, y));
   }
   return slots;
 }
@@ -262,8 +291,9 @@ void StepGrid::markObstacles(const std::vector<Box32>& obstacles)
 bool StepGrid::fits(std::uint32_t i, const Box32& box) const
 {
   // strictly within half a cell of the item's own cell
-  const double lo_x = (static_cast<double>(items_[i].cx) - 0.5) * cell_, hi_x = (static_cast<double>(items_[i].cx) + 1.5) * cell_;
-  const double lo_y = (static_cast<double>(items_[i].cy) - 0.5) * cell_, hi_y = (static_cast<double>(items_[i].cy) + 1.5) * cell_;
+  const auto [cx, cy] = cellOf(i);
+  const double lo_x = (static_cast<double>(cx) - 0.5) * cell_, hi_x = (static_cast<double>(cx) + 1.5) * cell_;
+  const double lo_y = (static_cast<double>(cy) - 0.5) * cell_, hi_y = (static_cast<double>(cy) + 1.5) * cell_;
   return box.min[ax_] > lo_x && box.max[ax_] < hi_x && box.min[ay_] > lo_y && box.max[ay_] < hi_y;
 }
 
@@ -279,7 +309,7 @@ void StepGrid::moveOut(std::uint32_t i)
 {
   if (!moved(i))
   {
-    items_[i].cx = kMoved;
+    items_[i].slot = kMoved;
     moved_list_.push_back(i);  // (scans of the cells pass it by from now on)
     if (moved_list_.size() == kFewMoved + 1)
     {

@@ -164,7 +164,7 @@ public:
   /// False when item i's box cannot overlap any of the boxes given to markObstacles().
   bool nearObstacle(std::uint32_t i) const
   {
-    return moved(i) || !dense_ || near_obstacle_[slotOf(items_[i].cx, items_[i].cy)];
+    return moved(i) || !dense_ || near_obstacle_[items_[i].slot];
   }
   /// Calls f(i) for every item that nearObstacle() may be true for, each once.
   template <class F>
@@ -227,16 +227,35 @@ private:
   double dense_extra_cells_ = 1024.0;   ///< StepSettings::grid_dense_extra_cells
   double cell_margin_ = 1e-9;           ///< StepSettings::grid_cell_margin
   double cell_floor_ = 1e-12;           ///< StepSettings::grid_cell_floor [m]
-  /// What the grid keeps of an item, in half a cache line.
-  struct alignas(32) Item
+  /// What the grid keeps of an item, in 28 bytes.
+  struct Item
   {
-    Box32 box;            ///< its current box
-    std::int32_t cx = 0;  ///< its cell (see index()), or kMoved once it is listed as moved
-    std::int32_t cy = 0;
+    Box32 box;               ///< its current box
+    /// its cell's slot (dense mode) or bucket, or kMoved once it is listed as moved
+    std::uint32_t slot = 0;
   };
-  static constexpr std::int32_t kMoved = std::numeric_limits<std::int32_t>::min();  ///< no index() is this
-  bool moved(std::uint32_t i) const { return items_[i].cx == kMoved; }
+  static constexpr std::uint32_t kMoved = std::numeric_limits<std::uint32_t>::max();  ///< no slot is this
+  /// assignCells(): a cell's offset from the first item's is kept as this plus it, in 16 bits
+  static constexpr std::int64_t kOffset = 0x8000;
+  bool moved(std::uint32_t i) const { return items_[i].slot == kMoved; }
+  /// Item i's cell (see index()): from its slot in dense mode, else kept in cells_.
+  std::array<std::int64_t, 2> cellOf(std::uint32_t i) const
+  {
+    if (!dense_)
+      return {cells_[i][0], cells_[i][1]};
+    const auto w = static_cast<std::uint32_t>(width_);
+    return {static_cast<std::int64_t>(items_[i].slot % w) + min_x_ - 1,
+            static_cast<std::int64_t>(items_[i].slot / w) + min_y_ - 1};
+  }
+  /// The cell of a box's centre, along the grid's axes.
+  std::array<std::int64_t, 2> cellAt(const Box32& box) const
+  {
+    return {index(std::floor(0.5 * (static_cast<double>(box.min[ax_]) + box.max[ax_]) * inv_cell_)),
+            index(std::floor(0.5 * (static_cast<double>(box.min[ay_]) + box.max[ay_]) * inv_cell_))};
+  }
   std::vector<Item> items_;             ///< per item
+  /// per item, hashed mode only: its cell (bucket collisions are told apart by it)
+  std::vector<std::array<std::int32_t, 2>> cells_;
   std::vector<std::uint32_t> starts_;   ///< bucket b holds entries_[starts_[b] .. starts_[b + 1])
   std::vector<std::uint32_t> entries_;  ///< items in order of their buckets
   std::vector<std::uint8_t> near_obstacle_;  ///< dense mode, per cell
@@ -284,7 +303,7 @@ void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std:
       for (std::uint32_t k = starts_[b]; k < starts_[b + 1]; ++k)
       {
         const std::uint32_t j = entries_[k];
-        if (items_[j].cx == ix && items_[j].cy == iy && items_[j].box.overlaps(box) && !moved(j))
+        if (cells_[j][0] == ix && cells_[j][1] == iy && items_[j].box.overlaps(box) && !moved(j))
           f(j);
       }
     }
@@ -310,9 +329,20 @@ void StepGrid::query(std::uint32_t i, F&& f) const
     if (j != i)
       f(j);
   };
+  if (!moved(i) && dense_)
+  {
+    // the 3 x 3 cells around its own, rows of the array (the border keeps them in it)
+    const auto w = static_cast<std::size_t>(width_);
+    for (std::size_t first = items_[i].slot - w - 1; first <= items_[i].slot + w - 1; first += w)
+      for (std::uint32_t k = starts_[first]; k < starts_[first + 3]; ++k)
+        if (const std::uint32_t j = entries_[k]; items_[j].box.overlaps(box) && !moved(j))
+          binned(j);
+    return;
+  }
   if (!moved(i))
   {
-    scanCells(items_[i].cx - 1, items_[i].cx + 1, items_[i].cy - 1, items_[i].cy + 1, box, binned);
+    const auto [cx, cy] = cellOf(i);
+    scanCells(cx - 1, cx + 1, cy - 1, cy + 1, box, binned);
     return;
   }
   // Cells c whose reach ((c - 1/2) h, (c + 3/2) h) meets the box.
@@ -384,7 +414,8 @@ void StepGrid::forEachPair(F&& f) const
       const std::uint32_t i = entries_[k];
       if (moved(i))
         continue;
-      scanCells(items_[i].cx - 1, items_[i].cx + 1, items_[i].cy - 1, items_[i].cy + 1, items_[i].box, [&](std::uint32_t j) {
+      const auto [cx, cy] = cellOf(i);
+      scanCells(cx - 1, cx + 1, cy - 1, cy + 1, items_[i].box, [&](std::uint32_t j) {
         if (j > i)
           f(i, j);
       });
