@@ -273,7 +273,7 @@ void StepGrid::markObstacles(const std::vector<Box32>& obstacles)
 {
   if (!dense_)
     return;
-  near_obstacle_.assign(starts_.size() - 1, 0);
+  near_obstacle_.assign((starts_.size() - 1 + 63) / 64, 0);
   for (const Box32& rounded : obstacles)
   {
     const Aabb box = rounded.toAabb();
@@ -284,7 +284,10 @@ void StepGrid::markObstacles(const std::vector<Box32>& obstacles)
     const std::int64_t y1 = std::min(index(std::floor(box.max[ay_] * inv_cell_ + 0.5)), min_y_ + height_ - 2);
     for (std::int64_t iy = y0; iy <= y1; ++iy)
       for (std::int64_t ix = x0; ix <= x1; ++ix)
-        near_obstacle_[slotOf(ix, iy)] = 1;
+      {
+        const std::size_t s = slotOf(ix, iy);
+        near_obstacle_[s >> 6] |= std::uint64_t{1} << (s & 63);
+      }
   }
 }
 

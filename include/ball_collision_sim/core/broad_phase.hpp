@@ -164,7 +164,7 @@ public:
   /// False when item i's box cannot overlap any of the boxes given to markObstacles().
   bool nearObstacle(std::uint32_t i) const
   {
-    return moved(i) || !dense_ || near_obstacle_[items_[i].slot];
+    return moved(i) || !dense_ || nearCell(items_[i].slot);
   }
   /// Calls f(i) for every item that nearObstacle() may be true for, each once.
   template <class F>
@@ -258,7 +258,8 @@ private:
   std::vector<std::array<std::int32_t, 2>> cells_;
   std::vector<std::uint32_t> starts_;   ///< bucket b holds entries_[starts_[b] .. starts_[b + 1])
   std::vector<std::uint32_t> entries_;  ///< items in order of their buckets
-  std::vector<std::uint8_t> near_obstacle_;  ///< dense mode, per cell
+  std::vector<std::uint64_t> near_obstacle_;  ///< dense mode, a bit per cell
+  bool nearCell(std::size_t s) const { return ((near_obstacle_[s >> 6] >> (s & 63)) & 1) != 0; }
   /// Dense mode: cells in a row-major array over the items' cells with a border of one;
   /// otherwise hashed buckets (items spread far apart).
   bool dense_ = false;
@@ -370,7 +371,7 @@ void StepGrid::forEachNearObstacle(F&& f) const
     return;
   }
   for (std::size_t s = 0; s + 1 < starts_.size(); ++s)
-    if (near_obstacle_[s])
+    if (nearCell(s))
       for (std::uint32_t k = starts_[s]; k < starts_[s + 1]; ++k)
         if (!moved(entries_[k]))
           f(entries_[k]);
