@@ -143,8 +143,8 @@ TEST(EventQueue, EachEventComesBackWithItsOwnNormalAndFields)
       e.normal = Vec3(u(rng), u(rng), u(rng)).normalized();
       e.feature = k % 3 == 0 ? WallFeature::kEdge : WallFeature::kFace;
     }
-    e.epoch_i = k;
-    e.epoch_j = 7 * k;
+    e.epoch_i = static_cast<std::uint16_t>(k);
+    e.epoch_j = static_cast<std::uint16_t>(7 * k);  // (below 2^16)
     e.cut = k % 7 == 0;
     sent.push_back(e);
     queue.push(e);
@@ -168,7 +168,7 @@ TEST(EventQueue, ForgetDropsOneBallsEventsAndKeepsTheRestInOrder)
   queue.start(&balls);
   std::vector<StepEvent> sent;
   const auto push = [&](StepEvent e) {
-    e.epoch_i = static_cast<std::uint32_t>(sent.size());  // its number
+    e.epoch_i = static_cast<std::uint16_t>(sent.size());  // its number
     if (e.wall)
       e.normal = Vec3(u(rng), u(rng), 1).normalized();
     sent.push_back(e);

@@ -54,9 +54,9 @@ bool EventQueue::later(const Entry& qa, const Entry& qb) const
 
 void EventQueue::push(const StepEvent& event)
 {
-  static_assert(sizeof(Queued) == 32, "a queued event fills half a cache line");
-  Queued queued{event.x,    event.i,       event.j,          event.epoch_i, event.epoch_j,
-                event.wall, event.feature, event.transition, event.cut,     0};
+  static_assert(sizeof(Queued) == 20, "a queued event is its fields but the time and the normal");
+  Queued queued{event.i,    event.j,          event.epoch_i, event.epoch_j, event.wall,
+                event.feature, event.transition, event.cut,    0};
   if (event.wall)
     queued.normal = place(normals_, free_normals_, event.normal);
   const std::uint32_t slot = place(pool_, free_slots_, queued);
@@ -82,7 +82,7 @@ void EventQueue::forget(std::uint32_t ball)
 StepEvent EventQueue::pop()
 {
   std::pop_heap(heap_.begin(), heap_.end(), [this](const Entry& a, const Entry& b) { return later(a, b); });
-  const std::uint32_t slot = heap_.back().slot;
+  const auto [x, slot] = heap_.back();
   heap_.pop_back();
   free_slots_.push_back(slot);
   // The next event is most likely the one now first: its record is fetched while this
@@ -90,7 +90,7 @@ StepEvent EventQueue::pop()
   if (!heap_.empty())
     __builtin_prefetch(&pool_[heap_.front().slot]);
   const Queued& q = pool_[slot];
-  StepEvent event{q.x, q.i, q.j, q.epoch_i, q.epoch_j, q.wall, q.feature, q.transition, q.cut, Vec3::Zero()};
+  StepEvent event{x, q.i, q.j, q.epoch_i, q.epoch_j, q.wall, q.feature, q.transition, q.cut, Vec3::Zero()};
   if (q.wall)
   {
     event.normal = normals_[q.normal];

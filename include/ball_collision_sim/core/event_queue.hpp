@@ -16,8 +16,8 @@ struct StepEvent
   double x;                  ///< step fraction of the impact
   std::uint32_t i;           ///< visiting index of the ball (the lower one for ball-ball)
   std::uint32_t j;           ///< visiting index of the other ball, or the wall's index
-  std::uint32_t epoch_i;
-  std::uint32_t epoch_j;
+  std::uint16_t epoch_i;     ///< the balls' epochs when it was found (World::Motion::epoch)
+  std::uint16_t epoch_j;
   bool wall;
   WallFeature feature;
   /// Not an impact: ball i's motion ends (j = i, `wall` false): its friction phase, or
@@ -41,15 +41,15 @@ public:
   void push(const StepEvent& event);
   bool empty() const { return heap_.empty(); }
   std::size_t size() const { return heap_.size(); }
-  /// An event as the queue keeps it, in half a cache line: StepEvent's fields but the
-  /// normal, which only a wall event has and which is kept apart (by its index).
+  /// An event as the queue keeps it, in 20 bytes: StepEvent's fields but its time, which
+  /// the heap holds, and the normal, which only a wall event has and which is kept apart
+  /// (by its index).
   struct Queued
   {
-    double x;
     std::uint32_t i;
     std::uint32_t j;
-    std::uint32_t epoch_i;
-    std::uint32_t epoch_j;
+    std::uint16_t epoch_i;
+    std::uint16_t epoch_j;
     bool wall;
     WallFeature feature;
     bool transition;

@@ -154,7 +154,7 @@ void World::queueCut(std::size_t i)
   if (!(x < 1) || motions_[i].frozen)
     return;
   const auto k = static_cast<std::uint32_t>(i);
-  const std::uint32_t epoch = motions_[i].epoch;
+  const std::uint16_t epoch = motions_[i].epoch;
   queue_.push(Event{x, k, k, epoch, epoch, false, WallFeature::kFace, true, true, Vec3::Zero()});
 }
 

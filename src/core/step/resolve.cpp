@@ -21,7 +21,6 @@ void World::resolveEventsInTimeOrder()
       // the first event's balls' data are fetched while the queue is put in order
       const auto fetch = [&](std::uint32_t k) {
         __builtin_prefetch(&motions_[k]);
-        __builtin_prefetch(&motions_[k]);
         __builtin_prefetch(&balls_[k]);
       };
       const auto& next = queue_.top();
