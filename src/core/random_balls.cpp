@@ -107,15 +107,7 @@ public:
 
 private:
   /// The ball's record at the end of the list.
-  const Ball& record(const BallDef& def)
-  {
-    Ball& ball = balls_.emplace_back();
-    ball.position = def.position;
-    ball.velocity = def.velocity;
-    ball.radius = def.radius;
-    ball.mass = def.mass;
-    return ball;
-  }
+  const Ball& record(const BallDef& def) { return balls_.emplace_back(ballRecord(def)); }
 
   const Placement& placement_;
   static constexpr std::size_t kReservedUpTo = std::size_t{1} << 20;  ///< 104 MiB of room at most
@@ -150,6 +142,16 @@ std::vector<BallDef> placeRandomBalls(const Scene& scene)
   for (const Ball& ball : placeRandomBallRecords(scene))
     out.push_back(randomBallDef(scene, ball));
   return out;
+}
+
+Ball ballRecord(const BallDef& def)
+{
+  Ball ball;
+  ball.position = def.position;
+  ball.velocity = def.velocity;
+  ball.radius = def.radius;
+  ball.mass = def.mass;
+  return ball;
 }
 
 BallDef randomBallDef(const Scene& scene, const Ball& ball)

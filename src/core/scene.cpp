@@ -356,10 +356,7 @@ PlacedBalls land(const Scene& scene, std::vector<Ball> random)
   out.feet.assign(own + random.size(), Vec2(0.5, 0.5));  // (the first guess of each foot point)
   const auto put = [&](BallDef def, Ball& ball, Vec2& foot) {
     placeOnFloor(def, floor, &foot);
-    ball.position = def.position;
-    ball.velocity = def.velocity;
-    ball.radius = def.radius;
-    ball.mass = def.mass;
+    ball = ballRecord(def);
   };
   for (std::size_t k = 0; k < random.size(); ++k)
     put(randomBallDef(scene, random[k]), random[k], out.feet[own + k]);

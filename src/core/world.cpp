@@ -108,12 +108,8 @@ void World::forgetOrder()
 
 Ball World::makeBall(int id, const BallDef& placed)
 {
-  Ball ball;
+  Ball ball = ballRecord(placed);
   ball.id = id;
-  ball.radius = placed.radius;
-  ball.mass = placed.mass;
-  ball.position = placed.position;
-  ball.velocity = placed.velocity;
   return ball;
 }
 

@@ -163,6 +163,8 @@ std::vector<BallDef> placeRandomBalls(const Scene& scene);
 /// ... as the records a World keeps, with room kept ahead of them for the scene's own
 /// balls, so that check() puts all on the floor in one list, in place.
 std::vector<Ball> placeRandomBallRecords(const Scene& scene);
+/// The record of a ball with this definition (its id 0: the World gives it one).
+Ball ballRecord(const BallDef& def);
 /// The definition of a random ball with this record: its fields, no spin of its own, and
 /// random_balls.inertia.
 BallDef randomBallDef(const Scene& scene, const Ball& ball);
