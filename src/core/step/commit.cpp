@@ -60,8 +60,8 @@ World::Committed World::commitBall(std::size_t i, bool settle)
   Ball& ball = balls_[i];
   // (a ball asleep stays where it is, on the foot point it had; the floor's normal there
   // counts only across resting contacts: its spin is kept as it is, SpinPhase::kept())
-  const Ground::End end = motions_[i].asleep ? ground_.stillEnd(ball.position, balls_[i].radius, guessOf(i), settle)
-                                            : ground_.end(positionAt(i, 1.0), balls_[i].radius, guessOf(i));
+  const Ground::End end = motions_[i].asleep ? ground_.stillEnd(ball.position, ball.radius, guessOf(i), settle)
+                                             : ground_.end(positionAt(i, 1.0), ball.radius, guessOf(i));
   if (!feet_.empty())
     feet_[i] = end.foot;
   if (settle)
