@@ -55,6 +55,7 @@ bool EventQueue::later(const Entry& qa, const Entry& qb) const
 void EventQueue::push(const StepEvent& event)
 {
   static_assert(sizeof(Queued) == 20, "a queued event is its fields but the time and the normal");
+  static_assert(sizeof(Entry) == 12, "a heap entry is a time and a slot");
   Queued queued{event.i,    event.j,          event.epoch_i, event.epoch_j, event.wall,
                 event.feature, event.transition, event.cut,    0};
   if (event.wall)

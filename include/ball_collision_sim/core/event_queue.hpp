@@ -31,7 +31,7 @@ struct StepEvent
 /// the step visits them in, so that a run is the same whatever that order is: a ball's
 /// wall events before its ball events, and pairs by their lower, then higher, ball.
 /// Events live in a pool and the heap holds their times and slots, so that sifting moves
-/// 16 bytes, not an event.
+/// 12 bytes, not an event.
 class EventQueue
 {
 public:
@@ -64,11 +64,14 @@ public:
   StepEvent pop();
 
 private:
+  // (12 bytes, not 16: packed to 4, a time's 8 bytes read in one unaligned load)
+#pragma pack(push, 4)
   struct Entry
   {
     double x;
     std::uint32_t slot;
   };
+#pragma pack(pop)
   /// Whether a comes after b.
   bool later(const Entry& a, const Entry& b) const;
 
