@@ -164,3 +164,40 @@ TEST(Check, PlacesEveryBallOnceForTheWorld)
   EXPECT_TRUE(refused.balls.empty());
   EXPECT_THROW(World(bad, refused), std::invalid_argument);
 }
+
+// With friction a world keeps each ball's own spin and moment of inertia: an explicit
+// ball's from its definition, a random ball's from random_balls (no spin of its own:
+// rolling; random_balls.inertia). The placed records carry neither, so the world takes
+// them from the scene by the records' order; the rotational energy weighs each ball's
+// spin by its own inertia.
+TEST(Check, GivesEachBallItsOwnSpinAndInertiaWithFriction)
+{
+  Scene scene = flatScene();
+  scene.friction = FrictionDef{0.2, 0.01, 0.05, 0, 0};
+  BallDef spinning = ball(-1.5, -1.5, 0.3, 0);
+  spinning.angular_velocity = Vec3(2, -1, 7);
+  spinning.inertia = 2.0 / 3;  // hollow
+  scene.balls = {spinning, ball(1.5, 1.5, 0, -0.4, 0.15, 3)};
+  scene.random_balls = randomBalls(30, 4, {0.05, 0.1}, {0.5, 2}, {0.5, 2});
+  scene.random_balls->inertia = 0.5;
+  const World world(scene);
+  ASSERT_EQ(world.balls().size(), 32u);
+  EXPECT_EQ(world.angularVelocity(0), Vec3(2, -1, 7));
+  double rotational = 0, of_random = 0;
+  for (std::size_t k = 0; k < world.balls().size(); ++k)
+  {
+    const Ball& b = world.balls()[k];
+    const Vec3 w = world.angularVelocity(k);
+    if (k > 0)  // rolling without slip on the level floor
+    {
+      EXPECT_LT((w - Vec3::UnitZ().cross(b.velocity) / b.radius).norm(), 1e-12 * (1 + w.norm())) << k;
+    }
+    const double inertia = k == 0 ? 2.0 / 3 : k == 1 ? kSolidInertia : 0.5;
+    const double e = 0.5 * inertia * b.mass * b.radius * b.radius * w.squaredNorm();
+    rotational += e;
+    of_random += k > 1 ? e : 0.0;
+  }
+  EXPECT_NEAR(world.energy().rotational, rotational, 1e-12 * rotational);
+  // (the random balls move, so their inertia counts: a tenth of the total here or more)
+  EXPECT_GT(of_random, 0.1 * rotational);
+}
