@@ -23,6 +23,21 @@ StepEvent wallEvent(double x, std::uint32_t i, std::uint32_t wall)
   return StepEvent{x, i, wall, 0, 0, true, WallFeature::kFace, false, false, Vec3::UnitX()};
 }
 
+/// Every field of an event that came out of the queue is as it went in.
+void expectSameEvent(const StepEvent& out, const StepEvent& in)
+{
+  EXPECT_EQ(out.x, in.x);
+  EXPECT_EQ(out.i, in.i);
+  EXPECT_EQ(out.j, in.j);
+  EXPECT_EQ(out.epoch_i, in.epoch_i);
+  EXPECT_EQ(out.epoch_j, in.epoch_j);
+  EXPECT_EQ(out.wall, in.wall);
+  EXPECT_EQ(out.feature, in.feature);
+  EXPECT_EQ(out.transition, in.transition);
+  EXPECT_EQ(out.cut, in.cut);
+  EXPECT_EQ(out.normal, in.normal) << "event " << out.epoch_i;
+}
+
 /// The balls by visiting index k, ball k having id order[k] + 1 (ids start at 1).
 std::vector<Ball> ballsWithIds(const std::vector<std::uint32_t>& order)
 {
@@ -122,16 +137,7 @@ TEST(EventQueue, EachEventComesBackWithItsOwnNormalAndFields)
   const auto take = [&] {
     const StepEvent out = queue.pop();
     ASSERT_LT(out.epoch_i, sent.size());
-    const StepEvent& in = sent[out.epoch_i];
-    EXPECT_EQ(out.x, in.x);
-    EXPECT_EQ(out.i, in.i);
-    EXPECT_EQ(out.j, in.j);
-    EXPECT_EQ(out.epoch_j, in.epoch_j);
-    EXPECT_EQ(out.wall, in.wall);
-    EXPECT_EQ(out.feature, in.feature);
-    EXPECT_EQ(out.transition, in.transition);
-    EXPECT_EQ(out.cut, in.cut);
-    EXPECT_EQ(out.normal, in.normal) << "event " << out.epoch_i;
+    expectSameEvent(out, sent[out.epoch_i]);
     ++checked;
   };
   for (std::uint32_t k = 0; k < 3000; ++k)
@@ -200,12 +206,7 @@ TEST(EventQueue, ForgetDropsOneBallsEventsAndKeepsTheRestInOrder)
     const StepEvent& in = sent[e.epoch_i];
     EXPECT_TRUE(e.epoch_i >= 600 || !involves(in, 3)) << "event " << e.epoch_i << " was forgotten";
     EXPECT_GE(e.x, last);
-    EXPECT_EQ(e.x, in.x);
-    EXPECT_EQ(e.i, in.i);
-    EXPECT_EQ(e.j, in.j);
-    EXPECT_EQ(e.wall, in.wall);
-    EXPECT_EQ(e.transition, in.transition);
-    EXPECT_EQ(e.normal, in.normal) << "event " << e.epoch_i;
+    expectSameEvent(e, in);
     last = e.x;
     ++out;
   }

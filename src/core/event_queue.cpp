@@ -62,7 +62,7 @@ void EventQueue::push(const StepEvent& event)
     queued.normal = place(normals_, free_normals_, event.normal);
   const std::uint32_t slot = place(pool_, free_slots_, queued);
   heap_.push_back({event.x, slot});
-  std::push_heap(heap_.begin(), heap_.end(), [this](const Entry& a, const Entry& b) { return later(a, b); });
+  std::push_heap(heap_.begin(), heap_.end(), byTime());
 }
 
 void EventQueue::forget(std::uint32_t ball)
@@ -77,12 +77,12 @@ void EventQueue::forget(std::uint32_t ball)
     return true;
   };
   heap_.erase(std::remove_if(heap_.begin(), heap_.end(), of_ball), heap_.end());
-  std::make_heap(heap_.begin(), heap_.end(), [this](const Entry& a, const Entry& b) { return later(a, b); });
+  std::make_heap(heap_.begin(), heap_.end(), byTime());
 }
 
 StepEvent EventQueue::pop()
 {
-  std::pop_heap(heap_.begin(), heap_.end(), [this](const Entry& a, const Entry& b) { return later(a, b); });
+  std::pop_heap(heap_.begin(), heap_.end(), byTime());
   const auto [x, slot] = heap_.back();
   heap_.pop_back();
   free_slots_.push_back(slot);

@@ -74,6 +74,11 @@ private:
 #pragma pack(pop)
   /// Whether a comes after b.
   bool later(const Entry& a, const Entry& b) const;
+  /// later() as the heap's order.
+  auto byTime() const
+  {
+    return [this](const Entry& a, const Entry& b) { return later(a, b); };
+  }
 
   const std::vector<Ball>* balls_ = nullptr;
   std::vector<Entry> heap_;
