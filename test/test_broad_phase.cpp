@@ -23,8 +23,9 @@ TEST(Box32, HoldsTheBoxItIsRoundedFromAndIsTheTightestFloatBoxThatDoes)
   const float finf = std::numeric_limits<float>::infinity();
   const double inf = std::numeric_limits<double>::infinity(), fmax = std::numeric_limits<float>::max();
   const auto check = [&](double lo, double hi) {
-    const Box32 f = Box32::around(Aabb{Vec3(lo, -hi, lo), Vec3(hi, -lo, hi)});
-    for (int k = 0; k < 3; ++k)
+    // (across the world's z and x axes, in that order)
+    const Box32 f = Box32::around(Aabb{Vec3(-hi, 0, lo), Vec3(-lo, 0, hi)}, 2, 0);
+    for (int k = 0; k < 2; ++k)
     {
       const double a = k == 1 ? -hi : lo, b = k == 1 ? -lo : hi;
       ASSERT_LE(f.min[k], a) << a;
@@ -64,10 +65,18 @@ TEST(Box32, HoldsTheBoxItIsRoundedFromAndIsTheTightestFloatBoxThatDoes)
     check(a, a + std::abs(unit(rng)) * std::abs(a) * 1e-6);
   }
   // overlap agrees with the double boxes wherever they are apart by more than the rounding
-  const Box32 left = Box32::around(Aabb{Vec3(0, 0, 0), Vec3(1, 1, 1)});
-  EXPECT_TRUE(left.overlaps(Box32::around(Aabb{Vec3(1, 0.5, 0.5), Vec3(2, 2, 2)})));
-  EXPECT_FALSE(left.overlaps(Box32::around(Aabb{Vec3(1 + 1e-6, 0, 0), Vec3(2, 1, 1)})));
-  EXPECT_FALSE(left.overlaps(Box32::around(Aabb{Vec3(0, 0, 1 + 1e-6), Vec3(1, 1, 2)})));
+  // across the two axes it is made across (x and y here); apart along the third alone,
+  // boxes overlap
+  const auto xy = [](const Vec3& lo, const Vec3& hi) { return Box32::around(Aabb{lo, hi}, 0, 1); };
+  const Box32 left = xy(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  EXPECT_TRUE(left.overlaps(xy(Vec3(1, 0.5, 0.5), Vec3(2, 2, 2))));
+  EXPECT_FALSE(left.overlaps(xy(Vec3(1 + 1e-6, 0, 0), Vec3(2, 1, 1))));
+  EXPECT_FALSE(left.overlaps(xy(Vec3(0, 1 + 1e-6, 0), Vec3(1, 2, 1))));
+  EXPECT_TRUE(left.overlaps(xy(Vec3(0, 0, 5), Vec3(1, 1, 6))));
+  // and back in the world, with the third axis at 0
+  const Aabb back = xy(Vec3(0.25, -3, 7), Vec3(0.5, 2, 9)).toAabb(0, 1);
+  EXPECT_EQ(back.min, Vec3(0.25, -3, 0));
+  EXPECT_EQ(back.max, Vec3(0.5, 2, 0));
 }
 
 namespace
@@ -143,7 +152,7 @@ TEST(StepGrid, FindsEveryOverlapAsBoxesAreBinnedThenMovedDuringTheStep)
         for (int k = 0; k < 30; ++k)
         {
           const auto i = static_cast<std::uint32_t>(rng() % n);
-          const Aabb now = grid.box(i).toAabb();
+          const Aabb now = grid.box(i).toAabb(0, 1);
           // most stay close by, some leave their cell, a few go far
           const double jump = k % 10 == 0 ? spread : k % 3 == 0 ? 0.3 : 0.01;
           const Vec3 shift(jump * (2 * (rng() % 2) - 1.0), jump * (2 * (rng() % 2) - 1.0), 0);

@@ -129,7 +129,7 @@ void UniformGrid::insert(std::uint32_t item, const Aabb& box)
 
 void StepGrid::start(std::size_t n, const Vec3& up, const StepSettings& settings)
 {
-  static_assert(sizeof(Item) == 28, "a grid item is its box and its slot");
+  static_assert(sizeof(Item) == 20, "a grid item is its box and its slot");
   // Grid axes: drop the one most nearly along "up", where balls on a floor barely spread.
   int drop = 0;
   up.cwiseAbs().maxCoeff(&drop);
@@ -274,14 +274,13 @@ void StepGrid::markObstacles(const std::vector<Box32>& obstacles)
   if (!dense_)
     return;
   near_obstacle_.assign((starts_.size() - 1 + 63) / 64, 0);
-  for (const Box32& rounded : obstacles)
+  for (const Box32& box : obstacles)
   {
-    const Aabb box = rounded.toAabb();
-    // Cells c whose reach ((c - 1/2) h, (c + 3/2) h) meets the box, within the array.
-    const std::int64_t x0 = std::max(index(std::floor(box.min[ax_] * inv_cell_ - 1.5)), min_x_ - 1);
-    const std::int64_t x1 = std::min(index(std::floor(box.max[ax_] * inv_cell_ + 0.5)), min_x_ + width_ - 2);
-    const std::int64_t y0 = std::max(index(std::floor(box.min[ay_] * inv_cell_ - 1.5)), min_y_ - 1);
-    const std::int64_t y1 = std::min(index(std::floor(box.max[ay_] * inv_cell_ + 0.5)), min_y_ + height_ - 2);
+    // (within the array)
+    const std::int64_t x0 = std::max(firstReaching(box.min[0]), min_x_ - 1);
+    const std::int64_t x1 = std::min(lastReaching(box.max[0]), min_x_ + width_ - 2);
+    const std::int64_t y0 = std::max(firstReaching(box.min[1]), min_y_ - 1);
+    const std::int64_t y1 = std::min(lastReaching(box.max[1]), min_y_ + height_ - 2);
     for (std::int64_t iy = y0; iy <= y1; ++iy)
       for (std::int64_t ix = x0; ix <= x1; ++ix)
       {
@@ -297,12 +296,12 @@ bool StepGrid::fits(std::uint32_t i, const Box32& box) const
   const auto [cx, cy] = cellOf(i);
   const double lo_x = (static_cast<double>(cx) - 0.5) * cell_, hi_x = (static_cast<double>(cx) + 1.5) * cell_;
   const double lo_y = (static_cast<double>(cy) - 0.5) * cell_, hi_y = (static_cast<double>(cy) + 1.5) * cell_;
-  return box.min[ax_] > lo_x && box.max[ax_] < hi_x && box.min[ay_] > lo_y && box.max[ay_] < hi_y;
+  return box.min[0] > lo_x && box.max[0] < hi_x && box.min[1] > lo_y && box.max[1] < hi_y;
 }
 
 void StepGrid::update(std::uint32_t i, const Aabb& box)
 {
-  items_[i].box = Box32::around(box);
+  items_[i].box = across(box);
   if (!moved(i) && fits(i, items_[i].box))
     return;
   moveOut(i);
@@ -320,11 +319,11 @@ void StepGrid::moveOut(std::uint32_t i)
       // (sized for a few times as many: it grows as more move, and most steps move few)
       moved_grid_.reset(cell_, 4 * moved_list_.size());
       for (std::uint32_t j : moved_list_)
-        moved_grid_.insert(j, items_[j].box.toAabb());
+        moved_grid_.insert(j, items_[j].box.toAabb(ax_, ay_));
       return;
     }
   }
   if (moved_list_.size() > kFewMoved)
-    moved_grid_.insert(i, items_[i].box.toAabb());
+    moved_grid_.insert(i, items_[i].box.toAabb(ax_, ay_));
 }
 }  // namespace ball_collision_sim::core

@@ -20,32 +20,34 @@ struct Aabb
   Vec3 max;
 };
 
-/// An Aabb in single precision, rounded outward so that it holds the box it was made
-/// from: half the memory of a step's boxes, at the cost of a few more candidate pairs.
+/// An Aabb across two of the world's axes (the step grid's: the dropped one is "up", along
+/// which balls on a floor barely spread), in single precision, rounded outward so that it
+/// holds the box it was made from there: 16 bytes a box, at the cost of a few more
+/// candidate pairs (those apart along "up" alone, which the exact test then sets aside).
 struct Box32
 {
-  std::array<float, 3> min;
-  std::array<float, 3> max;
-  static Box32 around(const Aabb& box)
+  std::array<float, 2> min;
+  std::array<float, 2> max;
+  /// `box` across the world's axes ax and ay.
+  static Box32 around(const Aabb& box, int ax, int ay)
   {
-    Box32 out;
-    for (int k = 0; k < 3; ++k)
-    {
-      out.min[k] = below(box.min[k]);
-      out.max[k] = above(box.max[k]);
-    }
-    return out;
+    return {{below(box.min[ax]), below(box.min[ay])}, {above(box.max[ax]), above(box.max[ay])}};
   }
   bool overlaps(const Box32& o) const
   {
-    // all six tests and one branch: whether neighbouring boxes overlap is hard to predict
+    // all four tests and one branch: whether neighbouring boxes overlap is hard to predict
     return static_cast<bool>(static_cast<int>(min[0] <= o.max[0]) & static_cast<int>(o.min[0] <= max[0]) &
-                             static_cast<int>(min[1] <= o.max[1]) & static_cast<int>(o.min[1] <= max[1]) &
-                             static_cast<int>(min[2] <= o.max[2]) & static_cast<int>(o.min[2] <= max[2]));
+                             static_cast<int>(min[1] <= o.max[1]) & static_cast<int>(o.min[1] <= max[1]));
   }
-  Aabb toAabb() const
+  /// The box in the world, across the axes ax and ay, and [0, 0] along the third.
+  Aabb toAabb(int ax, int ay) const
   {
-    return {Vec3(min[0], min[1], min[2]), Vec3(max[0], max[1], max[2])};
+    Aabb out{Vec3::Zero(), Vec3::Zero()};
+    out.min[ax] = min[0];
+    out.min[ay] = min[1];
+    out.max[ax] = max[0];
+    out.max[ay] = max[1];
+    return out;
   }
 
 private:
@@ -149,7 +151,9 @@ public:
   /// Starts a step of n items; `up` picks the grid's two axes. Then setBox() for each
   /// item, then build().
   void start(std::size_t n, const Vec3& up, const StepSettings& settings = StepSettings{});
-  void setBox(std::uint32_t i, const Aabb& box) { items_[i].box = Box32::around(box); }
+  void setBox(std::uint32_t i, const Aabb& box) { items_[i].box = across(box); }
+  /// A box as the grid keeps boxes: across its two axes, in floats.
+  Box32 across(const Aabb& box) const { return Box32::around(box, ax_, ay_); }
   /// Bins the boxes.
   void build();
   /// Item i's current box (rounded outward).
@@ -187,10 +191,14 @@ private:
   /// most one, and clamping keeps that).
   static std::int64_t index(double cells) { return static_cast<std::int64_t>(std::clamp(cells, -1e9, 1e9)); }
   bool fits(std::uint32_t i, const Box32& box) const;
+  /// The first and the last cell along an axis whose reach ((c - 1/2) h, (c + 3/2) h)
+  /// meets a box from lo to hi along it (index()).
+  std::int64_t firstReaching(float lo) const { return index(std::floor(static_cast<double>(lo) * inv_cell_ - 1.5)); }
+  std::int64_t lastReaching(float hi) const { return index(std::floor(static_cast<double>(hi) * inv_cell_ + 0.5)); }
   /// The larger of a box's widths across the grid's axes [m].
   double extent(const Box32& box) const
   {
-    return std::max(static_cast<double>(box.max[ax_]) - box.min[ax_], static_cast<double>(box.max[ay_]) - box.min[ay_]);
+    return std::max(static_cast<double>(box.max[0]) - box.min[0], static_cast<double>(box.max[1]) - box.min[1]);
   }
   /// Sets the cell's width from the boxes; returns the widest box binned, and whether
   /// some are left out as far wider than the rest.
@@ -227,7 +235,7 @@ private:
   double dense_extra_cells_ = 1024.0;   ///< StepSettings::grid_dense_extra_cells
   double cell_margin_ = 1e-9;           ///< StepSettings::grid_cell_margin
   double cell_floor_ = 1e-12;           ///< StepSettings::grid_cell_floor [m]
-  /// What the grid keeps of an item, in 28 bytes.
+  /// What the grid keeps of an item, in 20 bytes.
   struct Item
   {
     Box32 box;               ///< its current box
@@ -250,8 +258,8 @@ private:
   /// The cell of a box's centre, along the grid's axes.
   std::array<std::int64_t, 2> cellAt(const Box32& box) const
   {
-    return {index(std::floor(0.5 * (static_cast<double>(box.min[ax_]) + box.max[ax_]) * inv_cell_)),
-            index(std::floor(0.5 * (static_cast<double>(box.min[ay_]) + box.max[ay_]) * inv_cell_))};
+    return {index(std::floor(0.5 * (static_cast<double>(box.min[0]) + box.max[0]) * inv_cell_)),
+            index(std::floor(0.5 * (static_cast<double>(box.min[1]) + box.max[1]) * inv_cell_))};
   }
   std::vector<Item> items_;             ///< per item
   /// per item, hashed mode only: its cell (bucket collisions are told apart by it)
@@ -320,11 +328,11 @@ void StepGrid::query(std::uint32_t i, F&& f) const
       if (j != i && items_[j].box.overlaps(box))
         f(j);
     };
-    if (moved_list_.size() <= kFewMoved || moved_grid_.oversized(box.toAabb()))
+    if (moved_list_.size() <= kFewMoved || moved_grid_.oversized(box.toAabb(ax_, ay_)))
       for (std::uint32_t j : moved_list_)  // few, or too many cells to look up: all that moved
         other_moved(j);
     else
-      moved_grid_.query(box.toAabb(), other_moved);
+      moved_grid_.query(box.toAabb(ax_, ay_), other_moved);
   }
   const auto binned = [&](std::uint32_t j) {
     if (j != i)
@@ -346,11 +354,8 @@ void StepGrid::query(std::uint32_t i, F&& f) const
     scanCells(cx - 1, cx + 1, cy - 1, cy + 1, box, binned);
     return;
   }
-  // Cells c whose reach ((c - 1/2) h, (c + 3/2) h) meets the box.
-  const std::int64_t x0 = index(std::floor(static_cast<double>(box.min[ax_]) * inv_cell_ - 1.5));
-  const std::int64_t x1 = index(std::floor(static_cast<double>(box.max[ax_]) * inv_cell_ + 0.5));
-  const std::int64_t y0 = index(std::floor(static_cast<double>(box.min[ay_]) * inv_cell_ - 1.5));
-  const std::int64_t y1 = index(std::floor(static_cast<double>(box.max[ay_]) * inv_cell_ + 0.5));
+  const std::int64_t x0 = firstReaching(box.min[0]), x1 = lastReaching(box.max[0]);
+  const std::int64_t y0 = firstReaching(box.min[1]), y1 = lastReaching(box.max[1]);
   if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) > static_cast<double>(items_.size()) + 16)
   {
     for (const std::uint32_t j : entries_)  // a huge box: every binned item

@@ -17,7 +17,7 @@ void World::buildBroadPhase()
   grid_.build();  // on the swept boxes of the predicted motions
   wall_boxes_.resize(walls_.size());
   for (std::size_t w = 0; w < walls_.size(); ++w)
-    wall_boxes_[w] = Box32::around(Aabb{walls_[w].box_min, walls_[w].box_max});
+    wall_boxes_[w] = grid_.across(Aabb{walls_[w].box_min, walls_[w].box_max});
   grid_.markObstacles(wall_boxes_);
 }
 
