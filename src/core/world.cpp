@@ -131,6 +131,8 @@ void World::step()
   transitions_.clear();
   resting_.clear();
   blocked_.get().clear();
+  step_starts_.clear();
+  step_start_of_.resize(balls_.size(), kNoStepStart);  // (each commit puts back what it took)
   predictMotions();            // each ball's free motion over the step, on the floor, and its swept box
   buildBroadPhase();           // the swept boxes into a uniform grid
   findFirstImpacts();          // exact times of impact of nearby pairs and walls

@@ -511,7 +511,10 @@ private:
   bool isWallSource(std::uint64_t source) const { return source < 2 * std::uint64_t{walls_.size()}; }
   /// Ball i's inverse mass in the step's responses: 0 while frozen (it does not give way).
   double inverseMass(std::size_t i) const;  // (step_types.hpp)
-  /// While the step runs, a ball's velocity is the one at the start of its motion.
+  /// While the step runs, a ball's position and velocity are those at the start of its
+  /// motion (Motion::x0); where the step started it, step_starts_ keeps once it moved on.
+  Vec3& startPosition(std::size_t i) { return balls_[i].position; }
+  const Vec3& startPosition(std::size_t i) const { return balls_[i].position; }
   Vec3& startVelocity(std::size_t i) { return balls_[i].velocity; }
   const Vec3& startVelocity(std::size_t i) const { return balls_[i].velocity; }
   Vec3 floorNormalAt(std::size_t i, const Vec3& position) const;
@@ -583,6 +586,11 @@ private:
   bool motions_ready_ = false;
   // per-step work space, kept between steps to avoid allocation
   std::vector<Motion> motions_;
+  /// Per ball, where step_starts_ keeps the position it had at the step's start, once a
+  /// new motion started elsewhere (startMotion()); kNoStepStart while it has none.
+  std::vector<std::uint32_t> step_start_of_;
+  std::vector<Vec3> step_starts_;
+  static constexpr std::uint32_t kNoStepStart = 0xffffffffu;
   EventQueue queue_;
   StepGrid grid_;
   std::vector<Box32> wall_boxes_;

@@ -1,7 +1,7 @@
 // Stage 5, commit: every ball to the step's end, back on the floor, its velocity
 // there (solved across the step's resting contacts by the contact solver), its turn by
 // rolling; and, while the visiting order stays, the next step's prediction. Reads
-// motions_, states_, resting_, blocked_; writes balls_, feet_, the contact solver's
+// motions_, step_starts_, resting_, blocked_; writes balls_, feet_, the contact solver's
 // work space.
 #include "contact_group.hpp"
 #include "rolling.hpp"
@@ -36,7 +36,7 @@ void World::commitToFloor(bool predict_next)
         predictMotion(i);
     }
     else
-      motions_[i].p0 = done.moved;  // the motion is done with: p0 keeps the step's move for roll()
+      motions_[i].b = done.moved;  // the motion is done with: b keeps the step's move for roll()
   }
   if (!settle)
   {
@@ -45,7 +45,7 @@ void World::commitToFloor(bool predict_next)
   }
   settleRestingVelocities();
   for (std::size_t i = 0; i < balls_.size(); ++i)
-    roll(i, floor_normals_[i], motions_[i].p0);
+    roll(i, floor_normals_[i], motions_[i].b);
   // Groups at rest sleep; where gravity does not pull along the floor, nothing gathers
   // balls into groups, and none does.
   if (FloorMotion::gathers(*this))
@@ -66,8 +66,11 @@ World::Committed World::commitBall(std::size_t i, bool settle)
     feet_[i] = end.foot;
   if (settle)
     floor_normals_[i] = end.normal;
-  const Vec3 moved = end.centre - ball.position;
-  ball.position = end.centre;
+  // (its record holds where its last motion started until the end of this: where the
+  // step started it is kept apart if that motion is not its first)
+  std::uint32_t& start = step_start_of_[i];
+  const Vec3 moved = end.centre - (start == kNoStepStart ? ball.position : step_starts_[start]);
+  start = kNoStepStart;
   // (a ball that ends the step without motion, frozen or held still by its contacts,
   // keeps no speed it does not move with)
   const Motion& m = motions_[i];
@@ -86,6 +89,7 @@ World::Committed World::commitBall(std::size_t i, bool settle)
     recordKind(i, motions_[i].x0);  // (a kind the step's events did not report)
     spin.kind = sm.kind;
   }
+  ball.position = end.centre;
   return {moved, end.normal};
 }
 

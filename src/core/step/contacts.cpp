@@ -1,7 +1,7 @@
 // Resting contacts: the directions a ball may not move along for the rest of the step,
 // holding balls still, and what a motion's energy allows (FloorMotion::keepEnergy(), with
 // the floor's motion type saying where its motion ends and how it is cut short).
-// Reads and writes motions_, states_, blocked_, and a held ball's spin_motions_.
+// Reads and writes motions_, blocked_, and a held ball's spin_motions_.
 #include "spin_phase.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
@@ -154,8 +154,7 @@ void World::hold(std::size_t i)
 
 double World::EnergyCheck::speedSquaredWith(const Vec3& b) const
 {
-  const Motion& m = world->motions_[i];
-  return world->speedSquaredAt(i, world->chordEnd(i), world->onFloor(i, m.p0 + rest * b));
+  return world->speedSquaredAt(i, world->chordEnd(i), world->onFloor(i, world->startPosition(i) + rest * b));
 }
 
 double World::EnergyCheck::speedSquared(double s) const

@@ -1,6 +1,6 @@
 // Stages 2 and 3, broad phase and detection: the swept boxes into the grid, then the
 // exact first time of impact of each nearby pair and wall, into the event queue.
-// Reads motions_, states_, walls_, the grid; writes wall_boxes_, queue_.
+// Reads motions_, the start positions, walls_, the grid; writes wall_boxes_, queue_.
 #include "step_types.hpp"
 
 #include "ball_collision_sim/core/time_of_impact.hpp"
@@ -54,8 +54,8 @@ void World::detectWalls(std::size_t i)
       continue;
     const Wall& wall = walls_[w];
     const double r = balls_[i].radius;
-    const auto hit = parabolas_ ? sweepWall(wall, m.p0, m.b, parabolaOf(i), r, 1 - m.x0, settings_.closing_slop)
-                                : sweepWall(wall, m.p0, m.b, r, 1 - m.x0, settings_.closing_slop);
+    const auto hit = parabolas_ ? sweepWall(wall, balls_[i].position, m.b, parabolaOf(i), r, 1 - m.x0, settings_.closing_slop)
+                                : sweepWall(wall, balls_[i].position, m.b, r, 1 - m.x0, settings_.closing_slop);
     if (hit)
       queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0, true,
                         hit->feature, false, false, hit->normal});
@@ -75,7 +75,7 @@ void World::detectBall(std::size_t i, std::size_t j)
   std::optional<double> t;
   if (!parabolas_)
   {
-    const Vec3 d = (ma.p0 + (xs - ma.x0) * ma.b) - (mb.p0 + (xs - mb.x0) * mb.b);
+    const Vec3 d = (balls_[a].position + (xs - ma.x0) * ma.b) - (balls_[b].position + (xs - mb.x0) * mb.b);
     t = sphereSweep(d, ma.b - mb.b, reach, 1 - xs, settings_.closing_slop);
   }
   else

@@ -1,7 +1,7 @@
 // Motion on a plane or without a floor (World::ExactMotion): a free ball's path is exact
 // (a parabola under gravity's part along the plane, a line where it has none); a ball
 // under its contacts moves on its chord in the plane, whose energy is linear along it.
-// Reads and writes motions_ and states_, and the start velocities of friction phases.
+// Reads and writes motions_ and the start velocities of friction phases.
 #include "spin_phase.hpp"
 
 namespace ball_collision_sim::core
@@ -26,7 +26,7 @@ void World::ExactMotion::predict(World& w, std::size_t i, const Vec3& v) const
     w.motions_[i].accelerates = true;
     return;
   }
-  m.b = w.predictedEnd(i, m.p0, v, w.dt_) - m.p0;
+  m.b = w.predictedEnd(i, w.startPosition(i), v, w.dt_) - w.startPosition(i);
 }
 
 void World::ExactMotion::start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const

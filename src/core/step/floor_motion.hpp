@@ -7,7 +7,7 @@
 //   no longer than the floor allows, put back on it after every correction and kept
 //   within the ball's energy; friction laws are taken under the normal where the ball is.
 // A new kind of motion is a new type here, not a branch in the step's stages.
-// Reads and writes what the World's stages give it (motions_, states_, spin_motions_).
+// Reads and writes what the World's stages give it (motions_, spin_motions_, the motions' starts).
 #pragma once
 
 #include "step_types.hpp"
@@ -25,7 +25,7 @@ struct World::FloorMotion
   /// Gravity pulls balls along the floor, so that they gather into groups at rest.
   static bool gathers(const World& w) { return !w.ground_.straight(); }
 
-  /// Ball i's free motion over the next step, from motions_[i].p0 with velocity v (no
+  /// Ball i's free motion over the next step, from startPosition(i) with velocity v (no
   /// friction phase set it).
   virtual void predict(World& w, std::size_t i, const Vec3& v) const = 0;
   /// Ball i's motion from x on, from `position` with start velocity v0 after a contact

@@ -1,7 +1,7 @@
 // Friction in the step (worlds with a friction block, on any floor): each free ball's
 // motion is a phase of constant accelerations from the friction laws (FrictionLaw); the
 // end of a phase (slip, speed or spin about the normal reaching zero) is an event at its
-// exact time, and impacts add tangential impulses. Reads and writes motions_, states_,
+// exact time, and impacts add tangential impulses. Reads and writes motions_,
 // spin_motions_, the start velocities and the queue; writes transitions_ and stats_.
 #include "spin_phase.hpp"
 
@@ -48,7 +48,7 @@ double World::speedSquaredAt(std::size_t i, double x, const Vec3& p) const
 
 double World::pulledSpeedSquared(std::size_t i, const Vec3& p) const
 {
-  return startVelocity(i).squaredNorm() + 2 * pullOf(i).dot(p - motions_[i].p0);
+  return startVelocity(i).squaredNorm() + 2 * pullOf(i).dot(p - startPosition(i));
 }
 
 const Vec3& World::pullOf(std::size_t i) const
@@ -60,11 +60,10 @@ const Vec3& World::pullOf(std::size_t i) const
 
 bool World::startFriction(std::size_t i, double x, bool record, bool impact)
 {
-  Motion& m = motions_[i];
   SpinMotion& sm = spin_motions_[i];
   const BallSpin& spin = spins_[i];
   Vec3& v = startVelocity(i);
-  const FrictionLaw law = frictionUnder(floorNormalAt(i, m.p0));
+  const FrictionLaw law = frictionUnder(floorNormalAt(i, startPosition(i)));
   if (!impact && sm.kind == MotionKind::kRolling)
     floor_motion_->rollOn(*this, i, law);  // (under the normal where it is now)
   const FrictionPhase phase = law.start(spin.inertia, balls_[i].radius, v, sm.w0);
@@ -107,7 +106,7 @@ void World::constrainSpin(std::size_t i)
 {
   keepSpin(i);
   SpinMotion& sm = spin_motions_[i];
-  const FrictionLaw law = frictionUnder(floorNormalAt(i, motions_[i].p0));
+  const FrictionLaw law = frictionUnder(floorNormalAt(i, startPosition(i)));
   sm.normal = law.normal();
   const FrictionLaw::ConstrainedSpin spin =
       law.constrained(spins_[i].inertia, balls_[i].radius, startVelocity(i), sm.w0);

@@ -1,8 +1,8 @@
 // A ball's motion on the floor within the step: where it is, the floor's normal under
 // it, its velocity there, the resting speed, starting a new motion at an event, and a
 // curved floor's chords cut to the longest it allows (an event at the cut).
-// Reads motions_, states_, the floor; writes motions_, chord_ends_, the start velocity
-// and, at a cut, the queue.
+// Reads motions_, the floor; writes motions_, chord_ends_, the start position and
+// velocity (step_starts_ keeping where the step started a ball), and, at a cut, the queue.
 #include "spin_phase.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
@@ -18,7 +18,7 @@ using namespace step;
 Vec3 World::positionAt(std::size_t i, double x) const
 {
   const Motion& m = motions_[i];
-  const Vec3 p = m.p0 + (x - m.x0) * m.b;
+  const Vec3 p = startPosition(i) + (x - m.x0) * m.b;
   if (!parabolas_ || !motions_[i].accelerates)
     return p;
   const double s = x - m.x0;
@@ -61,7 +61,7 @@ Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const
   if (friction_)
     return spin_motions_[i].phase->velocity(*this, i, x, position, normal);
   const Motion& m = motions_[i];
-  return ground_.velocityAt(startVelocity(i), (x - m.x0) * dt_, m.p0, position, normal);
+  return ground_.velocityAt(startVelocity(i), (x - m.x0) * dt_, startPosition(i), position, normal);
 }
 
 double World::stillSpeed(const Vec3& floor_normal) const
@@ -102,7 +102,13 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
     motions_[i].held = false;
   motions_[i].accelerates = false;
   m.x0 = x;
-  m.p0 = position;
+  if (step_start_of_[i] == kNoStepStart)
+  {
+    // (its first new motion in the step: where the step started it is kept for the commit)
+    step_start_of_[i] = static_cast<std::uint32_t>(step_starts_.size());
+    step_starts_.push_back(balls_[i].position);
+  }
+  startPosition(i) = position;
   if (!chord_ends_.empty())
     chord_ends_[i] = 1.0;
   if (motions_[i].frozen)

@@ -1,6 +1,6 @@
 // Stage 1, predict: each ball's free motion over the step, from its record (position,
 // velocity) and the floor, and its swept box in the grid.
-// Reads balls_, feet_, spins_; writes motions_, states_, spin_motions_, floor_uv_,
+// Reads balls_, feet_, spins_; writes motions_, spin_motions_, floor_uv_,
 // chord_ends_ and the grid's boxes.
 #include "floor_motion.hpp"
 
@@ -12,7 +12,7 @@ using namespace step;
 
 void World::predictMotions()
 {
-  static_assert(sizeof(Motion) == 64, "a Motion fills one cache line");
+  static_assert(sizeof(Motion) == 40, "a Motion is its start, its displacement and its counters");
   grid_.start(balls_.size(), ground_.up(), settings_);
   // (taken back at once, so that a step cut short by an exception leaves none ready)
   if (std::exchange(motions_ready_, false))
@@ -30,7 +30,6 @@ void World::predictMotion(std::size_t i)
   const Ball& ball = balls_[i];
   Motion& m = motions_[i];
   m = Motion{};
-  m.p0 = ball.position;
   if (!chord_ends_.empty())
     chord_ends_[i] = 1.0;
   if (!floor_uv_.empty())
@@ -44,7 +43,7 @@ void World::predictMotion(std::size_t i)
       spin_motions_[i].kind = spin_motions_[i].reported = spins_[i].kind;
       keepSpin(i);
     }
-    grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(m.p0, m.p0, ball.radius));
+    grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(ball.position, ball.position, ball.radius));
     return;
   }
   if (friction_)
@@ -52,7 +51,7 @@ void World::predictMotion(std::size_t i)
     SpinMotion& sm = spin_motions_[i];
     sm.w0 = spins_[i].angular_velocity;
     sm.kind = sm.reported = spins_[i].kind;
-    sm.normal = floorNormalAt(i, m.p0);  // (where its last step put it)
+    sm.normal = floorNormalAt(i, ball.position);  // (where its last step put it)
     // (a change of kind was recorded where the last phase ended)
     if (!startFriction(i, 0.0, false, false))
     {
@@ -63,7 +62,7 @@ void World::predictMotion(std::size_t i)
   floor_motion_->predict(*this, i, ball.velocity);
   // (a chord's box reaches the uncut chord's end)
   grid_.setBox(static_cast<std::uint32_t>(i),
-               motions_[i].accelerates ? currentBox(i) : sweptBox(m.p0, m.p0 + m.b, ball.radius));
+               motions_[i].accelerates ? currentBox(i) : sweptBox(ball.position, ball.position + m.b, ball.radius));
 }
 
 Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span)
@@ -78,9 +77,9 @@ Aabb World::currentBox(std::size_t i) const
   const Motion& m = motions_[i];
   const double rest = 1 - m.x0;
   if (!parabolas_ || !motions_[i].accelerates)
-    return sweptBox(m.p0, m.p0 + (chordEnd(i) - m.x0) * m.b, balls_[i].radius);
+    return sweptBox(startPosition(i), startPosition(i) + (chordEnd(i) - m.x0) * m.b, balls_[i].radius);
   // the parabola lies within (rest^2 / 4) |c| of its chord, along each axis
-  Aabb box = sweptBox(m.p0, positionAt(i, 1.0), balls_[i].radius);
+  Aabb box = sweptBox(startPosition(i), positionAt(i, 1.0), balls_[i].radius);
   const Vec3 sag = (0.25 * rest * rest) * pathTerm(i).cwiseAbs();
   box.min -= sag;
   box.max += sag;

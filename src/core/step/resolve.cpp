@@ -1,6 +1,6 @@
 // Stage 4, resolve: events in time order, earliest first; an impact bounces (or, slow
 // enough, becomes a resting contact), and the balls involved get new motions and are
-// detected again. Reads and writes motions_, states_, the queue, balls_' velocities;
+// detected again. Reads and writes motions_, the queue, the start positions and velocities;
 // writes events_ and stats_.
 #include "floor_motion.hpp"
 

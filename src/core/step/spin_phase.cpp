@@ -12,7 +12,7 @@ namespace ball_collision_sim::core
 Vec3 World::SpinPhase::velocity(const World& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
   const Motion& m = w.motions_[i];
-  return w.ground_.velocityAt(w.startVelocity(i), (x - m.x0) * w.dt_, m.p0, position, normal);
+  return w.ground_.velocityAt(w.startVelocity(i), (x - m.x0) * w.dt_, w.startPosition(i), position, normal);
 }
 
 double World::SpinPhase::chordSpeedSquared(const World& w, std::size_t i, double rest, const Vec3& b) const
@@ -61,7 +61,7 @@ struct World::SpinPhase::Forced : World::SpinPhase
   const Vec3& pull(const World&, const SpinMotion& sm) const override { return sm.pull; }
   double chordSpeedSquared(const World& w, std::size_t i, double rest, const Vec3& b) const override
   {
-    return w.speedSquaredAt(i, w.chordEnd(i), w.motions_[i].p0 + rest * b);
+    return w.speedSquaredAt(i, w.chordEnd(i), w.startPosition(i) + rest * b);
   }
   bool rollsAtCommit(const SpinMotion& sm) const override { return sm.kind == MotionKind::kRolling; }
   bool rollsAtEvent(const SpinMotion& sm) const override { return sm.kind == MotionKind::kRolling; }

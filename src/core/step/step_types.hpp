@@ -29,13 +29,13 @@ inline double roundoffAt(const Vec3& p, double r, const StepSettings& settings)
 /// the ground gives its path an acceleration (a sloped plane, no floor), the parabola
 /// c(x) = p0 + (x - x0) b + (x - x0)^2 c with the world's common c = a dt^2 / 2
 /// (accelerates). A new one starts at every event.
-/// It holds what detection reads and the ball's counters in the step, in one cache line;
-/// the ball's velocity at x0 and its radius are read from the ball itself (startVelocity()).
-struct alignas(64) World::Motion
+/// It holds the rest of what detection reads and the ball's counters in the step; the
+/// ball's record holds p0, its velocity at x0 and its radius (startPosition(),
+/// startVelocity()).
+struct World::Motion
 {
   Motion() : events(0), frozen(0), asleep(0), accelerates(0), held(0) {}
   double x0 = 0.0;               ///< where this motion starts, fraction of the step
-  Vec3 p0 = Vec3::Zero();        ///< centre at x0 [m]
   Vec3 b = Vec3::Zero();         ///< displacement per unit of x [m]; zero while frozen
   /// Bumped at every event of this ball: what was predicted before is stale. It counts
   /// from 0 each step; where it wraps, the queue forgets the ball's events (countEvent()).
