@@ -170,7 +170,8 @@ Energy World::energy() const
     for (const std::uint32_t s : by_id_)
     {
       const Ball& ball = balls_[s];
-      e.rotational += 0.5 * spins_[s].inertia * ball.mass * ball.radius * ball.radius * spins_[s].angular_velocity.squaredNorm();
+      e.rotational +=
+          0.5 * spins_[s].inertia * ball.mass * ball.radius * ball.radius * spins_[s].angular_velocity.squaredNorm();
     }
   return e;
 }

@@ -502,7 +502,10 @@ private:
   void addBlocked(std::size_t i, const Vec3& direction, std::uint64_t source, double restitution);
   /// The source of a blocked direction: wall w's along the floor, or its own normal
   /// (own_normal), or ball j's (by its id, whatever the records' order).
-  static std::uint64_t wallSource(std::size_t w, bool own_normal) { return 2 * std::uint64_t{w} + (own_normal ? 1 : 0); }
+  static std::uint64_t wallSource(std::size_t w, bool own_normal)
+  {
+    return 2 * std::uint64_t{w} + (own_normal ? 1 : 0);
+  }
   std::uint64_t ballSource(std::size_t j) const
   {
     return 2 * (std::uint64_t{walls_.size()} + static_cast<std::uint64_t>(balls_[j].id));

@@ -19,8 +19,9 @@ void World::ChordMotion::predict(World& w, std::size_t i, const Vec3& v) const
 {
   // a chord across the path, no longer than the floor allows, kept within the energy
   Motion& m = w.motions_[i];
-  m.b = w.predictedEnd(i, w.startPosition(i), v, w.dt_) - w.startPosition(i);
-  w.cutChord(i, w.startPosition(i), v);
+  const Vec3& p0 = w.startPosition(i);
+  m.b = w.predictedEnd(i, p0, v, w.dt_) - p0;
+  w.cutChord(i, p0, v);
   keepEnergy(w, i);
 }
 
@@ -50,10 +51,11 @@ void World::ChordMotion::endOnFloor(World& w, std::size_t i)
   if (w.motions_[i].frozen || !(rest > 0))
     return;
   const StepSettings& settings = w.settings_;
-  const double roundoff = roundoffAt(w.startPosition(i), w.balls_[i].radius, settings);
+  const Vec3& p0 = w.startPosition(i);
+  const double roundoff = roundoffAt(p0, w.balls_[i].radius, settings);
   for (int pass = 0; pass < settings.correction_passes; ++pass)
   {
-    const Vec3 on = (w.onFloor(i, w.startPosition(i) + rest * m.b) - w.startPosition(i)) / rest;
+    const Vec3 on = (w.onFloor(i, p0 + rest * m.b) - p0) / rest;
     const Vec3 free = w.allowed(i, on);
     const double off = (free - on).norm();
     const bool done = off <= settings.correction_tolerance * on.norm() || rest * off <= roundoff;
@@ -87,7 +89,8 @@ void World::ChordMotion::shorten(World& w, std::size_t i, const EnergyCheck& ene
   m.b *= lo;
   if (lo > 0)
   {
-    const Vec3 b = w.allowed(i, (w.onFloor(i, w.startPosition(i) + rest * m.b) - w.startPosition(i)) / rest);
+    const Vec3& p0 = w.startPosition(i);
+    const Vec3 b = w.allowed(i, (w.onFloor(i, p0 + rest * m.b) - p0) / rest);
     m.b = energy.chordSpeedSquared(b) >= 0 ? b : Vec3::Zero();
     if (m.b == Vec3::Zero())
       w.hold(i);
@@ -113,7 +116,8 @@ void World::ChordMotion::slideDownhill(World& w, const EnergyCheck& energy, doub
   // ball slides downhill from there instead, as far as it takes to be low enough.
   // Where it finds no way, it is held: it stays put through the step's resting contacts.
   // (keepEnergy only ever holds a ball: an impact, not a new motion, lets it go)
-  const Vec3 foot = w.onFloor(i, w.startPosition(i));
+  const Vec3& p0 = w.startPosition(i);
+  const Vec3 foot = w.onFloor(i, p0);
   const Vec3 downhill = tangentPart(w.gravity_, w.floorNormalAt(i, foot));
   const double slope = downhill.norm();
   if (!(slope > 0))
@@ -130,7 +134,7 @@ void World::ChordMotion::slideDownhill(World& w, const EnergyCheck& energy, doub
   while (count < settings.slide_doublings && std::ldexp(first, count) < longest)
     ++count;
   const auto motionTo = [&](int k) {
-    return w.allowed(i, (w.onFloor(i, foot + (std::ldexp(first, k) / slope) * downhill) - w.startPosition(i)) / rest);
+    return w.allowed(i, (w.onFloor(i, foot + (std::ldexp(first, k) / slope) * downhill) - p0) / rest);
   };
   const auto keeps = [&](const Vec3& b) { return energy.speedSquaredWith(b) >= 0 && energy.chordSpeedSquared(b) >= 0; };
   if (count == 0)
@@ -240,6 +244,7 @@ double World::ChordMotion::speedSquaredAt(const World& w, std::size_t i, double 
 {
   const Motion& m = w.motions_[i];
   const Vec3& v0 = w.startVelocity(i);
+  const Vec3 moved = p - w.startPosition(i);
   const SpinMotion& sm = w.spin_motions_[i];
   const double k = w.spins_[i].inertia;
   if (sm.kind == MotionKind::kRolling)
@@ -247,7 +252,7 @@ double World::ChordMotion::speedSquaredAt(const World& w, std::size_t i, double 
     // d(v^2 / 2) = <g, dp> / (1 + k) - mu_r g_n ds: the chord's length for the path's (no
     // longer than it), so rolling resistance never gives energy, also where the ball
     // turns within the chord
-    return v0.squaredNorm() + 2 * (w.gravity_.dot(p - w.startPosition(i)) / (1 + k) - sm.roll_resistance * (p - w.startPosition(i)).norm());
+    return v0.squaredNorm() + 2 * (w.gravity_.dot(moved) / (1 + k) - sm.roll_resistance * moved.norm());
   }
   // sliding: what gravity's work along the chord leaves after the spin's change and the
   // slip's loss, mu_s g_n (|u0| t - rate t^2 / 2)
@@ -255,7 +260,7 @@ double World::ChordMotion::speedSquaredAt(const World& w, std::size_t i, double 
   const Vec3 spin = sm.w0 + t * sm.alpha;
   const double spin_change = k * w.balls_[i].radius * w.balls_[i].radius * (spin.squaredNorm() - sm.w0.squaredNorm());
   const double loss = sm.slip_force * (sm.slip0 * t - 0.5 * sm.slip_rate * t * t);
-  return v0.squaredNorm() + 2 * w.gravity_.dot(p - w.startPosition(i)) - spin_change - 2 * loss;
+  return v0.squaredNorm() + 2 * w.gravity_.dot(moved) - spin_change - 2 * loss;
 }
 
 Vec3 World::ChordMotion::spinThere(const World& w, std::size_t i, const Vec3& normal, const Vec3& v,

@@ -53,9 +53,10 @@ void World::detectWalls(std::size_t i)
     if (!box.overlaps(wall_boxes_[w]))
       continue;
     const Wall& wall = walls_[w];
-    const double r = balls_[i].radius;
-    const auto hit = parabolas_ ? sweepWall(wall, balls_[i].position, m.b, parabolaOf(i), r, 1 - m.x0, settings_.closing_slop)
-                                : sweepWall(wall, balls_[i].position, m.b, r, 1 - m.x0, settings_.closing_slop);
+    const Ball& ball = balls_[i];
+    const double rest = 1 - m.x0, slop = settings_.closing_slop;
+    const auto hit = parabolas_ ? sweepWall(wall, ball.position, m.b, parabolaOf(i), ball.radius, rest, slop)
+                                : sweepWall(wall, ball.position, m.b, ball.radius, rest, slop);
     if (hit)
       queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0, true,
                         hit->feature, false, false, hit->normal});
