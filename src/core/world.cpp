@@ -131,8 +131,11 @@ void World::step()
   transitions_.clear();
   resting_.clear();
   blocked_.get().clear();
+  // (each commit takes back what it kept of where balls started; a step cut short, or
+  // balls added or removed since, leave that to do here)
+  if (!step_starts_.empty() || step_start_of_.size() != balls_.size())
+    step_start_of_.assign(balls_.size(), kNoStepStart);
   step_starts_.clear();
-  step_start_of_.resize(balls_.size(), kNoStepStart);  // (each commit puts back what it took)
   predictMotions();            // each ball's free motion over the step, on the floor, and its swept box
   buildBroadPhase();           // the swept boxes into a uniform grid
   findFirstImpacts();          // exact times of impact of nearby pairs and walls

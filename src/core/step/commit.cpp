@@ -38,6 +38,7 @@ void World::commitToFloor(bool predict_next)
     else
       motions_[i].b = done.moved;  // the motion is done with: b keeps the step's move for roll()
   }
+  step_starts_.clear();  // (each ball's was taken back by its commit)
   if (!settle)
   {
     stats_.sleeping_balls = asleep;
