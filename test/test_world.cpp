@@ -690,6 +690,31 @@ TEST(Rolling, TurnsByDistanceOverRadius)
   }
 }
 
+// A ball that bounces inside a step turns by the step's whole move, from where the step
+// started it to where it ends, whatever its path did in between: here off one wall, then
+// off the other, in the same step, in a corner (e = 1). Its end and its turn are closed
+// forms: each wall reflects the part of the path beyond it.
+TEST(Rolling, ABallThatBouncesInAStepTurnsByTheStepsWholeMove)
+{
+  Scene scene = flatScene();
+  addBox(scene, -2, 2, -2, 2);
+  const double r = 0.1, speed = 5;
+  scene.balls = {ball(1.87, 1.88, speed, speed, r)};
+  World world(scene);
+  const Vec3 start = world.balls()[0].position;
+  world.step();
+  ASSERT_EQ(world.stats().events, 2u);  // the wall at y = 2 (at x = 0.4), then x = 2 (0.6)
+  const Ball& b = world.balls()[0];
+  const double reach = 2 - r, move = speed * world.dt();
+  // beyond each wall the path is reflected: reach - (start + move - reach)
+  const Vec3 end(2 * reach - start.x() - move, 2 * reach - start.y() - move, r);
+  EXPECT_LT((b.position - end).norm(), 1e-14);
+  EXPECT_LT((b.velocity - Vec3(-speed, -speed, 0)).norm(), 1e-12);
+  const Vec3 d = end - start;  // (0.01, -0.01, 0) m
+  const Quat expected(Eigen::AngleAxisd(d.norm() / r, Vec3::UnitZ().cross(d).normalized()));
+  EXPECT_LT(b.orientation.angularDistance(expected), 1e-12);
+}
+
 // An edit undone before the next step (a ball added and removed again) changes nothing:
 // the step after it predicts afresh, in the balls' id order, and gets the same bits as a
 // run without it; on a flat floor, in a pile settling on a slope (resting contacts, the
