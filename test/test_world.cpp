@@ -257,6 +257,45 @@ TEST(NoFloor, AThrownBallMeetsAWallWhereItsParabolaDoes)
   EXPECT_NEAR(hits[0].approach_speed, g * t_hit - 2, 1e-12);
 }
 
+// Without a floor, balls that cross one another's track across the ground, one falling
+// past the other's height, meet only where their centres come within the sum of their
+// radii: the broad phase sets nothing aside by height (its boxes span the ground's two
+// axes), and the exact test sets apart those that pass above one another. Two balls of
+// 0.1 m thrown at each other at 2 m/s along x, 1 m apart, start at heights 0 and h: for
+// h = 0 they meet (falling together) when 1 - 4 t = 0.2; for h = 0.5 never.
+TEST(NoFloor, BallsMeetByTheirCentresNotByWhereTheyAreOverTheGround)
+{
+  for (const double h : {0.0, 0.5})
+  {
+    Scene scene;
+    BallDef a, b;
+    a.radius = b.radius = 0.1;
+    a.position = Vec3(-0.5, 0, 5);
+    a.velocity = Vec3(2, 0, 0);
+    b.position = Vec3(0.5, 0, 5 + h);
+    b.velocity = Vec3(-2, 0, 0);
+    scene.balls = {a, b};
+    World world(scene);
+    std::vector<CollisionEvent> hits;
+    for (int k = 0; k < 50 && hits.empty(); ++k)
+    {
+      world.step();
+      hits = world.lastEvents();
+    }
+    if (h == 0)
+    {
+      ASSERT_EQ(hits.size(), 1u);
+      EXPECT_NEAR(hits[0].time, 0.2, 1e-14);
+      EXPECT_NEAR(hits[0].approach_speed, 4, 1e-12);
+    }
+    else
+    {
+      EXPECT_TRUE(hits.empty()) << "met at t = " << hits[0].time;
+      EXPECT_EQ(world.stats().events, 0u);
+    }
+  }
+}
+
 // A ball leaning on a wall on a slope stays put: no jitter and at most one contact a step.
 TEST(RestingContact, BallAgainstWallOnSlopeDoesNotJitter)
 {
