@@ -48,8 +48,9 @@ constexpr double kOverlapTolerance = 1e-9;
 
 /// Steps the decoded scene (when validate() accepts it) and checks after every step: no
 /// NaN or inf, no overlap deeper than kOverlapTolerance between balls or with a wall, no
-/// ball outside the box, the same balls, and kinetic plus potential energy never rising
-/// beyond the tolerances above.
+/// ball outside the box or lost from a walled floor, the same balls, and kinetic plus
+/// potential energy never rising beyond the tolerances above; then takes out the balls
+/// lost from a floor without walls, as the node does.
 std::string checkStepping(const std::uint8_t* data, std::size_t size);
 
 /// Every regular file under `dir`, sorted by name.
