@@ -193,3 +193,75 @@ TEST(StepGrid, GivesUpItsCellOrderOfTheItems)
     descents += ys[k] < ys[k - 1] - 0.2 ? 1 : 0;  // more than a cell back
   EXPECT_EQ(descents, 0);
 }
+
+// Where items spread along "up" as freely as across it (balls without a floor), the grid
+// keeps heights: it reports every pair of boxes that overlap in space, and none that lie
+// apart along "up" (beyond the rounding to floats), binned and then moved in the step;
+// and an obstacle across the whole grid at one height (a wall's face as floor) is reached
+// only by boxes at that height.
+TEST(StepGrid, WithHeightsTellsBoxesApartAlongUpToo)
+{
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const std::size_t n = 800;
+  const auto cube = [&] {
+    const Vec3 c(4 * unit(rng), 4 * unit(rng), 4 * unit(rng));
+    const Vec3 h(0.02 + 0.05 * unit(rng), 0.02 + 0.05 * unit(rng), 0.02 + 0.05 * unit(rng));
+    return Aabb{c - h, c + h};
+  };
+  std::vector<Aabb> boxes(n);
+  StepGrid grid;
+  grid.start(n, Vec3::UnitZ(), StepSettings{}, true);
+  for (std::uint32_t i = 0; i < n; ++i)
+    grid.setBox(i, boxes[i] = cube());
+  grid.build();
+  const std::vector<Aabb> floor{Aabb{Vec3(-1, -1, 0), Vec3(5, 5, 0.1)}};
+  grid.markObstacles(floor);
+  const auto apart = [](const Aabb& a, const Aabb& b, double margin) {
+    return ((a.min.array() > b.max.array() + margin) || (b.min.array() > a.max.array() + margin)).any();
+  };
+  const auto check = [&] {
+    Pairs found;
+    grid.forEachPair([&](std::uint32_t i, std::uint32_t j) { found.emplace(std::min(i, j), std::max(i, j)); });
+    int overlapping = 0;
+    for (std::uint32_t i = 0; i < n; ++i)
+    {
+      std::set<std::uint32_t> near;
+      grid.query(i, [&](std::uint32_t j) { near.insert(j); });
+      for (std::uint32_t j = 0; j < n; ++j)
+      {
+        if (j == i)
+          continue;
+        if (!apart(boxes[i], boxes[j], 0))
+        {
+          ++overlapping;
+          ASSERT_TRUE(near.count(j)) << "query of " << i << " missed " << j;
+          ASSERT_TRUE(found.count({std::min(i, j), std::max(i, j)})) << i << ", " << j << " missed";
+        }
+        else if (apart(boxes[i], boxes[j], 1e-5))
+        {
+          ASSERT_FALSE(near.count(j)) << "query of " << i << " gave " << j << ", apart";
+          ASSERT_FALSE(found.count({std::min(i, j), std::max(i, j)})) << i << ", " << j << " apart";
+        }
+      }
+      const bool at_floor = !apart(boxes[i], floor[0], 0);
+      if (at_floor || apart(boxes[i], floor[0], 1e-5))
+      {
+        EXPECT_EQ(grid.reaches(i, 0), at_floor) << i;
+      }
+    }
+    EXPECT_GT(overlapping, 20);  // (a check that has pairs to find)
+  };
+  check();
+  for (int round = 0; round < 2; ++round)
+  {
+    for (int k = 0; k < 40; ++k)  // some stay close by, some leave their cell, some go up or down
+    {
+      const auto i = static_cast<std::uint32_t>(rng() % n);
+      const Vec3 shift = k % 4 == 0 ? Vec3(0, 0, 2 * unit(rng) - 1) : Vec3(0.3 * unit(rng), 0.3 * unit(rng), 0);
+      boxes[i] = Aabb{boxes[i].min + shift, boxes[i].max + shift};
+      grid.update(i, boxes[i]);
+    }
+    check();
+  }
+}

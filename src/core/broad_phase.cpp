@@ -127,7 +127,7 @@ void UniformGrid::insert(std::uint32_t item, const Aabb& box)
       }
 }
 
-void StepGrid::start(std::size_t n, const Vec3& up, const StepSettings& settings)
+void StepGrid::start(std::size_t n, const Vec3& up, const StepSettings& settings, bool heights)
 {
   static_assert(sizeof(Item) == 20, "a grid item is its box and its slot");
   // Grid axes: drop the one most nearly along "up", where balls on a floor barely spread.
@@ -135,7 +135,9 @@ void StepGrid::start(std::size_t n, const Vec3& up, const StepSettings& settings
   up.cwiseAbs().maxCoeff(&drop);
   ax_ = drop == 0 ? 1 : 0;
   ay_ = drop == 2 ? 1 : 2;
+  az_ = drop;
   items_.resize(n);
+  heights_.resize(heights ? n : 0);
   outlier_ratio_ = settings.grid_outlier_ratio;
   dense_cells_per_item_ = settings.grid_dense_cells_per_item;
   dense_extra_cells_ = settings.grid_dense_extra_cells;
@@ -269,12 +271,20 @@ void StepGrid::takeCellOrder(std::vector<std::uint32_t>& order)
   entries_.clear();
 }
 
-void StepGrid::markObstacles(const std::vector<Box32>& obstacles)
+void StepGrid::markObstacles(const std::vector<Aabb>& obstacles)
 {
+  obstacles_.resize(obstacles.size());
+  obstacle_heights_.resize(heights_.empty() ? 0 : obstacles.size());
+  for (std::size_t o = 0; o < obstacles.size(); ++o)
+  {
+    obstacles_[o] = across(obstacles[o]);
+    if (!heights_.empty())
+      obstacle_heights_[o] = heightOf(obstacles[o]);
+  }
   if (!dense_)
     return;
   near_obstacle_.assign((starts_.size() - 1 + 63) / 64, 0);
-  for (const Box32& box : obstacles)
+  for (const Box32& box : obstacles_)
   {
     // (within the array)
     const std::int64_t x0 = std::max(firstReaching(box.min[0]), min_x_ - 1);
@@ -301,7 +311,7 @@ bool StepGrid::fits(std::uint32_t i, const Box32& box) const
 
 void StepGrid::update(std::uint32_t i, const Aabb& box)
 {
-  items_[i].box = across(box);
+  setBox(i, box);
   if (!moved(i) && fits(i, items_[i].box))
     return;
   moveOut(i);

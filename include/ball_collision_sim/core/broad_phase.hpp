@@ -148,10 +148,17 @@ void UniformGrid::query(const Aabb& box, F&& f) const
 class StepGrid
 {
 public:
-  /// Starts a step of n items; `up` picks the grid's two axes. Then setBox() for each
-  /// item, then build().
-  void start(std::size_t n, const Vec3& up, const StepSettings& settings = StepSettings{});
-  void setBox(std::uint32_t i, const Aabb& box) { items_[i].box = across(box); }
+  /// Starts a step of n items; `up` picks the grid's two axes. With `heights` it keeps
+  /// each box's extent along the third axis too and tells boxes apart by it (for items
+  /// that spread along "up" as freely as across it: balls without a floor). Then setBox()
+  /// for each item, then build().
+  void start(std::size_t n, const Vec3& up, const StepSettings& settings = StepSettings{}, bool heights = false);
+  void setBox(std::uint32_t i, const Aabb& box)
+  {
+    items_[i].box = across(box);
+    if (!heights_.empty())
+      heights_[i] = heightOf(box);
+  }
   /// A box as the grid keeps boxes: across its two axes, in floats.
   Box32 across(const Aabb& box) const { return Box32::around(box, ax_, ay_); }
   /// Bins the boxes.
@@ -164,7 +171,15 @@ public:
   /// without a copy: the grid needs build() again after this.
   void takeCellOrder(std::vector<std::uint32_t>& order);
   /// Notes which cells binned items could reach the given boxes (walls) from.
-  void markObstacles(const std::vector<Box32>& obstacles);
+  /// Takes the obstacles' boxes (walls), and notes which cells binned items could reach
+  /// them from.
+  void markObstacles(const std::vector<Aabb>& obstacles);
+  /// Whether item i's box overlaps obstacle o's, as meets() tells two items'.
+  bool reaches(std::uint32_t i, std::size_t o) const
+  {
+    return obstacles_[o].overlaps(items_[i].box) &&
+           (heights_.empty() || heightsMeet(heights_[i], obstacle_heights_[o]));
+  }
   /// False when item i's box cannot overlap any of the boxes given to markObstacles().
   bool nearObstacle(std::uint32_t i) const
   {
@@ -207,10 +222,34 @@ private:
   std::size_t assignCells();
   /// Lists item i (with its current box) among the moved items instead of in its cell.
   void moveOut(std::uint32_t i);
+  /// What other items' boxes are compared with for item i: its box, and its height where
+  /// the grid keeps heights (else none).
+  struct Probe
+  {
+    Box32 box;
+    const std::array<float, 2>* height;
+  };
+  Probe probeOf(std::uint32_t i) const { return {items_[i].box, heights_.empty() ? nullptr : &heights_[i]}; }
   /// Calls f(item) for the binned items of the cells [x0, x1] x [y0, y1] whose boxes
-  /// overlap `box`.
+  /// meet the probe's.
   template <class F>
-  void scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, const Box32& box, F&& f) const;
+  void scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, const Probe& p, F&& f) const;
+  /// A box's extent along the axis the grid drops, rounded outward to floats.
+  std::array<float, 2> heightOf(const Aabb& box) const
+  {
+    const Box32 b = Box32::around(box, az_, az_);
+    return {b.min[0], b.max[0]};
+  }
+  /// Whether item j's box overlaps the probe's: across the grid's axes, and along the
+  /// third where the grid keeps heights.
+  bool meets(const Probe& p, std::uint32_t j) const
+  {
+    return items_[j].box.overlaps(p.box) && (p.height == nullptr || heightsMeet(*p.height, heights_[j]));
+  }
+  static bool heightsMeet(const std::array<float, 2>& a, const std::array<float, 2>& b)
+  {
+    return a[0] <= b[1] && b[0] <= a[1];
+  }
   std::size_t bucketOf(std::int64_t cx, std::int64_t cy) const
   {
     // Fibonacci hashing of the two cell indices
@@ -227,6 +266,7 @@ private:
 
   int ax_ = 0;  ///< the grid's axes
   int ay_ = 1;
+  int az_ = 2;  ///< the axis it drops (nearest "up")
   double cell_ = 1.0;
   double inv_cell_ = 1.0;
   int shift_ = 60;
@@ -262,6 +302,10 @@ private:
             index(std::floor(0.5 * (static_cast<double>(box.min[1]) + box.max[1]) * inv_cell_))};
   }
   std::vector<Item> items_;             ///< per item
+  /// per item where the grid keeps heights (start()): its box's extent along az_
+  std::vector<std::array<float, 2>> heights_;
+  std::vector<Box32> obstacles_;  ///< markObstacles()
+  std::vector<std::array<float, 2>> obstacle_heights_;  ///< where the grid keeps heights
   /// per item, hashed mode only: its cell (bucket collisions are told apart by it)
   std::vector<std::array<std::int32_t, 2>> cells_;
   std::vector<std::uint32_t> starts_;   ///< bucket b holds entries_[starts_[b] .. starts_[b + 1])
@@ -283,7 +327,7 @@ private:
 };
 
 template <class F>
-void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, const Box32& box,
+void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, const Probe& p,
                          F&& f) const
 {
   if (dense_)
@@ -300,7 +344,7 @@ void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std:
       const std::size_t first = slotOf(x0, iy);
       const std::size_t last = first + static_cast<std::size_t>(x1 - x0) + 1;
       for (std::uint32_t k = starts_[first]; k < starts_[last]; ++k)
-        if (const std::uint32_t j = entries_[k]; items_[j].box.overlaps(box) && !moved(j))
+        if (const std::uint32_t j = entries_[k]; meets(p, j) && !moved(j))
           f(j);
     }
     return;
@@ -312,7 +356,7 @@ void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std:
       for (std::uint32_t k = starts_[b]; k < starts_[b + 1]; ++k)
       {
         const std::uint32_t j = entries_[k];
-        if (cells_[j][0] == ix && cells_[j][1] == iy && items_[j].box.overlaps(box) && !moved(j))
+        if (cells_[j][0] == ix && cells_[j][1] == iy && meets(p, j) && !moved(j))
           f(j);
       }
     }
@@ -321,11 +365,12 @@ void StepGrid::scanCells(std::int64_t x0, std::int64_t x1, std::int64_t y0, std:
 template <class F>
 void StepGrid::query(std::uint32_t i, F&& f) const
 {
-  const Box32& box = items_[i].box;
+  const Probe p = probeOf(i);
+  const Box32& box = p.box;
   if (!moved_list_.empty())
   {
     const auto other_moved = [&](std::uint32_t j) {
-      if (j != i && items_[j].box.overlaps(box))
+      if (j != i && meets(p, j))
         f(j);
     };
     if (moved_list_.size() <= kFewMoved || moved_grid_.oversized(box.toAabb(ax_, ay_)))
@@ -344,14 +389,14 @@ void StepGrid::query(std::uint32_t i, F&& f) const
     const auto w = static_cast<std::size_t>(width_);
     for (std::size_t first = items_[i].slot - w - 1; first <= items_[i].slot + w - 1; first += w)
       for (std::uint32_t k = starts_[first]; k < starts_[first + 3]; ++k)
-        if (const std::uint32_t j = entries_[k]; items_[j].box.overlaps(box) && !moved(j))
+        if (const std::uint32_t j = entries_[k]; meets(p, j) && !moved(j))
           binned(j);
     return;
   }
   if (!moved(i))
   {
     const auto [cx, cy] = cellOf(i);
-    scanCells(cx - 1, cx + 1, cy - 1, cy + 1, box, binned);
+    scanCells(cx - 1, cx + 1, cy - 1, cy + 1, p, binned);
     return;
   }
   const std::int64_t x0 = firstReaching(box.min[0]), x1 = lastReaching(box.max[0]);
@@ -359,11 +404,11 @@ void StepGrid::query(std::uint32_t i, F&& f) const
   if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) > static_cast<double>(items_.size()) + 16)
   {
     for (const std::uint32_t j : entries_)  // a huge box: every binned item
-      if (items_[j].box.overlaps(box) && !moved(j))
+      if (meets(p, j) && !moved(j))
         binned(j);
     return;
   }
-  scanCells(x0, x1, y0, y1, box, binned);
+  scanCells(x0, x1, y0, y1, p, binned);
 }
 
 template <class F>
@@ -401,9 +446,9 @@ void StepGrid::forEachPair(F&& f) const
         const std::uint32_t item = entries_[k];
         if (moved(item))
           continue;
-        const Box32& box = items_[item].box;
+        const Probe p = probeOf(item);
         const auto pair = [&](std::uint32_t l) {
-          if (const std::uint32_t j = entries_[l]; items_[j].box.overlaps(box) && !moved(j))
+          if (const std::uint32_t j = entries_[l]; meets(p, j) && !moved(j))
             f(item, j);
         };
         for (std::uint32_t l = k + 1; l < starts_[s + 2]; ++l)  // the rest of this cell, then east
@@ -421,7 +466,7 @@ void StepGrid::forEachPair(F&& f) const
       if (moved(i))
         continue;
       const auto [cx, cy] = cellOf(i);
-      scanCells(cx - 1, cx + 1, cy - 1, cy + 1, items_[i].box, [&](std::uint32_t j) {
+      scanCells(cx - 1, cx + 1, cy - 1, cy + 1, probeOf(i), [&](std::uint32_t j) {
         if (j > i)
           f(i, j);
       });

@@ -32,6 +32,9 @@ public:
   /// A chord between two points of the floor leaves it (a curved floor): a motion
   /// corrected after an impact is put back on the floor, and balls keep foot points.
   bool bends() const { return floor_ && !plane_; }
+  /// Balls move along "up" as freely as across it (no floor holds them): the broad phase
+  /// tells them apart by height as well.
+  bool spreadsAlongUp() const { return !floor_; }
 
   /// The plane's normal, or up where there is no floor (a curved floor's varies) [unit].
   const Vec3& flatNormal() const { return plane_ ? plane_normal_ : up_; }

@@ -17,7 +17,7 @@ void World::buildBroadPhase()
   grid_.build();  // on the swept boxes of the predicted motions
   wall_boxes_.resize(walls_.size());
   for (std::size_t w = 0; w < walls_.size(); ++w)
-    wall_boxes_[w] = grid_.across(Aabb{walls_[w].box_min, walls_[w].box_max});
+    wall_boxes_[w] = Aabb{walls_[w].box_min, walls_[w].box_max};
   grid_.markObstacles(wall_boxes_);
 }
 
@@ -47,10 +47,9 @@ void World::detectWalls(std::size_t i)
   const Motion& m = motions_[i];
   if (motions_[i].frozen || !grid_.nearObstacle(static_cast<std::uint32_t>(i)))
     return;
-  const Box32& box = grid_.box(static_cast<std::uint32_t>(i));
   for (std::size_t w = 0; w < wall_boxes_.size(); ++w)
   {
-    if (!box.overlaps(wall_boxes_[w]))
+    if (!grid_.reaches(static_cast<std::uint32_t>(i), w))
       continue;
     const Wall& wall = walls_[w];
     const Ball& ball = balls_[i];

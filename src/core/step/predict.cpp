@@ -13,7 +13,7 @@ using namespace step;
 void World::predictMotions()
 {
   static_assert(sizeof(Motion) == 40, "a Motion is its start, its displacement and its counters");
-  grid_.start(balls_.size(), ground_.up(), settings_);
+  grid_.start(balls_.size(), ground_.up(), settings_, ground_.spreadsAlongUp());
   // (taken back at once, so that a step cut short by an exception leaves none ready)
   if (std::exchange(motions_ready_, false))
     return;  // the last step's commit predicted them
