@@ -1,6 +1,6 @@
 // Steps one benchmark scene a given number of times and prints what it did: a small,
 // deterministic program to run under a profiler (valgrind --tool=callgrind, perf record).
-//   profile_step s1|s2|s3|s4 [balls] [steps]
+//   profile_step s1|s2|s3|s4|s5 [balls] [steps]
 #include "scenes.hpp"
 
 #include "ball_collision_sim/core/world.hpp"
@@ -17,15 +17,17 @@ int main(int argc, char** argv)
   const std::string scene = argc > 1 ? argv[1] : "s1";
   const int balls = argc > 2 ? std::atoi(argv[2]) : 10000;
   const int steps = argc > 3 ? std::atoi(argv[3]) : 100;
-  if ((scene != "s1" && scene != "s2" && scene != "s3" && scene != "s4") || balls <= 0 || steps <= 0)
+  if ((scene != "s1" && scene != "s2" && scene != "s3" && scene != "s4" && scene != "s5") || balls <= 0 ||
+      steps <= 0)
   {
-    std::fprintf(stderr, "usage: profile_step s1|s2|s3|s4 [balls > 0] [steps > 0]\n");
+    std::fprintf(stderr, "usage: profile_step s1|s2|s3|s4|s5 [balls > 0] [steps > 0]\n");
     return 2;
   }
   World world(scene == "s1"   ? bench::billiards(balls)
               : scene == "s2" ? bench::bullets()
               : scene == "s3" ? bench::bowl(balls)
-                              : bench::bowlPile(balls));
+              : scene == "s4" ? bench::bowlPile(balls)
+                              : bench::gasInFlight(balls));
   const double n = static_cast<double>(world.balls().size());
   const double k0 = world.energy().kinetic;
   const auto start = std::chrono::steady_clock::now();

@@ -137,4 +137,30 @@ inline Scene bowlPile(int n, std::uint64_t seed = 4)
   s.random_balls->mass = {0.5, 2};
   return s;
 }
+/// S5 gas in flight: n balls of radius 0.05 m and 1 kg without a floor, in a closed cube
+/// of walls (faces on all six sides) sized for a 2 % volume fraction, under gravity;
+/// they start on a cubic lattice, velocity components uniform in [-2, 2] m/s;
+/// restitution 1; dt 0.01 s. Balls spread along "up" as much as across.
+inline Scene gasInFlight(int n, std::uint64_t seed = 5)
+{
+  Scene s;
+  s.dt = 0.01;
+  const double r = 0.05;
+  const double side = std::cbrt(n * (4.0 / 3.0) * M_PI * r * r * r / 0.02);
+  const Vec3 x(side, 0, 0), y(0, side, 0), z(0, 0, side);
+  s.walls = {{Vec3::Zero(), x, z, {}}, {y, x, z, {}}, {Vec3::Zero(), y, z, {}},
+             {x, y, z, {}},            {Vec3::Zero(), x, y, {}}, {z, x, y, {}}};
+  const int per = static_cast<int>(std::ceil(std::cbrt(static_cast<double>(n))));
+  const double gap = side / per;
+  std::mt19937_64 rng(seed);
+  for (int k = 0; k < n; ++k)
+  {
+    BallDef b;
+    b.radius = r;
+    b.position = gap * Vec3(0.5 + k % per, 0.5 + (k / per) % per, 0.5 + k / (per * per));
+    b.velocity = Vec3(uniform(rng, -2, 2), uniform(rng, -2, 2), uniform(rng, -2, 2));
+    s.balls.push_back(b);
+  }
+  return s;
+}
 }  // namespace ball_collision_sim::bench
