@@ -170,7 +170,6 @@ public:
   /// Moves the grid's order of the items (cell by cell, every item once) into `order`,
   /// without a copy: the grid needs build() again after this.
   void takeCellOrder(std::vector<std::uint32_t>& order);
-  /// Notes which cells binned items could reach the given boxes (walls) from.
   /// Takes the obstacles' boxes (walls), and notes which cells binned items could reach
   /// them from.
   void markObstacles(const std::vector<Aabb>& obstacles);

@@ -1,6 +1,7 @@
 // Stages 2 and 3, broad phase and detection: the swept boxes into the grid, then the
 // exact first time of impact of each nearby pair and wall, into the event queue.
-// Reads motions_, the start positions, walls_, the grid; writes wall_boxes_, queue_.
+// Reads motions_, the start positions, walls_, the grid; writes wall_boxes_ (the grid's
+// obstacles), queue_.
 #include "step_types.hpp"
 
 #include "ball_collision_sim/core/time_of_impact.hpp"
@@ -47,7 +48,7 @@ void World::detectWalls(std::size_t i)
   const Motion& m = motions_[i];
   if (motions_[i].frozen || !grid_.nearObstacle(static_cast<std::uint32_t>(i)))
     return;
-  for (std::size_t w = 0; w < wall_boxes_.size(); ++w)
+  for (std::size_t w = 0; w < walls_.size(); ++w)
   {
     if (!grid_.reaches(static_cast<std::uint32_t>(i), w))
       continue;
