@@ -38,6 +38,10 @@ struct StepSettings
   /// more than this part of the largest it started with (or resting_speed_floor): the
   /// usual relative tolerance of an iterative solver [ratio].
   double contact_tolerance = 1e-6;
+  /// Sweeps over a step's resting contacts at its end that push apart those its groups'
+  /// solves left overlapping (their residual) [sweeps].
+  int position_sweeps = 8;
+  bool warm_start = false;
   /// Passes of alternating corrections (onto the floor, out of blocked directions, the
   /// approach of a resting pair) before giving up: each pass halves what is left in
   /// practice, and 32 halvings reach round-off [passes].

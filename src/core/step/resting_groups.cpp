@@ -1,0 +1,469 @@
+// Resting contacts as constraints: balls that touch and close no faster than they rest
+// (at the step's start, or where they meet within it) are joined into groups; a group's
+// motions over the rest of the step are its members' free motions with no contact
+// closing by more than its gap, solved together (projected Gauss-Seidel, Moreau and
+// Jean's time-stepping, with speculative contacts as in Box2D: a contact may close up to
+// its gap). Detection skips the contacts of a group; an impact on a member, or a new
+// resting contact, solves its group again from then on.
+// Reads the start positions and velocities, walls_, the grid; writes motions_, the groups
+// (group_parent_, group_next_, first_link_, links_), the contact solver's work space.
+#include "contact_group.hpp"
+#include "floor_motion.hpp"
+#include "spin_phase.hpp"
+
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
+
+namespace ball_collision_sim::core
+{
+using namespace step;
+
+namespace
+{
+/// The rows' closings, exactly, where the contact solver has found which of them push
+/// (its impulses > 0): the impulses that take those rows' closings to their targets,
+/// from the free vectors u_free, solved directly (A lambda = closing - target, A = J M^-1
+/// J^T over the pushing rows; the subspace minimization of Silcowitz, Niebe and Erleben
+/// 2010 after projected Gauss-Seidel). Dropping a row whose impulse comes out below zero
+/// and solving again, a few times; true, with u and the impulses set, where every impulse
+/// is >= 0 and no other row closes by more than `slack` past its target.
+constexpr double kRegularization = 1e-10;
+
+bool polish(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std::vector<ContactRow>& rows,
+            std::vector<Vec3>& u, double slack, int rounds)
+{
+  std::vector<int> active;
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    if (rows[r].impulse > 0)
+      active.push_back(static_cast<int>(r));
+  const auto coefficient = [&](const ContactRow& row, std::uint32_t k) {
+    Vec3 c = Vec3::Zero();
+    if (row.a == k)
+      c += row.push_a;
+    if (row.b == k)
+      c -= row.push_b;
+    return c;
+  };
+  for (int round = 0; round < rounds; ++round)
+  {
+    const int n = static_cast<int>(active.size());
+    std::vector<Vec3> trial = u_free;
+    std::vector<double> lambda(rows.size(), 0.0);
+    if (n > 0)
+    {
+      std::vector<Eigen::Triplet<double>> entries;
+      Eigen::VectorXd rhs(n);
+      for (int p = 0; p < n; ++p)
+      {
+        const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
+        rhs[p] = closingOf(u_free, r) - r.target;
+        for (int q = 0; q < n; ++q)
+        {
+          const ContactRow& s = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(q)])];
+          double a = 0.0;
+          for (const std::uint32_t k : {r.a, r.b})
+          {
+            if (k == ContactRow::kImmovable || inv[k] == 0)
+              continue;
+            if (k == r.b && r.a == r.b)
+              continue;
+            a += inv[k] * coefficient(r, k).dot(coefficient(s, k));
+          }
+          if (p == q)
+            a *= 1 + kRegularization;  // (contacts that say the same, in a jam, leave A singular)
+          if (a != 0)
+            entries.emplace_back(p, q, a);
+        }
+      }
+      Eigen::SparseMatrix<double> A(n, n);
+      A.setFromTriplets(entries.begin(), entries.end());
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+      if (solver.info() != Eigen::Success)
+        return false;
+      const Eigen::VectorXd x = solver.solve(rhs);
+      if (solver.info() != Eigen::Success || !x.allFinite())
+        return false;
+      std::vector<int> keep;
+      for (int p = 0; p < n; ++p)
+        if (x[p] >= 0)
+          keep.push_back(active[static_cast<std::size_t>(p)]);
+      if (static_cast<int>(keep.size()) < n)
+      {
+        active = keep;
+        continue;
+      }
+      for (int p = 0; p < n; ++p)
+      {
+        const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
+        lambda[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])] = x[p];
+        trial[r.a] -= (x[p] * inv[r.a]) * r.push_a;
+        if (r.b != ContactRow::kImmovable)
+          trial[r.b] += (x[p] * inv[r.b]) * r.push_b;
+      }
+    }
+    bool fine = true;
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      if (lambda[r] == 0 && closingOf(trial, rows[r]) - rows[r].target > slack &&
+          std::find(active.begin(), active.end(), static_cast<int>(r)) == active.end())
+      {
+        active.push_back(static_cast<int>(r));  // (a row that closes joins those that push)
+        fine = false;
+      }
+    if (!fine)
+    {
+      std::sort(active.begin(), active.end());
+      continue;
+    }
+    u = trial;
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      rows[r].impulse = lambda[r];
+    return true;
+  }
+  return false;
+}
+}  // namespace
+
+std::uint32_t World::groupOf(std::size_t i)
+{
+  std::uint32_t k = group_parent_[i];
+  if (k == kNone32)
+    return kNone32;
+  while (group_parent_[k] != k)
+    k = group_parent_[k] = group_parent_[group_parent_[k]];
+  return k;
+}
+
+void World::joinGroup(std::size_t i)
+{
+  if (group_parent_[i] != kNone32)
+    return;
+  group_parent_[i] = group_next_[i] = static_cast<std::uint32_t>(i);
+}
+
+void World::mergeGroups(std::size_t i, std::size_t j)
+{
+  joinGroup(i);
+  joinGroup(j);
+  const std::uint32_t a = groupOf(i), b = groupOf(j);
+  if (a == b)
+    return;
+  group_parent_[std::max(a, b)] = std::min(a, b);
+  std::swap(group_next_[a], group_next_[b]);  // (the two rings become one)
+}
+
+bool World::linked(std::size_t i, std::uint32_t other) const
+{
+  for (std::uint32_t r = first_link_[i]; r != kNone32;)
+  {
+    const ContactLink& link = links_[r];
+    if (link.a == i ? link.b == other : link.a == other)
+      return true;
+    r = link.a == i ? link.next_a : link.next_b;
+  }
+  return false;
+}
+
+void World::link(std::size_t a, std::uint32_t other)
+{
+  const auto r = static_cast<std::uint32_t>(links_.size());
+  const auto warm = warm_.find(linkKey(a, other));
+  ContactLink l{static_cast<std::uint32_t>(a), other, first_link_[a], kNone32, warm == warm_.end() ? 0.0 : warm->second};
+  first_link_[a] = r;
+  if (!(other & kWallRow))
+  {
+    l.next_b = first_link_[other];
+    first_link_[other] = r;
+  }
+  links_.push_back(l);
+}
+
+std::uint64_t World::linkKey(std::size_t a, std::uint32_t other) const
+{
+  const auto id_a = static_cast<std::uint64_t>(balls_[a].id);
+  if (other & kWallRow)
+    return (id_a << 32) | other;
+  const auto id_b = static_cast<std::uint64_t>(balls_[other].id);
+  return (std::min(id_a, id_b) << 32) | std::max(id_a, id_b);
+}
+
+void World::takeImpulse(std::size_t i, double x, const Vec3& position, const Vec3& dv)
+{
+  const Vec3 b = motions_[i].b;
+  beginMotion(i, x, position, startVelocity(i) + dv);
+  motions_[i].b = b;
+  group_motion_[i] = 1;
+}
+
+void World::formRestingGroups()
+{
+  if (!FloorMotion::gathers(*this))
+    return;
+  const std::size_t n = balls_.size();
+  group_parent_.assign(n, kNone32);
+  group_next_.resize(n);
+  first_link_.assign(n, kNone32);
+  group_motion_.assign(n, 0);
+  links_.clear();
+  const double touch = settings_.touch_slack;
+  grid_.forEachNearObstacle([&](std::uint32_t i) {
+    if (motions_[i].frozen)
+      return;
+    const Ball& ball = balls_[i];
+    for (std::size_t w = 0; w < walls_.size(); ++w)
+    {
+      if (!grid_.reaches(i, w))
+        continue;
+      const Vec3 d = walls_[w].closestPoint(ball.position) - ball.position;
+      const double dist = d.norm();
+      if (!(dist - ball.radius <= touch) || !(dist > 0))
+        continue;
+      const Vec3 fn = floorNormalAt(i, ball.position);
+      Vec3 dir = ground_.along(d / dist, fn);
+      dir = dir.squaredNorm() < settings_.wall_along_floor_squared ? Vec3(d / dist) : Vec3(dir.normalized());
+      if (ball.velocity.dot(dir) <= restingSpeed(fn, walls_[w].restitution, ball.position, ball.radius))
+      {
+        link(i, kWallRow | static_cast<std::uint32_t>(w));
+        joinGroup(i);
+      }
+    }
+  });
+  grid_.forEachPair([&](std::uint32_t i, std::uint32_t j) {
+    if (motions_[i].frozen && motions_[j].frozen)
+      return;
+    const Ball& a = balls_[i];
+    const Ball& b = balls_[j];
+    const Vec3 d = b.position - a.position;
+    const double dist = d.norm();
+    if (!(dist - a.radius - b.radius <= touch) || !(dist > 0) || wallBetween(a, b))
+      return;
+    const Vec3 u = d / dist;
+    const Vec3 na = floorNormalAt(i, a.position), nb = floorNormalAt(j, b.position);
+    const double closing = a.velocity.dot(ground_.along(u, na)) - b.velocity.dot(ground_.along(u, nb));
+    if (closing <= pairRestingSpeed(na, a.position, a.radius, nb, b.position, b.radius))
+    {
+      link(std::min(i, j), std::max(i, j));
+      mergeGroups(i, j);
+    }
+  });
+  for (std::size_t i = 0; i < n; ++i)
+    if (group_parent_[i] == i)
+      solveGroup(i, 0.0);
+}
+
+void World::solveGroup(std::size_t i, double x)
+{
+  const double rest = 1 - x;
+  const std::uint32_t root = groupOf(i);
+  members_.clear();
+  std::uint32_t k = root;
+  do
+  {
+    members_.push_back(k);
+    k = group_next_[k];
+  } while (k != root);
+  std::sort(members_.begin(), members_.end());  // (the solver's order: the visiting order)
+  ContactGroup& group = contact_group_.get();
+  group.clear();
+  row_links_.clear();
+  const std::size_t count = members_.size();
+  member_positions_.resize(count);
+  member_normals_.resize(count);
+  member_velocities_.resize(count);
+  for (std::size_t m = 0; m < count; ++m)
+  {
+    const std::size_t b = members_[m];
+    group.localOf(b);
+    const Vec3 p = positionAt(b, x);
+    const Vec3 fn = floorNormalAt(b, p);
+    member_positions_[m] = p;
+    member_normals_[m] = fn;
+    const bool still = motions_[b].frozen;
+    // Time-stepped: each member moves over the rest of the step with the velocity that
+    // gravity along the floor gives it by the step's end, less what its contacts take.
+    // A member already on its group's motion has that free velocity as its start
+    // velocity (its motion is the solved one).
+    Vec3 v = Vec3::Zero();
+    if (!still)
+      v = group_motion_[b] ? startVelocity(b)
+                           : Vec3(onFloorVelocity(b, x, p, fn) + (rest * dt_) * ground_.along(gravity_, fn));
+    member_velocities_[m] = v;
+    group.inv_mass[m] = inverseMass(b);
+    group.u[m] = dt_ * v;
+  }
+  if (rest > 0)
+  {
+    for (std::size_t m = 0; m < count; ++m)
+    {
+      const std::size_t a = members_[m];
+      const Vec3& pa = member_positions_[m];
+      for (std::uint32_t r = first_link_[a]; r != kNone32;)
+      {
+        const std::uint32_t r_here = r;
+        const ContactLink& l = links_[r];
+        const bool mine = l.a == a;
+        r = mine ? l.next_a : l.next_b;
+        if (!mine)
+          continue;  // (each contact once, from its first ball)
+        ContactRow row;
+        row.a = static_cast<std::uint32_t>(m);
+        row.impulse = l.impulse * rest;
+        const std::uint32_t index = r_here;
+        if (l.b & kWallRow)
+        {
+          const Vec3 d = walls_[l.b & ~kWallRow].closestPoint(pa) - pa;
+          const double dist = d.norm();
+          if (!(dist > 0))
+            continue;
+          Vec3 dir = ground_.along(d / dist, member_normals_[m]);
+          dir = dir.squaredNorm() < settings_.wall_along_floor_squared ? Vec3(d / dist) : Vec3(dir.normalized());
+          row.push_a = dir;
+          row.target = (dist - balls_[a].radius) / rest;
+        }
+        else
+        {
+          const std::uint32_t mb = group.localOf(l.b);
+          const Vec3 d = member_positions_[mb] - pa;
+          const double dist = d.norm();
+          if (!(dist > 0))
+            continue;
+          const Vec3 u = d / dist;
+          row.b = mb;
+          row.push_a = ground_.along(u, member_normals_[m]);
+          row.push_b = ground_.along(u, member_normals_[mb]);
+          row.target = (dist - balls_[a].radius - balls_[l.b].radius) / rest;
+        }
+        group.rows.push_back(row);
+        row_links_.push_back(index);
+      }
+    }
+    double scale = 0.0;
+    for (const Vec3& u : group.u)
+      scale = std::max(scale, u.norm());
+    const double tolerance = settings_.contact_tolerance * scale + roundoffAt(member_positions_[0], 0.0, settings_);
+    const auto project = [&](std::vector<Vec3>& u) {
+      if (!ground_.bends())
+        return;
+      for (std::size_t m = 0; m < count; ++m)
+        if (!motions_[members_[m]].frozen)
+          u[m] = (onFloor(members_[m], member_positions_[m] + rest * u[m]) - member_positions_[m]) / rest;
+    };
+    free_u_ = group.u;
+    solveContacts(group.u, group.inv_mass, group.rows, tolerance, settings_.contact_sweeps, project);
+    if (polish(free_u_, group.inv_mass, group.rows, group.u, roundoffAt(member_positions_[0], 0.0, settings_), 32))
+      project(group.u);
+    else
+      ++stats_.unsettled_contacts;
+    for (std::size_t r = 0; r < group.rows.size(); ++r)
+      links_[row_links_[r]].impulse = group.rows[r].impulse / rest;
+  }
+  for (std::size_t m = 0; m < count; ++m)
+  {
+    const std::size_t b = members_[m];
+    if (motions_[b].frozen)
+      continue;
+    beginMotion(b, x, member_positions_[m], member_velocities_[m]);
+    motions_[b].b = group.u[m];
+    group_motion_[b] = 1;
+    motions_[b].held = false;
+    if (friction_)
+      constrainSpin(b);
+    if (x > 0)
+    {
+      renewMotion(b);
+      detect(b);
+    }
+    else
+      grid_.update(static_cast<std::uint32_t>(b), currentBox(b));
+  }
+}
+
+World::ContactGroup& World::endGroup()
+{
+  ContactGroup& group = contact_group_.get();
+  group.clear();
+  resting_.clear();
+  warm_.clear();
+  const double touch = settings_.touch_slack;
+  for (const ContactLink& l : links_)
+  {
+    if (l.impulse > 0 && settings_.warm_start)
+      warm_[linkKey(l.a, l.b)] = l.impulse;
+    const Ball& a = balls_[l.a];
+    if (l.b & kWallRow)
+    {
+      const Vec3 d = walls_[l.b & ~kWallRow].closestPoint(a.position) - a.position;
+      const double dist = d.norm();
+      if (!(dist - a.radius <= touch) || !(dist > 0))
+        continue;
+      Vec3 dir = ground_.along(d / dist, floor_normals_[l.a]);
+      dir = dir.squaredNorm() < settings_.wall_along_floor_squared ? Vec3(d / dist) : Vec3(dir.normalized());
+      ContactRow row;
+      row.a = group.localOf(l.a);
+      row.push_a = dir;
+      group.rows.push_back(row);
+      resting_.push_back({l.a, l.a, dir, dir, dir, dir});
+      continue;
+    }
+    const Ball& b = balls_[l.b];
+    const Vec3 d = b.position - a.position;
+    const double dist = d.norm();
+    if (!(dist - a.radius - b.radius <= touch) || !(dist > 0))
+      continue;
+    const Vec3 u = d / dist;
+    const Vec3 along_a = ground_.along(u, floor_normals_[l.a]), along_b = ground_.along(u, floor_normals_[l.b]);
+    group.addPair(l.a, l.b, along_a, along_b);
+    resting_.push_back({l.a, l.b, along_a, along_b, along_a, along_b});
+  }
+  for (std::size_t k = 0; k < group.size(); ++k)
+  {
+    const std::size_t i = group.ballAt(k);
+    group.u[k] = balls_[i].velocity;
+    group.inv_mass[k] = inverseMass(i);
+  }
+  return group;
+}
+void World::separateAtEnd()
+{
+  for (int sweep = 0; sweep < settings_.position_sweeps; ++sweep)
+  {
+    double deepest = 0.0;
+    for (const ContactLink& l : links_)
+    {
+      Ball& a = balls_[l.a];
+      const double inv_a = inverseMass(l.a);
+      if (l.b & kWallRow)
+      {
+        const Vec3 d = walls_[l.b & ~kWallRow].closestPoint(a.position) - a.position;
+        const double dist = d.norm();
+        const double depth = a.radius - dist;
+        if (!(depth > 0) || !(dist > 0) || inv_a == 0)
+          continue;
+        deepest = std::max(deepest, depth);
+        const Vec3 move = -(depth / dist) * d;
+        const Vec3 to = onFloor(l.a, a.position + move);
+        motions_[l.a].b += to - a.position;
+        a.position = to;
+        continue;
+      }
+      Ball& b = balls_[l.b];
+      const double inv_b = inverseMass(l.b);
+      const Vec3 d = b.position - a.position;
+      const double dist = d.norm();
+      const double depth = a.radius + b.radius - dist;
+      if (!(depth > 0) || !(dist > 0) || !(inv_a + inv_b > 0))
+        continue;
+      deepest = std::max(deepest, depth);
+      const Vec3 u = d / dist;
+      const Vec3 to_a = onFloor(l.a, a.position - (depth * inv_a / (inv_a + inv_b)) * u);
+      const Vec3 to_b = onFloor(l.b, b.position + (depth * inv_b / (inv_a + inv_b)) * u);
+      motions_[l.a].b += to_a - a.position;
+      motions_[l.b].b += to_b - b.position;
+      a.position = to_a;
+      b.position = to_b;
+    }
+    if (!(deepest > 0))
+      break;
+  }
+}
+}  // namespace ball_collision_sim::core
