@@ -444,6 +444,14 @@ private:
   /// No contact of the step's groups overlaps at its end: each pushed apart along its
   /// normal, on the floor (non-linear Gauss-Seidel on the positions).
   void separateAtEnd();
+  /// Each group ends the step with no more energy than its members had at its start plus
+  /// what impacts gave them: where the time step gives more, its velocities are scaled down.
+  void boundGroupEnergies();
+  /// Ball i's energy [J], kinetic with velocity v at position p, and potential.
+  double energyOf(std::size_t i, const Vec3& p, const Vec3& v) const
+  {
+    return balls_[i].mass * (0.5 * v.squaredNorm() - gravity_.dot(p));
+  }
   /// Ball i's new motion from x on; an impact (not a resting contact) lets a held ball
   /// go, and a ball still held after it keeps no motion for the rest of the step.
   void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact);
@@ -662,6 +670,9 @@ private:
   std::vector<Vec3> member_normals_;
   std::vector<Vec3> member_velocities_;
   std::vector<Vec3> free_u_;
+  /// per ball: its energy at the step's start plus what its impacts in the step gave it
+  /// (gathering worlds) [J]; a group ends the step with no more than its members' sum
+  std::vector<double> energy_ref_;
   /// the contact solver's work space
   Scratch<ContactGroup> contact_group_;
   std::vector<std::size_t> last_of_pair_;  ///< step::lastOfEachPair()'s, kept between steps

@@ -46,6 +46,7 @@ void World::commitToFloor(bool predict_next)
   }
   separateAtEnd();
   settleRestingVelocities();
+  boundGroupEnergies();
   for (std::size_t i = 0; i < balls_.size(); ++i)
     roll(i, floor_normals_[i], motions_[i].b);
   // Groups at rest sleep; where gravity does not pull along the floor, nothing gathers

@@ -73,9 +73,12 @@ void World::resolveBallWall(const Event& event)
   const double inv_mass = inverseMass(i);
   const double impulse =
       collisionImpulse(std::max(closing, 0.0), inv_mass, dir, 0.0, dir, resting ? 0.0 : wall.restitution);
+  const Vec3 before = v;
   v -= (impulse * inv_mass) * dir;
   if (friction_)
     ballWallFriction(i, n, floor_normal, resting ? 0.0 : impulse, v);
+  if (!energy_ref_.empty())
+    energy_ref_[i] += 0.5 * ball.mass * (v.squaredNorm() - before.squaredNorm());
   if (!group_motion_.empty() && group_motion_[i])
     takeImpulse(i, event.x, p, v - onFloorVelocity(i, event.x, p, floor_normal));  // (solved again below)
   else
@@ -144,12 +147,18 @@ void World::resolveBallBall(const Event& event)
   const double inv_b = inverseMass(j);
   const double impulse =
       collisionImpulse(std::max(closing, 0.0), inv_a, ta, inv_b, tb, resting ? 0.0 : scene_.restitution);
+  const Vec3 va_before = va, vb_before = vb;
   va -= (impulse * inv_a) * ta;
   vb += (impulse * inv_b) * tb;
 
   const PairContact pair{i, j, n, na, nb, ta, tb, ta, tb, inv_a, inv_b};
   if (friction_)
     ballBallFriction(pair, resting ? 0.0 : impulse, va, vb);
+  if (!energy_ref_.empty())
+  {
+    energy_ref_[i] += 0.5 * a.mass * (va.squaredNorm() - va_before.squaredNorm());
+    energy_ref_[j] += 0.5 * b.mass * (vb.squaredNorm() - vb_before.squaredNorm());
+  }
   // (a ball on its group's motion takes the impulse into its free velocity, and its
   // group is solved again below)
   if (!group_motion_.empty() && group_motion_[i])

@@ -14,6 +14,7 @@
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
+#include <cmath>
 
 namespace ball_collision_sim::core
 {
@@ -189,8 +190,8 @@ std::uint64_t World::linkKey(std::size_t a, std::uint32_t other) const
 
 void World::takeImpulse(std::size_t i, double x, const Vec3& position, const Vec3& dv)
 {
-  const Vec3 b = motions_[i].b;
-  beginMotion(i, x, position, startVelocity(i) + dv);
+  const Vec3 b = motions_[i].b + dt_ * dv;
+  beginMotion(i, x, position, b / dt_);
   motions_[i].b = b;
   group_motion_[i] = 1;
 }
@@ -204,8 +205,28 @@ void World::formRestingGroups()
   group_next_.resize(n);
   first_link_.assign(n, kNone32);
   group_motion_.assign(n, 0);
+  energy_ref_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    energy_ref_[i] = energyOf(i, balls_[i].position, balls_[i].velocity);
   links_.clear();
   const double touch = settings_.touch_slack;
+  // Speculative contacts: a pair or wall that closes no faster than it rests, near enough
+  // to close its gap within the step (at its resting speed, and what gravity along the
+  // floor adds), is a constraint from the step's start, which allows it to close by its
+  // gap; else it would meet as an event early in each step, and be solved again there.
+  const auto speculative = [&](double rest_speed, const Vec3& fn) {
+    return dt_ * (rest_speed + dt_ * ground_.gravityAlong(fn));
+  };
+  // (the largest of them, a first filter: gravity itself for its part along the floor,
+  // and a millimetre a second for the round-off of speeds)
+  const double g = gravity_.norm();
+  const auto bound = [&](double e) {
+    const double bounces = e < 1 ? settings_.resting_steps * dt_ * g * (1 - e) / (2 * std::max(e, 1e-3)) : 0.0;
+    return dt_ * (bounces + 1e-3 + dt_ * g);
+  };
+  double reach = bound(scene_.restitution);
+  for (const Wall& wall : walls_)
+    reach = std::max(reach, bound(wall.restitution));
   grid_.forEachNearObstacle([&](std::uint32_t i) {
     if (motions_[i].frozen)
       return;
@@ -216,12 +237,13 @@ void World::formRestingGroups()
         continue;
       const Vec3 d = walls_[w].closestPoint(ball.position) - ball.position;
       const double dist = d.norm();
-      if (!(dist - ball.radius <= touch) || !(dist > 0))
+      if (!(dist > 0) || !(dist - ball.radius <= touch + reach))
         continue;
       const Vec3 fn = floorNormalAt(i, ball.position);
       Vec3 dir = ground_.along(d / dist, fn);
       dir = dir.squaredNorm() < settings_.wall_along_floor_squared ? Vec3(d / dist) : Vec3(dir.normalized());
-      if (ball.velocity.dot(dir) <= restingSpeed(fn, walls_[w].restitution, ball.position, ball.radius))
+      const double rest_speed = restingSpeed(fn, walls_[w].restitution, ball.position, ball.radius);
+      if (ball.velocity.dot(dir) <= rest_speed && dist - ball.radius <= touch + speculative(rest_speed, fn))
       {
         link(i, kWallRow | static_cast<std::uint32_t>(w));
         joinGroup(i);
@@ -235,12 +257,14 @@ void World::formRestingGroups()
     const Ball& b = balls_[j];
     const Vec3 d = b.position - a.position;
     const double dist = d.norm();
-    if (!(dist - a.radius - b.radius <= touch) || !(dist > 0) || wallBetween(a, b))
+    const double gap = dist - a.radius - b.radius;
+    if (!(dist > 0) || !(gap <= touch + reach) || wallBetween(a, b))
       return;
     const Vec3 u = d / dist;
     const Vec3 na = floorNormalAt(i, a.position), nb = floorNormalAt(j, b.position);
     const double closing = a.velocity.dot(ground_.along(u, na)) - b.velocity.dot(ground_.along(u, nb));
-    if (closing <= pairRestingSpeed(na, a.position, a.radius, nb, b.position, b.radius))
+    const double rest_speed = pairRestingSpeed(na, a.position, a.radius, nb, b.position, b.radius);
+    if (closing <= rest_speed && gap <= touch + std::max(speculative(rest_speed, na), speculative(rest_speed, nb)))
     {
       link(std::min(i, j), std::max(i, j));
       mergeGroups(i, j);
@@ -285,7 +309,7 @@ void World::solveGroup(std::size_t i, double x)
     // velocity (its motion is the solved one).
     Vec3 v = Vec3::Zero();
     if (!still)
-      v = group_motion_[b] ? startVelocity(b)
+      v = group_motion_[b] ? Vec3(motions_[b].b / dt_)
                            : Vec3(onFloorVelocity(b, x, p, fn) + (rest * dt_) * ground_.along(gravity_, fn));
     member_velocities_[m] = v;
     group.inv_mass[m] = inverseMass(b);
@@ -307,7 +331,7 @@ void World::solveGroup(std::size_t i, double x)
           continue;  // (each contact once, from its first ball)
         ContactRow row;
         row.a = static_cast<std::uint32_t>(m);
-        row.impulse = l.impulse * rest;
+        row.impulse = x > 0 ? 0.0 : l.impulse;
         const std::uint32_t index = r_here;
         if (l.b & kWallRow)
         {
@@ -353,16 +377,16 @@ void World::solveGroup(std::size_t i, double x)
     if (polish(free_u_, group.inv_mass, group.rows, group.u, roundoffAt(member_positions_[0], 0.0, settings_), 32))
       project(group.u);
     else
-      ++stats_.unsettled_contacts;
+      ++stats_.held_balls;  // TEMP: a polish that failed
     for (std::size_t r = 0; r < group.rows.size(); ++r)
-      links_[row_links_[r]].impulse = group.rows[r].impulse / rest;
+      links_[row_links_[r]].impulse = group.rows[r].impulse;
   }
   for (std::size_t m = 0; m < count; ++m)
   {
     const std::size_t b = members_[m];
     if (motions_[b].frozen)
       continue;
-    beginMotion(b, x, member_positions_[m], member_velocities_[m]);
+    beginMotion(b, x, member_positions_[m], group.u[m] / dt_);
     motions_[b].b = group.u[m];
     group_motion_[b] = 1;
     motions_[b].held = false;
@@ -423,6 +447,29 @@ World::ContactGroup& World::endGroup()
   }
   return group;
 }
+void World::boundGroupEnergies()
+{
+  const std::size_t n = balls_.size();
+  std::vector<double> allowed(n, 0.0), now(n, 0.0), kinetic(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::uint32_t root = groupOf(i);
+    if (root == kNone32)
+      continue;
+    allowed[root] += energy_ref_[i];
+    now[root] += energyOf(i, balls_[i].position, balls_[i].velocity);
+    kinetic[root] += 0.5 * balls_[i].mass * balls_[i].velocity.squaredNorm();
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::uint32_t root = groupOf(i);
+    if (root == kNone32 || !(now[root] > allowed[root]))
+      continue;
+    const double left = kinetic[root] - (now[root] - allowed[root]);
+    balls_[i].velocity *= left > 0 ? std::sqrt(left / kinetic[root]) : 0.0;
+  }
+}
+
 void World::separateAtEnd()
 {
   for (int sweep = 0; sweep < settings_.position_sweeps; ++sweep)
