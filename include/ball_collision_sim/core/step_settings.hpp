@@ -42,6 +42,8 @@ struct StepSettings
   /// solves left overlapping (their residual) [sweeps].
   int position_sweeps = 8;
   bool warm_start = false;
+  int group_sweeps = 20;
+  int group_passes = 4;
   /// Passes of alternating corrections (onto the floor, out of blocked directions, the
   /// approach of a resting pair) before giving up: each pass halves what is left in
   /// practice, and 32 halvings reach round-off [passes].

@@ -53,29 +53,32 @@ bool polish(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std
     std::vector<double> lambda(rows.size(), 0.0);
     if (n > 0)
     {
+      // (A's entries: rows that share a body, found through each body's rows)
       std::vector<Eigen::Triplet<double>> entries;
       Eigen::VectorXd rhs(n);
+      std::vector<std::vector<int>> of_body(u_free.size());
       for (int p = 0; p < n; ++p)
       {
         const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
         rhs[p] = closingOf(u_free, r) - r.target;
-        for (int q = 0; q < n; ++q)
-        {
-          const ContactRow& s = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(q)])];
-          double a = 0.0;
-          for (const std::uint32_t k : {r.a, r.b})
+        of_body[r.a].push_back(p);
+        if (r.b != ContactRow::kImmovable)
+          of_body[r.b].push_back(p);
+      }
+      for (std::size_t k = 0; k < of_body.size(); ++k)
+      {
+        if (inv[k] == 0)
+          continue;
+        for (const int p : of_body[k])
+          for (const int q : of_body[k])
           {
-            if (k == ContactRow::kImmovable || inv[k] == 0)
-              continue;
-            if (k == r.b && r.a == r.b)
-              continue;
-            a += inv[k] * coefficient(r, k).dot(coefficient(s, k));
-          }
-          if (p == q)
-            a *= 1 + kRegularization;  // (contacts that say the same, in a jam, leave A singular)
-          if (a != 0)
+            const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
+            const ContactRow& t = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(q)])];
+            double a = inv[k] * coefficient(r, static_cast<std::uint32_t>(k)).dot(coefficient(t, static_cast<std::uint32_t>(k)));
+            if (p == q)
+              a *= 1 + kRegularization;  // (contacts that say the same, in a jam, leave A singular)
             entries.emplace_back(p, q, a);
-        }
+          }
       }
       Eigen::SparseMatrix<double> A(n, n);
       A.setFromTriplets(entries.begin(), entries.end());
@@ -198,7 +201,7 @@ void World::takeImpulse(std::size_t i, double x, const Vec3& position, const Vec
 
 void World::formRestingGroups()
 {
-  if (!FloorMotion::gathers(*this))
+  if (!ground_.floor())
     return;
   const std::size_t n = balls_.size();
   group_parent_.assign(n, kNone32);
@@ -243,7 +246,11 @@ void World::formRestingGroups()
       Vec3 dir = ground_.along(d / dist, fn);
       dir = dir.squaredNorm() < settings_.wall_along_floor_squared ? Vec3(d / dist) : Vec3(dir.normalized());
       const double rest_speed = restingSpeed(fn, walls_[w].restitution, ball.position, ball.radius);
-      if (ball.velocity.dot(dir) <= rest_speed && dist - ball.radius <= touch + speculative(rest_speed, fn))
+      const double closing = ball.velocity.dot(dir);
+      // (one that moves away faster than gravity along the floor can turn it back within
+      // the step does not meet it)
+      if (closing <= rest_speed && closing >= -dt_ * ground_.gravityAlong(fn) &&
+          dist - ball.radius <= touch + speculative(rest_speed, fn))
       {
         link(i, kWallRow | static_cast<std::uint32_t>(w));
         joinGroup(i);
@@ -264,7 +271,8 @@ void World::formRestingGroups()
     const Vec3 na = floorNormalAt(i, a.position), nb = floorNormalAt(j, b.position);
     const double closing = a.velocity.dot(ground_.along(u, na)) - b.velocity.dot(ground_.along(u, nb));
     const double rest_speed = pairRestingSpeed(na, a.position, a.radius, nb, b.position, b.radius);
-    if (closing <= rest_speed && gap <= touch + std::max(speculative(rest_speed, na), speculative(rest_speed, nb)))
+    if (closing <= rest_speed && closing >= -dt_ * (ground_.gravityAlong(na) + ground_.gravityAlong(nb)) &&
+        gap <= touch + std::max(speculative(rest_speed, na), speculative(rest_speed, nb)))
     {
       link(std::min(i, j), std::max(i, j));
       mergeGroups(i, j);
@@ -373,11 +381,43 @@ void World::solveGroup(std::size_t i, double x)
           u[m] = (onFloor(members_[m], member_positions_[m] + rest * u[m]) - member_positions_[m]) / rest;
     };
     free_u_ = group.u;
-    solveContacts(group.u, group.inv_mass, group.rows, tolerance, settings_.contact_sweeps, project);
-    if (polish(free_u_, group.inv_mass, group.rows, group.u, roundoffAt(member_positions_[0], 0.0, settings_), 32))
-      project(group.u);
-    else
-      ++stats_.held_balls;  // TEMP: a polish that failed
+    const double slack = roundoffAt(member_positions_[0], 0.0, settings_);
+    // On a curved floor the rows are the contacts' distances linearized where the step
+    // starts; the ends put back on the floor can lie closer. Each row's target then takes
+    // what its linearization missed at the solved ends, and the group is solved again
+    // from its free motions (Newton's method on the contacts' distances).
+    for (int pass = 0; pass < settings_.group_passes; ++pass)
+    {
+      if (pass > 0)
+        group.u = free_u_;
+      solveContacts(group.u, group.inv_mass, group.rows, tolerance, settings_.group_sweeps, project);
+      if (polish(free_u_, group.inv_mass, group.rows, group.u, slack, 32))
+        project(group.u);
+      else
+        ++stats_.held_balls;  // TEMP: a polish that failed
+      if (!ground_.bends())
+        break;
+      double deepest = 0.0;
+      for (ContactRow& row : group.rows)
+      {
+        const Vec3 ea = member_positions_[row.a] + rest * group.u[row.a];
+        double gap = 0.0;
+        const ContactLink& l = links_[row_links_[static_cast<std::size_t>(&row - group.rows.data())]];
+        if (row.b == ContactRow::kImmovable)
+          gap = walls_[l.b & ~kWallRow].distance(ea) - balls_[members_[row.a]].radius;
+        else
+          gap = (member_positions_[row.b] + rest * group.u[row.b] - ea).norm() - balls_[members_[row.a]].radius -
+                balls_[members_[row.b]].radius;
+        const double linear = rest * (row.target - closingOf(group.u, row));
+        if (gap < linear && gap < 0)
+        {
+          deepest = std::max(deepest, -gap);
+          row.target += (gap - linear) / rest;
+        }
+      }
+      if (!(deepest > slack))
+        break;
+    }
     for (std::size_t r = 0; r < group.rows.size(); ++r)
       links_[row_links_[r]].impulse = group.rows[r].impulse;
   }
