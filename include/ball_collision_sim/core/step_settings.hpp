@@ -41,7 +41,7 @@ struct StepSettings
   /// Sweeps over a step's resting contacts at its end that push apart those its groups'
   /// solves left overlapping (their residual) [sweeps].
   int position_sweeps = 8;
-  bool warm_start = false;
+  bool warm_start = true;
   int group_sweeps = 20;
   int group_passes = 4;
   /// Passes of alternating corrections (onto the floor, out of blocked directions, the

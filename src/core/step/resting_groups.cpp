@@ -14,6 +14,8 @@
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 
 namespace ball_collision_sim::core
@@ -46,6 +48,9 @@ bool polish(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std
       c -= row.push_b;
     return c;
   };
+  std::vector<char> in_active;
+  std::size_t fewest = rows.size() + 1;
+  int tries = 3;
   for (int round = 0; round < rounds; ++round)
   {
     const int n = static_cast<int>(active.size());
@@ -72,6 +77,8 @@ bool polish(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std
         for (const int p : of_body[k])
           for (const int q : of_body[k])
           {
+            if (q > p)
+              continue;  // (the solver reads the lower triangle)
             const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
             const ContactRow& t = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(q)])];
             double a = inv[k] * coefficient(r, static_cast<std::uint32_t>(k)).dot(coefficient(t, static_cast<std::uint32_t>(k)));
@@ -82,20 +89,19 @@ bool polish(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std
       }
       Eigen::SparseMatrix<double> A(n, n);
       A.setFromTriplets(entries.begin(), entries.end());
-      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> solver(A);
       if (solver.info() != Eigen::Success)
+      {
+        if (std::getenv("DBG_POLISH"))
+          std::fprintf(stderr, "polish: factorization failed, %d rows pushing of %zu\n", n, rows.size());
         return false;
+      }
       const Eigen::VectorXd x = solver.solve(rhs);
       if (solver.info() != Eigen::Success || !x.allFinite())
-        return false;
-      std::vector<int> keep;
-      for (int p = 0; p < n; ++p)
-        if (x[p] >= 0)
-          keep.push_back(active[static_cast<std::size_t>(p)]);
-      if (static_cast<int>(keep.size()) < n)
       {
-        active = keep;
-        continue;
+        if (std::getenv("DBG_POLISH"))
+          std::fprintf(stderr, "polish: solve failed, %d rows\n", n);
+        return false;
       }
       for (int p = 0; p < n; ++p)
       {
@@ -106,24 +112,42 @@ bool polish(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std
           trial[r.b] += (x[p] * inv[r.b]) * r.push_b;
       }
     }
-    bool fine = true;
+    // Block principal pivoting (Judice and Pires): every row that is wrong changes side
+    // (a pushing row whose impulse came out below zero, a row left out that closes), as
+    // long as that makes fewer wrong ones within a few rounds; else only the first wrong
+    // row does (Murty's rule, which ends for a positive definite A).
+    in_active.assign(rows.size(), 0);
+    for (const int r : active)
+      in_active[static_cast<std::size_t>(r)] = 1;
+    std::vector<int> wrong;
     for (std::size_t r = 0; r < rows.size(); ++r)
-      if (lambda[r] == 0 && closingOf(trial, rows[r]) - rows[r].target > slack &&
-          std::find(active.begin(), active.end(), static_cast<int>(r)) == active.end())
-      {
-        active.push_back(static_cast<int>(r));  // (a row that closes joins those that push)
-        fine = false;
-      }
-    if (!fine)
+      if (in_active[r] ? lambda[r] < 0 : closingOf(trial, rows[r]) - rows[r].target > slack)
+        wrong.push_back(static_cast<int>(r));
+    if (wrong.empty())
     {
-      std::sort(active.begin(), active.end());
-      continue;
+      u = trial;
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        rows[r].impulse = lambda[r];
+      return true;
     }
-    u = trial;
+    if (wrong.size() < fewest)
+    {
+      fewest = wrong.size();
+      tries = 3;
+    }
+    else if (tries > 0)
+      --tries;
+    else
+      wrong.resize(1);
+    for (const int r : wrong)
+      in_active[static_cast<std::size_t>(r)] ^= 1;
+    active.clear();
     for (std::size_t r = 0; r < rows.size(); ++r)
-      rows[r].impulse = lambda[r];
-    return true;
+      if (in_active[r])
+        active.push_back(static_cast<int>(r));
   }
+  if (std::getenv("DBG_POLISH"))
+    std::fprintf(stderr, "polish: %d rounds, %zu rows pushing of %zu\n", rounds, active.size(), rows.size());
   return false;
 }
 }  // namespace
@@ -369,10 +393,6 @@ void World::solveGroup(std::size_t i, double x)
         row_links_.push_back(index);
       }
     }
-    double scale = 0.0;
-    for (const Vec3& u : group.u)
-      scale = std::max(scale, u.norm());
-    const double tolerance = settings_.contact_tolerance * scale + roundoffAt(member_positions_[0], 0.0, settings_);
     const auto project = [&](std::vector<Vec3>& u) {
       if (!ground_.bends())
         return;
@@ -390,11 +410,21 @@ void World::solveGroup(std::size_t i, double x)
     {
       if (pass > 0)
         group.u = free_u_;
-      solveContacts(group.u, group.inv_mass, group.rows, tolerance, settings_.group_sweeps, project);
-      if (polish(free_u_, group.inv_mass, group.rows, group.u, slack, 32))
+      const ContactSolve sweeps =
+          solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.group_sweeps, project);
+      if (sweeps.converged)
+        ;  // (the sweeps alone reached round-off)
+      else if (polish(free_u_, group.inv_mass, group.rows, group.u, slack, 256))
         project(group.u);
       else
-        ++stats_.held_balls;  // TEMP: a polish that failed
+      {
+        // (more sweeps give the exact solve a better guess of which rows push)
+        solveContacts(group.u, group.inv_mass, group.rows, slack, 8 * settings_.group_sweeps, project);
+        if (polish(free_u_, group.inv_mass, group.rows, group.u, slack, 256))
+          project(group.u);
+        else
+          ++stats_.held_balls;  // TEMP: a polish that failed
+      }
       if (!ground_.bends())
         break;
       double deepest = 0.0;
