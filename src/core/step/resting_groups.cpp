@@ -273,7 +273,7 @@ void World::formRestingGroups()
       const double closing = ball.velocity.dot(dir);
       // (one that moves away faster than gravity along the floor can turn it back within
       // the step does not meet it)
-      if (closing <= rest_speed && closing + dt_ * ground_.gravityAlong(fn) > 0 &&
+      if (std::abs(closing) <= rest_speed && closing + dt_ * ground_.gravityAlong(fn) > 0 &&
           dist - ball.radius <= touch + speculative(rest_speed, fn))
       {
         link(i, kWallRow | static_cast<std::uint32_t>(w));
@@ -295,7 +295,7 @@ void World::formRestingGroups()
     const Vec3 na = floorNormalAt(i, a.position), nb = floorNormalAt(j, b.position);
     const double closing = a.velocity.dot(ground_.along(u, na)) - b.velocity.dot(ground_.along(u, nb));
     const double rest_speed = pairRestingSpeed(na, a.position, a.radius, nb, b.position, b.radius);
-    if (closing <= rest_speed && closing + dt_ * (ground_.gravityAlong(na) + ground_.gravityAlong(nb)) > 0 &&
+    if (std::abs(closing) <= rest_speed && closing + dt_ * (ground_.gravityAlong(na) + ground_.gravityAlong(nb)) > 0 &&
         gap <= touch + std::max(speculative(rest_speed, na), speculative(rest_speed, nb)))
     {
       link(std::min(i, j), std::max(i, j));
