@@ -439,6 +439,8 @@ private:
   /// The contacts of the step's groups that touch at its end, as the contact solver takes
   /// them, and the resting contacts that sleeping reads.
   ContactGroup& endGroup();
+  /// The step's contacts in the order of their keys (linkKey()), made at the commit.
+  const std::vector<std::uint32_t>& linksInKeyOrder();
   /// The key of a contact of ball a with `other` by ids, whatever the records' order.
   std::uint64_t linkKey(std::size_t a, std::uint32_t other) const;
   /// No contact of the step's groups overlaps at its end: each pushed apart along its
@@ -663,6 +665,7 @@ private:
   /// per ball: its motion is its group's (a chord at the constant velocity it starts with)
   std::vector<std::uint8_t> group_motion_;
   std::vector<std::uint32_t> row_links_;
+  std::vector<std::uint32_t> link_order_;
   /// each contact's last impulse, by its balls' ids (and wall), for the next step's warm start
   std::unordered_map<std::uint64_t, double> warm_;
   std::vector<std::uint32_t> members_;

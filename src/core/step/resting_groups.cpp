@@ -236,6 +236,7 @@ void World::formRestingGroups()
   for (std::size_t i = 0; i < n; ++i)
     energy_ref_[i] = energyOf(i, balls_[i].position, balls_[i].velocity);
   links_.clear();
+  link_order_.clear();
   const double touch = settings_.touch_slack;
   // Speculative contacts: a pair or wall that closes no faster than it rests, near enough
   // to close its gap within the step (at its resting speed, and what gravity along the
@@ -318,7 +319,9 @@ void World::solveGroup(std::size_t i, double x)
     members_.push_back(k);
     k = group_next_[k];
   } while (k != root);
-  std::sort(members_.begin(), members_.end());  // (the solver's order: the visiting order)
+  // (the solver's order: by id, so that the bits do not depend on the records' order)
+  std::sort(members_.begin(), members_.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return balls_[a].id < balls_[b].id; });
   ContactGroup& group = contact_group_.get();
   group.clear();
   row_links_.clear();
@@ -392,6 +395,23 @@ void World::solveGroup(std::size_t i, double x)
         group.rows.push_back(row);
         row_links_.push_back(index);
       }
+    }
+    {
+      // (the rows in the order of their contacts' keys, whatever order they were made in)
+      std::vector<std::size_t> order(group.rows.size());
+      for (std::size_t r = 0; r < order.size(); ++r)
+        order[r] = r;
+      const auto keyOf = [&](std::size_t r) { return linkKey(links_[row_links_[r]].a, links_[row_links_[r]].b); };
+      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keyOf(a) < keyOf(b); });
+      std::vector<ContactRow> rows(order.size());
+      std::vector<std::uint32_t> links(order.size());
+      for (std::size_t r = 0; r < order.size(); ++r)
+      {
+        rows[r] = group.rows[order[r]];
+        links[r] = row_links_[order[r]];
+      }
+      group.rows.swap(rows);
+      row_links_.swap(links);
     }
     const auto project = [&](std::vector<Vec3>& u) {
       if (!ground_.bends())
@@ -472,6 +492,20 @@ void World::solveGroup(std::size_t i, double x)
   }
 }
 
+const std::vector<std::uint32_t>& World::linksInKeyOrder()
+{
+  if (link_order_.size() != links_.size())
+  {
+    link_order_.resize(links_.size());
+    for (std::size_t r = 0; r < links_.size(); ++r)
+      link_order_[r] = static_cast<std::uint32_t>(r);
+    std::sort(link_order_.begin(), link_order_.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return linkKey(links_[a].a, links_[a].b) < linkKey(links_[b].a, links_[b].b);
+    });
+  }
+  return link_order_;
+}
+
 World::ContactGroup& World::endGroup()
 {
   ContactGroup& group = contact_group_.get();
@@ -479,8 +513,9 @@ World::ContactGroup& World::endGroup()
   resting_.clear();
   warm_.clear();
   const double touch = settings_.touch_slack;
-  for (const ContactLink& l : links_)
+  for (const std::uint32_t index : linksInKeyOrder())
   {
+    const ContactLink& l = links_[index];
     if (l.impulse > 0 && settings_.warm_start)
       warm_[linkKey(l.a, l.b)] = l.impulse;
     const Ball& a = balls_[l.a];
@@ -521,7 +556,7 @@ void World::boundGroupEnergies()
 {
   const std::size_t n = balls_.size();
   std::vector<double> allowed(n, 0.0), now(n, 0.0), kinetic(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i)
+  for (const std::uint32_t i : by_id_)  // (summed in id order, whatever the records' order)
   {
     const std::uint32_t root = groupOf(i);
     if (root == kNone32)
@@ -545,8 +580,9 @@ void World::separateAtEnd()
   for (int sweep = 0; sweep < settings_.position_sweeps; ++sweep)
   {
     double deepest = 0.0;
-    for (const ContactLink& l : links_)
+    for (const std::uint32_t index : linksInKeyOrder())
     {
+      const ContactLink& l = links_[index];
       Ball& a = balls_[l.a];
       const double inv_a = inverseMass(l.a);
       if (l.b & kWallRow)
