@@ -10,8 +10,6 @@
 #include "ball_collision_sim/core/response.hpp"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 
 namespace ball_collision_sim::core
 {
@@ -47,17 +45,6 @@ void World::commitToFloor(bool predict_next)
     return;
   }
   separateAtEnd();
-  if (std::getenv("DBG_OVERLAP"))
-    for (std::size_t a = 0; a < balls_.size(); ++a)
-      for (std::size_t b = a + 1; b < balls_.size(); ++b)
-      {
-        const double depth = balls_[a].radius + balls_[b].radius - (balls_[a].position - balls_[b].position).norm();
-        if (depth > 1e-9)
-          std::fprintf(stderr, "step %llu overlap %.3e %zu-%zu linked %d grouped %d %d gm %d %d same %d\n",
-                       (unsigned long long)stats_.steps, depth, a, b, (int)linked(a, static_cast<std::uint32_t>(b)),
-                       (int)grouped(a), (int)grouped(b), (int)group_motion_[a], (int)group_motion_[b],
-                       (int)(groupOf(a) == groupOf(b)));
-      }
   settleRestingVelocities();
   boundGroupEnergies();
   for (std::size_t i = 0; i < balls_.size(); ++i)

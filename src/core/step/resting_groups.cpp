@@ -14,8 +14,6 @@
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 
 namespace ball_collision_sim::core
@@ -81,7 +79,8 @@ bool polish(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std
               continue;  // (the solver reads the lower triangle)
             const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
             const ContactRow& t = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(q)])];
-            double a = inv[k] * coefficient(r, static_cast<std::uint32_t>(k)).dot(coefficient(t, static_cast<std::uint32_t>(k)));
+            const auto body = static_cast<std::uint32_t>(k);
+            double a = inv[k] * coefficient(r, body).dot(coefficient(t, body));
             if (p == q)
               a *= 1 + kRegularization;  // (contacts that say the same, in a jam, leave A singular)
             entries.emplace_back(p, q, a);
@@ -91,18 +90,10 @@ bool polish(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std
       A.setFromTriplets(entries.begin(), entries.end());
       Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> solver(A);
       if (solver.info() != Eigen::Success)
-      {
-        if (std::getenv("DBG_POLISH"))
-          std::fprintf(stderr, "polish: factorization failed, %d rows pushing of %zu\n", n, rows.size());
         return false;
-      }
       const Eigen::VectorXd x = solver.solve(rhs);
       if (solver.info() != Eigen::Success || !x.allFinite())
-      {
-        if (std::getenv("DBG_POLISH"))
-          std::fprintf(stderr, "polish: solve failed, %d rows\n", n);
         return false;
-      }
       for (int p = 0; p < n; ++p)
       {
         const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
@@ -146,8 +137,6 @@ bool polish(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std
       if (in_active[r])
         active.push_back(static_cast<int>(r));
   }
-  if (std::getenv("DBG_POLISH"))
-    std::fprintf(stderr, "polish: %d rounds, %zu rows pushing of %zu\n", rounds, active.size(), rows.size());
   return false;
 }
 }  // namespace
@@ -196,7 +185,8 @@ void World::link(std::size_t a, std::uint32_t other)
 {
   const auto r = static_cast<std::uint32_t>(links_.size());
   const auto warm = warm_.find(linkKey(a, other));
-  ContactLink l{static_cast<std::uint32_t>(a), other, first_link_[a], kNone32, warm == warm_.end() ? 0.0 : warm->second};
+  const double impulse = warm == warm_.end() ? 0.0 : warm->second;
+  ContactLink l{static_cast<std::uint32_t>(a), other, first_link_[a], kNone32, impulse};
   first_link_[a] = r;
   if (!(other & kWallRow))
   {
@@ -443,7 +433,7 @@ void World::solveGroup(std::size_t i, double x)
         if (polish(free_u_, group.inv_mass, group.rows, group.u, slack, 256))
           project(group.u);
         else
-          ++stats_.held_balls;  // TEMP: a polish that failed
+          ++stats_.unsettled_contacts;  // (the exact solve found no answer: the sweeps' stays)
       }
       if (!ground_.bends())
         break;
