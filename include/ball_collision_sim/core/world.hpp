@@ -433,6 +433,17 @@ private:
   /// is at x, with no contact of the group closing by more than its gap (the contact
   /// solver); each member gets the new motion, and mid-step (x > 0) is detected again.
   void solveGroup(std::size_t i, double x);
+  /// The contacts of the group being solved (members_), exactly, from free_u_ over the
+  /// rest of the step, `rest`: contact_group_'s u and impulses.
+  void solveGroupContacts(ContactGroup& group, double rest, double slack);
+  /// Each member of the group solved gets its motion from x on (and with friction, the
+  /// spin of rolling with it).
+  void finishGroup(double x);
+  /// Ball i rolls in its group, under a floor of normal n: friction holds rolling there.
+  bool rollsInGroup(std::size_t i, const Vec3& n) const;
+  /// What an impulse along the floor moves ball i by, in a group: 1 / m, and where it
+  /// rolls (rolls) 1 / ((1 + k) m) [1/kg].
+  double groupInverseMass(std::size_t i, bool rolls) const;
   /// Ball i's motion starts anew at x from `position` with velocity v0 (its record, and
   /// where the step started it).
   void beginMotion(std::size_t i, double x, const Vec3& position, const Vec3& v0);
@@ -449,10 +460,15 @@ private:
   /// Each group ends the step with no more energy than its members had at its start plus
   /// what impacts gave them: where the time step gives more, its velocities are scaled down.
   void boundGroupEnergies();
-  /// Ball i's energy [J], kinetic with velocity v at position p, and potential.
+  /// Ball i's energy [J], kinetic with velocity v at position p (and where friction
+  /// grips, its spin's, the spin it has now), and potential.
   double energyOf(std::size_t i, const Vec3& p, const Vec3& v) const
   {
-    return balls_[i].mass * (0.5 * v.squaredNorm() - gravity_.dot(p));
+    const Ball& ball = balls_[i];
+    double e = ball.mass * (0.5 * v.squaredNorm() - gravity_.dot(p));
+    if (friction_ && friction_->grips())
+      e += 0.5 * spins_[i].inertia * ball.mass * ball.radius * ball.radius * spins_[i].angular_velocity.squaredNorm();
+    return e;
   }
   /// Ball i's new motion from x on; an impact (not a resting contact) lets a held ball
   /// go, and a ball still held after it keeps no motion for the rest of the step.
@@ -671,8 +687,13 @@ private:
   std::vector<std::uint32_t> members_;
   std::vector<Vec3> member_positions_;
   std::vector<Vec3> member_normals_;
-  std::vector<Vec3> member_velocities_;
   std::vector<Vec3> free_u_;
+  /// with friction, per member of the group being solved: its motion before rolling
+  /// resistance, the most resistance takes from it, whether it rolls, and what it took [m]
+  std::vector<Vec3> base_u_;
+  std::vector<double> member_caps_;
+  std::vector<char> member_rolls_;
+  std::vector<Vec3> resisted_;
   /// per ball: its energy at the step's start plus what its impacts in the step gave it
   /// (gathering worlds) [J]; a group ends the step with no more than its members' sum
   std::vector<double> energy_ref_;

@@ -105,7 +105,9 @@ void World::settleRestingVelocities()
   // (done where what closing is left is round-off of speeds, or of the closing there was)
   const double tolerance =
       std::max(settings_.resting_speed_floor, settings_.contact_tolerance * largestClosing(group.u, group.rows));
-  if (!solveContacts(group.u, group.inv_mass, group.rows, tolerance, settings_.contact_sweeps).converged)
+  const std::vector<Vec3> free = group.u;
+  if (!solveContacts(group.u, group.inv_mass, group.rows, tolerance, settings_.contact_sweeps).converged &&
+      !solveContactsExactly(free, group.inv_mass, group.rows, group.u, tolerance, settings_.exact_solves))
     ++stats_.unsettled_contacts;
   for (std::size_t k = 0; k < group.size(); ++k)
   {

@@ -11,8 +11,6 @@
 #include "floor_motion.hpp"
 #include "spin_phase.hpp"
 
-#include <Eigen/SparseCholesky>
-
 #include <algorithm>
 #include <cmath>
 
@@ -20,126 +18,6 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-namespace
-{
-/// The rows' closings, exactly, where the contact solver has found which of them push
-/// (its impulses > 0): the impulses that take those rows' closings to their targets,
-/// from the free vectors u_free, solved directly (A lambda = closing - target, A = J M^-1
-/// J^T over the pushing rows; the subspace minimization of Silcowitz, Niebe and Erleben
-/// 2010 after projected Gauss-Seidel). Dropping a row whose impulse comes out below zero
-/// and solving again, a few times; true, with u and the impulses set, where every impulse
-/// is >= 0 and no other row closes by more than `slack` past its target.
-constexpr double kRegularization = 1e-10;
-
-bool polish(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std::vector<ContactRow>& rows,
-            std::vector<Vec3>& u, double slack, int rounds)
-{
-  std::vector<int> active;
-  for (std::size_t r = 0; r < rows.size(); ++r)
-    if (rows[r].impulse > 0)
-      active.push_back(static_cast<int>(r));
-  const auto coefficient = [&](const ContactRow& row, std::uint32_t k) {
-    Vec3 c = Vec3::Zero();
-    if (row.a == k)
-      c += row.push_a;
-    if (row.b == k)
-      c -= row.push_b;
-    return c;
-  };
-  std::vector<char> in_active;
-  std::size_t fewest = rows.size() + 1;
-  int tries = 3;
-  for (int round = 0; round < rounds; ++round)
-  {
-    const int n = static_cast<int>(active.size());
-    std::vector<Vec3> trial = u_free;
-    std::vector<double> lambda(rows.size(), 0.0);
-    if (n > 0)
-    {
-      // (A's entries: rows that share a body, found through each body's rows)
-      std::vector<Eigen::Triplet<double>> entries;
-      Eigen::VectorXd rhs(n);
-      std::vector<std::vector<int>> of_body(u_free.size());
-      for (int p = 0; p < n; ++p)
-      {
-        const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
-        rhs[p] = closingOf(u_free, r) - r.target;
-        of_body[r.a].push_back(p);
-        if (r.b != ContactRow::kImmovable)
-          of_body[r.b].push_back(p);
-      }
-      for (std::size_t k = 0; k < of_body.size(); ++k)
-      {
-        if (inv[k] == 0)
-          continue;
-        for (const int p : of_body[k])
-          for (const int q : of_body[k])
-          {
-            if (q > p)
-              continue;  // (the solver reads the lower triangle)
-            const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
-            const ContactRow& t = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(q)])];
-            const auto body = static_cast<std::uint32_t>(k);
-            double a = inv[k] * coefficient(r, body).dot(coefficient(t, body));
-            if (p == q)
-              a *= 1 + kRegularization;  // (contacts that say the same, in a jam, leave A singular)
-            entries.emplace_back(p, q, a);
-          }
-      }
-      Eigen::SparseMatrix<double> A(n, n);
-      A.setFromTriplets(entries.begin(), entries.end());
-      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> solver(A);
-      if (solver.info() != Eigen::Success)
-        return false;
-      const Eigen::VectorXd x = solver.solve(rhs);
-      if (solver.info() != Eigen::Success || !x.allFinite())
-        return false;
-      for (int p = 0; p < n; ++p)
-      {
-        const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
-        lambda[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])] = x[p];
-        trial[r.a] -= (x[p] * inv[r.a]) * r.push_a;
-        if (r.b != ContactRow::kImmovable)
-          trial[r.b] += (x[p] * inv[r.b]) * r.push_b;
-      }
-    }
-    // Block principal pivoting (Judice and Pires): every row that is wrong changes side
-    // (a pushing row whose impulse came out below zero, a row left out that closes), as
-    // long as that makes fewer wrong ones within a few rounds; else only the first wrong
-    // row does (Murty's rule, which ends for a positive definite A).
-    in_active.assign(rows.size(), 0);
-    for (const int r : active)
-      in_active[static_cast<std::size_t>(r)] = 1;
-    std::vector<int> wrong;
-    for (std::size_t r = 0; r < rows.size(); ++r)
-      if (in_active[r] ? lambda[r] < 0 : closingOf(trial, rows[r]) - rows[r].target > slack)
-        wrong.push_back(static_cast<int>(r));
-    if (wrong.empty())
-    {
-      u = trial;
-      for (std::size_t r = 0; r < rows.size(); ++r)
-        rows[r].impulse = lambda[r];
-      return true;
-    }
-    if (wrong.size() < fewest)
-    {
-      fewest = wrong.size();
-      tries = 3;
-    }
-    else if (tries > 0)
-      --tries;
-    else
-      wrong.resize(1);
-    for (const int r : wrong)
-      in_active[static_cast<std::size_t>(r)] ^= 1;
-    active.clear();
-    for (std::size_t r = 0; r < rows.size(); ++r)
-      if (in_active[r])
-        active.push_back(static_cast<int>(r));
-  }
-  return false;
-}
-}  // namespace
 
 std::uint32_t World::groupOf(std::size_t i)
 {
@@ -318,7 +196,8 @@ void World::solveGroup(std::size_t i, double x)
   const std::size_t count = members_.size();
   member_positions_.resize(count);
   member_normals_.resize(count);
-  member_velocities_.resize(count);
+  member_caps_.resize(count);
+  member_rolls_.resize(count);
   for (std::size_t m = 0; m < count; ++m)
   {
     const std::size_t b = members_[m];
@@ -332,12 +211,19 @@ void World::solveGroup(std::size_t i, double x)
     // gravity along the floor gives it by the step's end, less what its contacts take.
     // A member already on its group's motion has that free velocity as its start
     // velocity (its motion is the solved one).
+    // With friction a member rolls: gravity along the floor gives it 1/(1 + k) of its pull,
+    // an impulse moves it as a mass (1 + k) m, and rolling resistance holds it back by at
+    // most mu_r g_n over the rest of the step (solved with its contacts, below).
+    const bool rolls = rollsInGroup(b, fn);
+    const double share = rolls ? 1 / (1 + spins_[b].inertia) : 1.0;
     Vec3 v = Vec3::Zero();
     if (!still)
       v = group_motion_[b] ? Vec3(motions_[b].b / dt_)
-                           : Vec3(onFloorVelocity(b, x, p, fn) + (rest * dt_) * ground_.along(gravity_, fn));
-    member_velocities_[m] = v;
-    group.inv_mass[m] = inverseMass(b);
+                           : Vec3(onFloorVelocity(b, x, p, fn) + (share * rest * dt_) * ground_.along(gravity_, fn));
+    member_caps_[m] =
+        rolls && !still && !group_motion_[b] ? dt_ * rest * dt_ * frictionUnder(fn).rollingResistance() : 0.0;
+    member_rolls_[m] = rolls;
+    group.inv_mass[m] = groupInverseMass(b, rolls);
     group.u[m] = dt_ * v;
   }
   if (rest > 0)
@@ -403,73 +289,123 @@ void World::solveGroup(std::size_t i, double x)
       group.rows.swap(rows);
       row_links_.swap(links);
     }
-    const auto project = [&](std::vector<Vec3>& u) {
-      if (!ground_.bends())
-        return;
-      for (std::size_t m = 0; m < count; ++m)
-        if (!motions_[members_[m]].frozen)
-          u[m] = (onFloor(members_[m], member_positions_[m] + rest * u[m]) - member_positions_[m]) / rest;
-    };
-    free_u_ = group.u;
+    base_u_ = group.u;
+    free_u_.resize(count);
+    resisted_.assign(count, Vec3::Zero());
     const double slack = roundoffAt(member_positions_[0], 0.0, settings_);
-    // On a curved floor the rows are the contacts' distances linearized where the step
-    // starts; the ends put back on the floor can lie closer. Each row's target then takes
-    // what its linearization missed at the solved ends, and the group is solved again
-    // from its free motions (Newton's method on the contacts' distances).
-    for (int pass = 0; pass < settings_.group_passes; ++pass)
+    // Rolling resistance and the contacts, solved in turn (block Gauss-Seidel on the
+    // impulses: each member's resistance opposes its motion with its contacts' pushes, up
+    // to its cap, and stops it where that is enough; then the contacts are solved exactly
+    // again from the resisted free motions), until no resistance changes by round-off.
+    for (int round = 0;; ++round)
     {
-      if (pass > 0)
-        group.u = free_u_;
-      const ContactSolve sweeps =
-          solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.group_sweeps, project);
-      if (sweeps.converged)
-        ;  // (the sweeps alone reached round-off)
-      else if (polish(free_u_, group.inv_mass, group.rows, group.u, slack, 256))
-        project(group.u);
-      else
-      {
-        // (more sweeps give the exact solve a better guess of which rows push)
-        solveContacts(group.u, group.inv_mass, group.rows, slack, 8 * settings_.group_sweeps, project);
-        if (polish(free_u_, group.inv_mass, group.rows, group.u, slack, 256))
-          project(group.u);
-        else
-          ++stats_.unsettled_contacts;  // (the exact solve found no answer: the sweeps' stays)
-      }
-      if (!ground_.bends())
+      for (std::size_t m = 0; m < count; ++m)
+        free_u_[m] = base_u_[m] + resisted_[m];
+      group.u = free_u_;
+      solveGroupContacts(group, rest, slack);
+      if (!friction_ || round == settings_.resistance_rounds ||
+          std::none_of(member_caps_.begin(), member_caps_.end(), [](double c) { return c > 0; }))
         break;
-      double deepest = 0.0;
-      for (ContactRow& row : group.rows)
+      double change = 0.0;
+      for (std::size_t m = 0; m < count; ++m)
       {
-        const Vec3 ea = member_positions_[row.a] + rest * group.u[row.a];
-        double gap = 0.0;
-        const ContactLink& l = links_[row_links_[static_cast<std::size_t>(&row - group.rows.data())]];
-        if (row.b == ContactRow::kImmovable)
-          gap = walls_[l.b & ~kWallRow].distance(ea) - balls_[members_[row.a]].radius;
-        else
-          gap = (member_positions_[row.b] + rest * group.u[row.b] - ea).norm() - balls_[members_[row.a]].radius -
-                balls_[members_[row.b]].radius;
-        const double linear = rest * (row.target - closingOf(group.u, row));
-        if (gap < linear && gap < 0)
-        {
-          deepest = std::max(deepest, -gap);
-          row.target += (gap - linear) / rest;
-        }
+        const Vec3 moving = group.u[m] - resisted_[m];
+        const double speed = moving.norm();
+        const Vec3 r = speed <= member_caps_[m] ? Vec3(-moving) : Vec3((-member_caps_[m] / speed) * moving);
+        change = std::max(change, (r - resisted_[m]).norm());
+        resisted_[m] = r;
       }
-      if (!(deepest > slack))
+      if (!(change > slack))
         break;
     }
     for (std::size_t r = 0; r < group.rows.size(); ++r)
       links_[row_links_[r]].impulse = group.rows[r].impulse;
   }
-  for (std::size_t m = 0; m < count; ++m)
+  finishGroup(x);
+}
+
+void World::solveGroupContacts(ContactGroup& group, double rest, double slack)
+{
+  const std::size_t count = members_.size();
+  const auto project = [&](std::vector<Vec3>& u) {
+    if (!ground_.bends())
+      return;
+    for (std::size_t m = 0; m < count; ++m)
+      if (!motions_[members_[m]].frozen)
+        u[m] = (onFloor(members_[m], member_positions_[m] + rest * u[m]) - member_positions_[m]) / rest;
+  };
+  // On a curved floor the rows are the contacts' distances linearized where the step
+  // starts; the ends put back on the floor can lie closer. Each row's target then takes
+  // what its linearization missed at the solved ends, and the group is solved again
+  // from its free motions (Newton's method on the contacts' distances).
+  for (int pass = 0; pass < settings_.group_passes; ++pass)
+  {
+    if (pass > 0)
+      group.u = free_u_;
+    const ContactSolve sweeps =
+        solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.group_sweeps, project);
+    if (sweeps.converged)
+      ;  // (the sweeps alone reached round-off)
+    else if (solveContactsExactly(free_u_, group.inv_mass, group.rows, group.u, slack, settings_.exact_solves))
+      project(group.u);
+    else
+    {
+      // (more sweeps give the exact solve a better guess of which rows push)
+      solveContacts(group.u, group.inv_mass, group.rows, slack, 8 * settings_.group_sweeps, project);
+      if (solveContactsExactly(free_u_, group.inv_mass, group.rows, group.u, slack, settings_.exact_solves))
+        project(group.u);
+      else
+        ++stats_.unsettled_contacts;  // (the exact solve found no answer: the sweeps' stays)
+    }
+    if (!ground_.bends())
+      break;
+    double deepest = 0.0;
+    for (ContactRow& row : group.rows)
+    {
+      const Vec3 ea = member_positions_[row.a] + rest * group.u[row.a];
+      double gap = 0.0;
+      const ContactLink& l = links_[row_links_[static_cast<std::size_t>(&row - group.rows.data())]];
+      if (row.b == ContactRow::kImmovable)
+        gap = walls_[l.b & ~kWallRow].distance(ea) - balls_[members_[row.a]].radius;
+      else
+        gap = (member_positions_[row.b] + rest * group.u[row.b] - ea).norm() - balls_[members_[row.a]].radius -
+              balls_[members_[row.b]].radius;
+      const double linear = rest * (row.target - closingOf(group.u, row));
+      if (gap < linear && gap < 0)
+      {
+        deepest = std::max(deepest, -gap);
+        row.target += (gap - linear) / rest;
+      }
+    }
+    if (!(deepest > slack))
+      break;
+  }
+}
+
+bool World::rollsInGroup(std::size_t i, const Vec3& n) const
+{
+  return friction_ && frictionUnder(n).holdsRolling(spins_[i].inertia);
+}
+
+void World::finishGroup(double x)
+{
+  ContactGroup& group = contact_group_.get();
+  for (std::size_t m = 0; m < members_.size(); ++m)
   {
     const std::size_t b = members_[m];
     if (motions_[b].frozen)
       continue;
-    beginMotion(b, x, member_positions_[m], group.u[m] / dt_);
+    const Vec3 v = group.u[m] / dt_;
+    // (a member rolls: its spin along the floor is rolling's, its spin about the normal
+    // stays)
+    const Vec3& n = member_normals_[m];
+    const Vec3 spin_about_n = member_rolls_[m] ? Vec3(spinAt(b, x).dot(n) * n) : Vec3::Zero();
+    beginMotion(b, x, member_positions_[m], v);
     motions_[b].b = group.u[m];
     group_motion_[b] = 1;
     motions_[b].held = false;
+    if (member_rolls_[m])
+      spin_motions_[b].w0 = n.cross(v) / balls_[b].radius + spin_about_n;
     if (friction_)
       constrainSpin(b);
     if (x > 0)
@@ -538,7 +474,7 @@ World::ContactGroup& World::endGroup()
   {
     const std::size_t i = group.ballAt(k);
     group.u[k] = balls_[i].velocity;
-    group.inv_mass[k] = inverseMass(i);
+    group.inv_mass[k] = groupInverseMass(i, rollsInGroup(i, floor_normals_[i]));
   }
   return group;
 }
@@ -552,8 +488,12 @@ void World::boundGroupEnergies()
     if (root == kNone32)
       continue;
     allowed[root] += energy_ref_[i];
-    now[root] += energyOf(i, balls_[i].position, balls_[i].velocity);
-    kinetic[root] += 0.5 * balls_[i].mass * balls_[i].velocity.squaredNorm();
+    const Ball& ball = balls_[i];
+    now[root] += energyOf(i, ball.position, ball.velocity);
+    kinetic[root] += 0.5 * ball.mass * ball.velocity.squaredNorm();
+    if (friction_ && friction_->grips())
+      kinetic[root] +=
+          0.5 * spins_[i].inertia * ball.mass * ball.radius * ball.radius * spins_[i].angular_velocity.squaredNorm();
   }
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -561,7 +501,10 @@ void World::boundGroupEnergies()
     if (root == kNone32 || !(now[root] > allowed[root]))
       continue;
     const double left = kinetic[root] - (now[root] - allowed[root]);
-    balls_[i].velocity *= left > 0 ? std::sqrt(left / kinetic[root]) : 0.0;
+    const double scale = left > 0 ? std::sqrt(left / kinetic[root]) : 0.0;
+    balls_[i].velocity *= scale;
+    if (friction_ && friction_->grips())
+      spins_[i].angular_velocity *= scale;
   }
 }
 
