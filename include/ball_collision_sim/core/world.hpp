@@ -429,6 +429,10 @@ private:
   /// Ball i, on its group's motion, takes a change of velocity dv at x, where it is at
   /// `position` (its group is to be solved again).
   void takeImpulse(std::size_t i, double x, const Vec3& position, const Vec3& dv);
+  /// Ball i's velocity at x on its group's motion: its velocity where the motion starts,
+  /// plus the share so far of the impulses that its solve gave it over the rest of the
+  /// step (gravity's and its contacts', spread evenly); the motion's own at the step's end.
+  Vec3 groupVelocityAt(std::size_t i, double x) const;
   /// The motions of the group of ball i from x on: each member's free motion from where it
   /// is at x, with no contact of the group closing by more than its gap (the contact
   /// solver); each member gets the new motion, and mid-step (x > 0) is detected again.
@@ -678,8 +682,10 @@ private:
   std::vector<std::uint32_t> group_next_;
   std::vector<std::uint32_t> first_link_;
   std::vector<ContactLink> links_;
-  /// per ball: its motion is its group's (a chord at the constant velocity it starts with)
+  /// per ball: its motion is its group's (a chord at the constant velocity it starts with),
+  /// and its velocity where that motion starts, before the step's impulses
   std::vector<std::uint8_t> group_motion_;
+  std::vector<Vec3> group_velocity_;
   std::vector<std::uint32_t> row_links_;
   std::vector<std::uint32_t> link_order_;
   /// each contact's last impulse, by its balls' ids (and wall), for the next step's warm start
@@ -687,6 +693,7 @@ private:
   std::vector<std::uint32_t> members_;
   std::vector<Vec3> member_positions_;
   std::vector<Vec3> member_normals_;
+  std::vector<Vec3> member_velocities_;
   std::vector<Vec3> free_u_;
   /// with friction, per member of the group being solved: its motion before rolling
   /// resistance, the most resistance takes from it, whether it rolls, and what it took [m]

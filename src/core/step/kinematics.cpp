@@ -59,7 +59,7 @@ Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
 Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
   if (!group_motion_.empty() && group_motion_[i])
-    return ground_.along(motions_[i].b / dt_, normal);  // (its group's time step)
+    return ground_.along(groupVelocityAt(i, x), normal);  // (its group's time step)
   if (friction_)
     return spin_motions_[i].phase->velocity(*this, i, x, position, normal);
   const Motion& m = motions_[i];

@@ -83,11 +83,24 @@ std::uint64_t World::linkKey(std::size_t a, std::uint32_t other) const
   return (std::min(id_a, id_b) << 32) | std::max(id_a, id_b);
 }
 
+Vec3 World::groupVelocityAt(std::size_t i, double x) const
+{
+  // (the step's impulses, gravity's and the contacts', spread evenly over what was left of
+  // it when the group was solved)
+  const Motion& m = motions_[i];
+  const Vec3 solved = m.b / dt_;
+  const double rest = 1 - m.x0;
+  if (!(rest > 0))
+    return solved;
+  return group_velocity_[i] + ((x - m.x0) / rest) * (solved - group_velocity_[i]);
+}
+
 void World::takeImpulse(std::size_t i, double x, const Vec3& position, const Vec3& dv)
 {
-  const Vec3 b = motions_[i].b + dt_ * dv;
-  beginMotion(i, x, position, b / dt_);
-  motions_[i].b = b;
+  const Vec3 v = groupVelocityAt(i, x) + dv;
+  beginMotion(i, x, position, v);
+  motions_[i].b = dt_ * v;
+  group_velocity_[i] = v;
   group_motion_[i] = 1;
 }
 
@@ -100,6 +113,7 @@ void World::formRestingGroups()
   group_next_.resize(n);
   first_link_.assign(n, kNone32);
   group_motion_.assign(n, 0);
+  group_velocity_.resize(n);
   energy_ref_.resize(n);
   for (std::size_t i = 0; i < n; ++i)
     energy_ref_[i] = energyOf(i, balls_[i].position, balls_[i].velocity);
@@ -196,6 +210,7 @@ void World::solveGroup(std::size_t i, double x)
   const std::size_t count = members_.size();
   member_positions_.resize(count);
   member_normals_.resize(count);
+  member_velocities_.resize(count);
   member_caps_.resize(count);
   member_rolls_.resize(count);
   for (std::size_t m = 0; m < count; ++m)
@@ -207,21 +222,21 @@ void World::solveGroup(std::size_t i, double x)
     member_positions_[m] = p;
     member_normals_[m] = fn;
     const bool still = motions_[b].frozen;
-    // Time-stepped: each member moves over the rest of the step with the velocity that
-    // gravity along the floor gives it by the step's end, less what its contacts take.
-    // A member already on its group's motion has that free velocity as its start
-    // velocity (its motion is the solved one).
+    // Time-stepped (Moreau): each member moves over the rest of the step with the velocity
+    // it has at x plus what gravity along the floor adds by the step's end, less what its
+    // contacts take. (A member already on its group's motion has at x its velocity before
+    // the step's impulses plus their share so far: groupVelocityAt(). Then a group solved
+    // again mid-step loses energy as a step does, and gravity's work along what the new
+    // solve changes is paid for.)
     // With friction a member rolls: gravity along the floor gives it 1/(1 + k) of its pull,
     // an impulse moves it as a mass (1 + k) m, and rolling resistance holds it back by at
     // most mu_r g_n over the rest of the step (solved with its contacts, below).
     const bool rolls = rollsInGroup(b, fn);
     const double share = rolls ? 1 / (1 + spins_[b].inertia) : 1.0;
-    Vec3 v = Vec3::Zero();
-    if (!still)
-      v = group_motion_[b] ? Vec3(motions_[b].b / dt_)
-                           : Vec3(onFloorVelocity(b, x, p, fn) + (share * rest * dt_) * ground_.along(gravity_, fn));
-    member_caps_[m] =
-        rolls && !still && !group_motion_[b] ? dt_ * rest * dt_ * frictionUnder(fn).rollingResistance() : 0.0;
+    const Vec3 v_x = still ? Vec3::Zero() : onFloorVelocity(b, x, p, fn);
+    member_velocities_[m] = v_x;
+    const Vec3 v = still ? Vec3::Zero() : Vec3(v_x + (share * rest * dt_) * ground_.along(gravity_, fn));
+    member_caps_[m] = rolls && !still ? dt_ * rest * dt_ * frictionUnder(fn).rollingResistance() : 0.0;
     member_rolls_[m] = rolls;
     group.inv_mass[m] = groupInverseMass(b, rolls);
     group.u[m] = dt_ * v;
@@ -402,6 +417,7 @@ void World::finishGroup(double x)
     const Vec3 spin_about_n = member_rolls_[m] ? Vec3(spinAt(b, x).dot(n) * n) : Vec3::Zero();
     beginMotion(b, x, member_positions_[m], v);
     motions_[b].b = group.u[m];
+    group_velocity_[b] = member_velocities_[m];
     group_motion_[b] = 1;
     motions_[b].held = false;
     if (member_rolls_[m])
