@@ -100,7 +100,6 @@ void World::reset()
 
 void World::forgetOrder()
 {
-  wakeAll();
   sortById();
   order_age_ = 0;
   motions_ready_ = false;

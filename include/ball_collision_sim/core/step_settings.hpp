@@ -47,10 +47,10 @@ struct StepSettings
   /// Direct solves the contact solver's exact stage may take, changing which contacts push
   /// between them (step::solveContactsExactly()); a group of hundreds needs a few [solves].
   int exact_solves = 256;
-  /// Rounds of rolling resistance and the contacts solved in turn, in a group with
-  /// friction (each round takes what is left of the resistance's change down by a steady
-  /// factor; what the last leaves is a resistance a little off its cap) [rounds].
-  int resistance_rounds = 16;
+  /// Sweeps of the contact solver over a group with rolling resistance, each followed by
+  /// the members' resistance, before its contacts are solved exactly with the resistance
+  /// found (what is left is a resistance a little off its cap) [sweeps].
+  int resistance_sweeps = 100;
   /// Passes of alternating corrections (onto the floor, out of blocked directions, the
   /// approach of a resting pair) before giving up: each pass halves what is left in
   /// practice, and 32 halvings reach round-off [passes].

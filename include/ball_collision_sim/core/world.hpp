@@ -62,7 +62,9 @@ struct WorldStats
 {
   std::uint64_t steps = 0;
   std::uint64_t events = 0;          ///< handled collisions, resting contacts included
-  std::uint64_t resting_events = 0;
+  std::uint64_t resting_events = 0;  ///< of them, contacts met mid-step that rest
+  /// resting contacts solved as constraints, each counted once for each step it is in
+  std::uint64_t resting_contacts = 0;
   std::uint64_t stale_events = 0;    ///< queued impacts dropped because a ball moved on
   std::uint64_t frozen_balls = 0;    ///< balls stopped for a step by the per-step event cap
   /// balls held still for the rest of a step: jammed at a resting contact, or with no
@@ -323,6 +325,9 @@ private:
     std::uint32_t next_b;
     /// the last solve's impulse per unit of the step, its next solve's warm start
     double impulse;
+    /// where in the step that solve was (-1: none yet this step; the impulse is the last
+    /// step's)
+    double solved_at;
   };
   static constexpr std::uint32_t kWallRow = 0x80000000u;
   static constexpr std::uint32_t kNone32 = 0xffffffffu;
@@ -495,8 +500,11 @@ private:
   /// something while all but still, and puts to sleep each group of them held together
   /// by resting contacts whose every ball has been so for sleep_steps steps.
   void sleepStillGroups();
-  /// Every ball awake (an edit: what held a group may be gone).
+  /// Every ball awake (an edit of the walls: what held a group may be gone).
   void wakeAll();
+  /// Wakes the sleeping balls that touch a ball of `radius` at `position` (an edit there:
+  /// what they lean on may have changed; the rest of their group wakes as they move).
+  void wakeTouching(const Vec3& position, double radius);
   /// Whether a wall parts two balls that touch (they then lean on it, not on each other).
   bool wallBetween(const Ball& a, const Ball& b) const;
   void recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,

@@ -20,6 +20,7 @@ void World::commitToFloor(bool predict_next)
   // Without resting contacts every ball is finished in one pass; with them, velocities
   // are settled across the contacts first.
   const bool settle = !links_.empty();
+  stats_.resting_contacts += links_.size();
   std::uint64_t asleep = 0;
   if (settle)
     floor_normals_.resize(balls_.size());

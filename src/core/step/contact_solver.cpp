@@ -70,7 +70,7 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
       }
       Eigen::SparseMatrix<double> A(n, n);
       A.setFromTriplets(entries.begin(), entries.end());
-      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> solver(A);
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> solver(A);
       if (solver.info() != Eigen::Success)
         return false;
       const Eigen::VectorXd x = solver.solve(rhs);

@@ -64,7 +64,7 @@ void World::link(std::size_t a, std::uint32_t other)
   const auto r = static_cast<std::uint32_t>(links_.size());
   const auto warm = warm_.find(linkKey(a, other));
   const double impulse = warm == warm_.end() ? 0.0 : warm->second;
-  ContactLink l{static_cast<std::uint32_t>(a), other, first_link_[a], kNone32, impulse};
+  ContactLink l{static_cast<std::uint32_t>(a), other, first_link_[a], kNone32, impulse, -1.0};
   first_link_[a] = r;
   if (!(other & kWallRow))
   {
@@ -171,7 +171,7 @@ void World::formRestingGroups()
     const Ball& b = balls_[j];
     const Vec3 d = b.position - a.position;
     const double dist = d.norm();
-    const double gap = dist - a.radius - b.radius;
+    const double gap = dist - (a.radius + b.radius);  // (the same bits whichever is a)
     if (!(dist > 0) || !(gap <= touch + reach) || wallBetween(a, b))
       return;
     const Vec3 u = d / dist;
@@ -257,7 +257,12 @@ void World::solveGroup(std::size_t i, double x)
           continue;  // (each contact once, from its first ball)
         ContactRow row;
         row.a = static_cast<std::uint32_t>(m);
-        row.impulse = x > 0 ? 0.0 : l.impulse;
+        // (the warm start: the last step's impulse at the step's start; mid-step, what is
+        // left of the impulse this step's last solve gave it, spread evenly as the motion
+        // has it: groupVelocityAt())
+        row.impulse = l.impulse;
+        if (x > 0)
+          row.impulse = l.solved_at >= 0 ? l.impulse * (rest / (1 - l.solved_at)) : 0.0;
         const std::uint32_t index = r_here;
         if (l.b & kWallRow)
         {
@@ -281,7 +286,7 @@ void World::solveGroup(std::size_t i, double x)
           row.b = mb;
           row.push_a = ground_.along(u, member_normals_[m]);
           row.push_b = ground_.along(u, member_normals_[mb]);
-          row.target = (dist - balls_[a].radius - balls_[l.b].radius) / rest;
+          row.target = (dist - (balls_[a].radius + balls_[l.b].radius)) / rest;
         }
         group.rows.push_back(row);
         row_links_.push_back(index);
@@ -308,33 +313,35 @@ void World::solveGroup(std::size_t i, double x)
     free_u_.resize(count);
     resisted_.assign(count, Vec3::Zero());
     const double slack = roundoffAt(member_positions_[0], 0.0, settings_);
-    // Rolling resistance and the contacts, solved in turn (block Gauss-Seidel on the
-    // impulses: each member's resistance opposes its motion with its contacts' pushes, up
-    // to its cap, and stops it where that is enough; then the contacts are solved exactly
-    // again from the resisted free motions), until no resistance changes by round-off.
-    for (int round = 0;; ++round)
+    // Rolling resistance with the contacts: after each sweep of projected Gauss-Seidel
+    // over the contacts, each member's resistance opposes its motion with its contacts'
+    // pushes, up to its cap, and stops it where that is enough (a box constraint on a
+    // friction impulse, as in Box2D's solver); then the contacts are solved exactly, with
+    // the resistance found.
+    if (friction_ && std::any_of(member_caps_.begin(), member_caps_.end(), [](double c) { return c > 0; }))
     {
-      for (std::size_t m = 0; m < count; ++m)
-        free_u_[m] = base_u_[m] + resisted_[m];
-      group.u = free_u_;
-      solveGroupContacts(group, rest, slack);
-      if (!friction_ || round == settings_.resistance_rounds ||
-          std::none_of(member_caps_.begin(), member_caps_.end(), [](double c) { return c > 0; }))
-        break;
-      double change = 0.0;
-      for (std::size_t m = 0; m < count; ++m)
-      {
-        const Vec3 moving = group.u[m] - resisted_[m];
-        const double speed = moving.norm();
-        const Vec3 r = speed <= member_caps_[m] ? Vec3(-moving) : Vec3((-member_caps_[m] / speed) * moving);
-        change = std::max(change, (r - resisted_[m]).norm());
-        resisted_[m] = r;
-      }
-      if (!(change > slack))
-        break;
+      group.u = base_u_;
+      const auto resist = [&](std::vector<Vec3>& u) {
+        for (std::size_t m = 0; m < count; ++m)
+        {
+          const Vec3 moving = u[m] - resisted_[m];
+          const double speed = moving.norm();
+          const Vec3 r = speed <= member_caps_[m] ? Vec3(-moving) : Vec3((-member_caps_[m] / speed) * moving);
+          u[m] += r - resisted_[m];
+          resisted_[m] = r;
+        }
+      };
+      solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.resistance_sweeps, resist);
     }
+    for (std::size_t m = 0; m < count; ++m)
+      free_u_[m] = base_u_[m] + resisted_[m];
+    group.u = free_u_;
+    solveGroupContacts(group, rest, slack);
     for (std::size_t r = 0; r < group.rows.size(); ++r)
+    {
       links_[row_links_[r]].impulse = group.rows[r].impulse;
+      links_[row_links_[r]].solved_at = x;
+    }
   }
   finishGroup(x);
 }
@@ -357,21 +364,16 @@ void World::solveGroupContacts(ContactGroup& group, double rest, double slack)
   {
     if (pass > 0)
       group.u = free_u_;
-    const ContactSolve sweeps =
-        solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.group_sweeps, project);
-    if (sweeps.converged)
-      ;  // (the sweeps alone reached round-off)
-    else if (solveContactsExactly(free_u_, group.inv_mass, group.rows, group.u, slack, settings_.exact_solves))
-      project(group.u);
-    else
+    // (the solve is linear, on the rows as they are; the ends go back on the floor after it)
+    if (!solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.group_sweeps).converged &&
+        !solveContactsExactly(free_u_, group.inv_mass, group.rows, group.u, slack, settings_.exact_solves))
     {
       // (more sweeps give the exact solve a better guess of which rows push)
-      solveContacts(group.u, group.inv_mass, group.rows, slack, 8 * settings_.group_sweeps, project);
-      if (solveContactsExactly(free_u_, group.inv_mass, group.rows, group.u, slack, settings_.exact_solves))
-        project(group.u);
-      else
+      solveContacts(group.u, group.inv_mass, group.rows, slack, 8 * settings_.group_sweeps);
+      if (!solveContactsExactly(free_u_, group.inv_mass, group.rows, group.u, slack, settings_.exact_solves))
         ++stats_.unsettled_contacts;  // (the exact solve found no answer: the sweeps' stays)
     }
+    project(group.u);
     if (!ground_.bends())
       break;
     double deepest = 0.0;
@@ -383,8 +385,8 @@ void World::solveGroupContacts(ContactGroup& group, double rest, double slack)
       if (row.b == ContactRow::kImmovable)
         gap = walls_[l.b & ~kWallRow].distance(ea) - balls_[members_[row.a]].radius;
       else
-        gap = (member_positions_[row.b] + rest * group.u[row.b] - ea).norm() - balls_[members_[row.a]].radius -
-              balls_[members_[row.b]].radius;
+        gap = (member_positions_[row.b] + rest * group.u[row.b] - ea).norm() -
+              (balls_[members_[row.a]].radius + balls_[members_[row.b]].radius);
       const double linear = rest * (row.target - closingOf(group.u, row));
       if (gap < linear && gap < 0)
       {
@@ -459,7 +461,7 @@ World::ContactGroup& World::endGroup()
   {
     const ContactLink& l = links_[index];
     if (l.impulse > 0 && settings_.warm_start)
-      warm_[linkKey(l.a, l.b)] = l.impulse;
+      warm_[linkKey(l.a, l.b)] = l.solved_at > 0 ? l.impulse / (1 - l.solved_at) : l.impulse;  // (a whole step's)
     const Ball& a = balls_[l.a];
     if (l.b & kWallRow)
     {
@@ -479,7 +481,7 @@ World::ContactGroup& World::endGroup()
     const Ball& b = balls_[l.b];
     const Vec3 d = b.position - a.position;
     const double dist = d.norm();
-    if (!(dist - a.radius - b.radius <= touch) || !(dist > 0))
+    if (!(dist - (a.radius + b.radius) <= touch) || !(dist > 0))
       continue;
     const Vec3 u = d / dist;
     const Vec3 along_a = ground_.along(u, floor_normals_[l.a]), along_b = ground_.along(u, floor_normals_[l.b]);
