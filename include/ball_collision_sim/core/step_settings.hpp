@@ -38,9 +38,13 @@ struct StepSettings
   /// more than this part of the largest it started with (or resting_speed_floor): the
   /// usual relative tolerance of an iterative solver [ratio].
   double contact_tolerance = 1e-6;
-  /// Sweeps over a step's resting contacts at its end that push apart those its groups'
-  /// solves left overlapping (their residual) [sweeps].
+  /// Passes over a step's resting contacts at its end that open those its groups' solves
+  /// left overlapping (their residual: each pass solves them together, then puts the
+  /// balls back on the floor, which the next pass corrects) [passes].
   int position_sweeps = 8;
+  /// ... where a contact's normal has less than this of it (squared) along the floor, the
+  /// move that opens it is along the normal itself (along the floor it would be long) [1].
+  double separation_min_share = 0.01;
   bool warm_start = true;
   int group_sweeps = 20;
   int group_passes = 4;

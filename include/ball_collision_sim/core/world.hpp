@@ -323,11 +323,9 @@ private:
     std::uint32_t b;
     std::uint32_t next_a;
     std::uint32_t next_b;
-    /// the last solve's impulse per unit of the step, its next solve's warm start
-    double impulse;
-    /// where in the step that solve was (-1: none yet this step; the impulse is the last
-    /// step's)
-    double solved_at;
+    /// the last solve's impulse per unit of the step it spanned, its next solve's warm
+    /// start (the last step's, until solved in this one)
+    double rate;
   };
   static constexpr std::uint32_t kWallRow = 0x80000000u;
   static constexpr std::uint32_t kNone32 = 0xffffffffu;
@@ -438,16 +436,28 @@ private:
   /// plus the share so far of the impulses that its solve gave it over the rest of the
   /// step (gravity's and its contacts', spread evenly); the motion's own at the step's end.
   Vec3 groupVelocityAt(std::size_t i, double x) const;
+  /// The kinetic energy an impulse at x that takes ball i's velocity from `before` to
+  /// `after` (its chord's, as the impact sees it) gives it [J].
+  double impulseEnergy(std::size_t i, double x, const Vec3& before, const Vec3& after) const;
   /// The motions of the group of ball i from x on: each member's free motion from where it
   /// is at x, with no contact of the group closing by more than its gap (the contact
   /// solver); each member gets the new motion, and mid-step (x > 0) is detected again.
   void solveGroup(std::size_t i, double x);
   /// The contacts of the group being solved (members_), exactly, from free_u_ over the
   /// rest of the step, `rest`: contact_group_'s u and impulses.
-  void solveGroupContacts(ContactGroup& group, double rest, double slack);
-  /// Each member of the group solved gets its motion from x on (and with friction, the
-  /// spin of rolling with it).
-  void finishGroup(double x);
+  void solveGroupContacts(ContactGroup& group, double span, double slack);
+  /// Each member of the group solved gets its motion from x over `span` (and with
+  /// friction, the spin of rolling with it).
+  void finishGroup(double x, double span);
+  /// The stages of solveGroup(): the members of ball i's group, in id order (members_);
+  /// where they are at x, their velocities there and what gravity adds per unit of the
+  /// step; the part of the rest of the step the solve spans; the rows of their contacts
+  /// (contact_group_); their motions over the span, solved.
+  void gatherGroup(std::size_t i);
+  void startMembers(double x);
+  double groupSpan(double x) const;
+  void makeRows(double span);
+  void solveRows(double span);
   /// Ball i rolls in its group, under a floor of normal n: friction holds rolling there.
   bool rollsInGroup(std::size_t i, const Vec3& n) const;
   /// What an impulse along the floor moves ball i by, in a group: 1 / m, and where it
@@ -463,9 +473,11 @@ private:
   const std::vector<std::uint32_t>& linksInKeyOrder();
   /// The key of a contact of ball a with `other` by ids, whatever the records' order.
   std::uint64_t linkKey(std::size_t a, std::uint32_t other) const;
-  /// No contact of the step's groups overlaps at its end: each pushed apart along its
-  /// normal, on the floor (non-linear Gauss-Seidel on the positions).
+  /// No contact of the step's groups overlaps at its end: the overlapping ones opened by
+  /// moves along the floor, solved together (a few passes, each ball back on the floor
+  /// after each).
   void separateAtEnd();
+
   /// Each group ends the step with no more energy than its members had at its start plus
   /// what impacts gave them: where the time step gives more, its velocities are scaled down.
   void boundGroupEnergies();
@@ -703,9 +715,11 @@ private:
   std::vector<Vec3> member_normals_;
   std::vector<Vec3> member_velocities_;
   std::vector<Vec3> free_u_;
-  /// with friction, per member of the group being solved: its motion before rolling
-  /// resistance, the most resistance takes from it, whether it rolls, and what it took [m]
+  /// per member of the group being solved: its motion before rolling resistance [m],
+  /// gravity's pull [m/s per unit of the step], the most resistance takes from it [m per
+  /// unit of the step], whether it rolls, and what resistance took [m]
   std::vector<Vec3> base_u_;
+  std::vector<Vec3> member_pulls_;
   std::vector<double> member_caps_;
   std::vector<char> member_rolls_;
   std::vector<Vec3> resisted_;

@@ -194,6 +194,15 @@ void World::resolveMotionEnd(const Event& event)
     }
     sm.w0 = w;
   }
+  if (!group_motion_.empty() && group_motion_[i])
+  {
+    // (a member of a group: the group goes on from here, solved again, the spin it has
+    // now kept as it is until then)
+    if (friction_)
+      keepSpin(i);
+    solveGroup(i, event.x);
+    return;
+  }
   startMotion(i, event.x, p, v, false);
   countEvent(i);
   detect(i);

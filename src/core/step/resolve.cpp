@@ -78,7 +78,7 @@ void World::resolveBallWall(const Event& event)
   if (friction_)
     ballWallFriction(i, n, floor_normal, resting ? 0.0 : impulse, v);
   if (!energy_ref_.empty())
-    energy_ref_[i] += 0.5 * ball.mass * (v.squaredNorm() - before.squaredNorm());
+    energy_ref_[i] += impulseEnergy(i, event.x, before, v);
   if (!group_motion_.empty() && group_motion_[i])
     takeImpulse(i, event.x, p, v - onFloorVelocity(i, event.x, p, floor_normal));  // (solved again below)
   else
@@ -156,8 +156,8 @@ void World::resolveBallBall(const Event& event)
     ballBallFriction(pair, resting ? 0.0 : impulse, va, vb);
   if (!energy_ref_.empty())
   {
-    energy_ref_[i] += 0.5 * a.mass * (va.squaredNorm() - va_before.squaredNorm());
-    energy_ref_[j] += 0.5 * b.mass * (vb.squaredNorm() - vb_before.squaredNorm());
+    energy_ref_[i] += impulseEnergy(i, event.x, va_before, va);
+    energy_ref_[j] += impulseEnergy(j, event.x, vb_before, vb);
   }
   // (a ball on its group's motion takes the impulse into its free velocity, and its
   // group is solved again below)

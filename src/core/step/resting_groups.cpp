@@ -63,8 +63,8 @@ void World::link(std::size_t a, std::uint32_t other)
 {
   const auto r = static_cast<std::uint32_t>(links_.size());
   const auto warm = warm_.find(linkKey(a, other));
-  const double impulse = warm == warm_.end() ? 0.0 : warm->second;
-  ContactLink l{static_cast<std::uint32_t>(a), other, first_link_[a], kNone32, impulse, -1.0};
+  const double rate = warm == warm_.end() ? 0.0 : warm->second;
+  ContactLink l{static_cast<std::uint32_t>(a), other, first_link_[a], kNone32, rate};
   first_link_[a] = r;
   if (!(other & kWallRow))
   {
@@ -85,14 +85,21 @@ std::uint64_t World::linkKey(std::size_t a, std::uint32_t other) const
 
 Vec3 World::groupVelocityAt(std::size_t i, double x) const
 {
-  // (the step's impulses, gravity's and the contacts', spread evenly over what was left of
-  // it when the group was solved)
+  // (the span's impulses, gravity's and the contacts', spread evenly over it)
   const Motion& m = motions_[i];
   const Vec3 solved = m.b / dt_;
-  const double rest = 1 - m.x0;
-  if (!(rest > 0))
+  const double span = chordEnd(i) - m.x0;
+  if (!(span > 0))
     return solved;
-  return group_velocity_[i] + ((x - m.x0) / rest) * (solved - group_velocity_[i]);
+  return group_velocity_[i] + ((x - m.x0) / span) * (solved - group_velocity_[i]);
+}
+
+double World::impulseEnergy(std::size_t i, double x, const Vec3& before, const Vec3& after) const
+{
+  // (a member of a group has at x the velocity the group's spread impulses give it, not
+  // its chord's: the impulse's change is added to that)
+  const Vec3 base = !group_motion_.empty() && group_motion_[i] ? groupVelocityAt(i, x) : before;
+  return 0.5 * balls_[i].mass * ((base + (after - before)).squaredNorm() - base.squaredNorm());
 }
 
 void World::takeImpulse(std::size_t i, double x, const Vec3& position, const Vec3& dv)
@@ -192,7 +199,19 @@ void World::formRestingGroups()
 
 void World::solveGroup(std::size_t i, double x)
 {
-  const double rest = 1 - x;
+  gatherGroup(i);
+  startMembers(x);
+  const double span = groupSpan(x);
+  if (span > 0)
+  {
+    makeRows(span);
+    solveRows(span);
+  }
+  finishGroup(x, span);
+}
+
+void World::gatherGroup(std::size_t i)
+{
   const std::uint32_t root = groupOf(i);
   members_.clear();
   std::uint32_t k = root;
@@ -204,16 +223,20 @@ void World::solveGroup(std::size_t i, double x)
   // (the solver's order: by id, so that the bits do not depend on the records' order)
   std::sort(members_.begin(), members_.end(),
             [&](std::uint32_t a, std::uint32_t b) { return balls_[a].id < balls_[b].id; });
-  ContactGroup& group = contact_group_.get();
-  group.clear();
-  row_links_.clear();
   const std::size_t count = members_.size();
   member_positions_.resize(count);
   member_normals_.resize(count);
   member_velocities_.resize(count);
+  member_pulls_.resize(count);
   member_caps_.resize(count);
   member_rolls_.resize(count);
-  for (std::size_t m = 0; m < count; ++m)
+}
+
+void World::startMembers(double x)
+{
+  ContactGroup& group = contact_group_.get();
+  group.clear();
+  for (std::size_t m = 0; m < members_.size(); ++m)
   {
     const std::size_t b = members_[m];
     group.localOf(b);
@@ -222,131 +245,148 @@ void World::solveGroup(std::size_t i, double x)
     member_positions_[m] = p;
     member_normals_[m] = fn;
     const bool still = motions_[b].frozen;
-    // Time-stepped (Moreau): each member moves over the rest of the step with the velocity
-    // it has at x plus what gravity along the floor adds by the step's end, less what its
+    // Time-stepped (Moreau): each member moves over the group's span with the velocity it
+    // has at x plus what gravity along the floor adds by the span's end, less what its
     // contacts take. (A member already on its group's motion has at x its velocity before
-    // the step's impulses plus their share so far: groupVelocityAt(). Then a group solved
+    // the span's impulses plus their share so far: groupVelocityAt(). Then a group solved
     // again mid-step loses energy as a step does, and gravity's work along what the new
     // solve changes is paid for.)
     // With friction a member rolls: gravity along the floor gives it 1/(1 + k) of its pull,
     // an impulse moves it as a mass (1 + k) m, and rolling resistance holds it back by at
-    // most mu_r g_n over the rest of the step (solved with its contacts, below).
+    // most mu_r g_n over the span (solved with its contacts: solveRows()).
     const bool rolls = rollsInGroup(b, fn);
     const double share = rolls ? 1 / (1 + spins_[b].inertia) : 1.0;
-    const Vec3 v_x = still ? Vec3::Zero() : onFloorVelocity(b, x, p, fn);
-    member_velocities_[m] = v_x;
-    const Vec3 v = still ? Vec3::Zero() : Vec3(v_x + (share * rest * dt_) * ground_.along(gravity_, fn));
-    member_caps_[m] = rolls && !still ? dt_ * rest * dt_ * frictionUnder(fn).rollingResistance() : 0.0;
+    member_velocities_[m] = still             ? Vec3::Zero()
+                            : group_motion_[b] ? ground_.along(groupVelocityAt(b, x), fn)
+                                               : onFloorVelocity(b, x, p, fn);
+    member_pulls_[m] = still ? Vec3::Zero() : Vec3((share * dt_) * ground_.along(gravity_, fn));
+    member_caps_[m] = rolls && !still ? dt_ * dt_ * frictionUnder(fn).rollingResistance() : 0.0;
     member_rolls_[m] = rolls;
     group.inv_mass[m] = groupInverseMass(b, rolls);
-    group.u[m] = dt_ * v;
   }
-  if (rest > 0)
-  {
-    for (std::size_t m = 0; m < count; ++m)
-    {
-      const std::size_t a = members_[m];
-      const Vec3& pa = member_positions_[m];
-      for (std::uint32_t r = first_link_[a]; r != kNone32;)
-      {
-        const std::uint32_t r_here = r;
-        const ContactLink& l = links_[r];
-        const bool mine = l.a == a;
-        r = mine ? l.next_a : l.next_b;
-        if (!mine)
-          continue;  // (each contact once, from its first ball)
-        ContactRow row;
-        row.a = static_cast<std::uint32_t>(m);
-        // (the warm start: the last step's impulse at the step's start; mid-step, what is
-        // left of the impulse this step's last solve gave it, spread evenly as the motion
-        // has it: groupVelocityAt())
-        row.impulse = l.impulse;
-        if (x > 0)
-          row.impulse = l.solved_at >= 0 ? l.impulse * (rest / (1 - l.solved_at)) : 0.0;
-        const std::uint32_t index = r_here;
-        if (l.b & kWallRow)
-        {
-          const Vec3 d = walls_[l.b & ~kWallRow].closestPoint(pa) - pa;
-          const double dist = d.norm();
-          if (!(dist > 0))
-            continue;
-          Vec3 dir = ground_.along(d / dist, member_normals_[m]);
-          dir = dir.squaredNorm() < settings_.wall_along_floor_squared ? Vec3(d / dist) : Vec3(dir.normalized());
-          row.push_a = dir;
-          row.target = (dist - balls_[a].radius) / rest;
-        }
-        else
-        {
-          const std::uint32_t mb = group.localOf(l.b);
-          const Vec3 d = member_positions_[mb] - pa;
-          const double dist = d.norm();
-          if (!(dist > 0))
-            continue;
-          const Vec3 u = d / dist;
-          row.b = mb;
-          row.push_a = ground_.along(u, member_normals_[m]);
-          row.push_b = ground_.along(u, member_normals_[mb]);
-          row.target = (dist - (balls_[a].radius + balls_[l.b].radius)) / rest;
-        }
-        group.rows.push_back(row);
-        row_links_.push_back(index);
-      }
-    }
-    {
-      // (the rows in the order of their contacts' keys, whatever order they were made in)
-      std::vector<std::size_t> order(group.rows.size());
-      for (std::size_t r = 0; r < order.size(); ++r)
-        order[r] = r;
-      const auto keyOf = [&](std::size_t r) { return linkKey(links_[row_links_[r]].a, links_[row_links_[r]].b); };
-      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keyOf(a) < keyOf(b); });
-      std::vector<ContactRow> rows(order.size());
-      std::vector<std::uint32_t> links(order.size());
-      for (std::size_t r = 0; r < order.size(); ++r)
-      {
-        rows[r] = group.rows[order[r]];
-        links[r] = row_links_[order[r]];
-      }
-      group.rows.swap(rows);
-      row_links_.swap(links);
-    }
-    base_u_ = group.u;
-    free_u_.resize(count);
-    resisted_.assign(count, Vec3::Zero());
-    const double slack = roundoffAt(member_positions_[0], 0.0, settings_);
-    // Rolling resistance with the contacts: after each sweep of projected Gauss-Seidel
-    // over the contacts, each member's resistance opposes its motion with its contacts'
-    // pushes, up to its cap, and stops it where that is enough (a box constraint on a
-    // friction impulse, as in Box2D's solver); then the contacts are solved exactly, with
-    // the resistance found.
-    if (friction_ && std::any_of(member_caps_.begin(), member_caps_.end(), [](double c) { return c > 0; }))
-    {
-      group.u = base_u_;
-      const auto resist = [&](std::vector<Vec3>& u) {
-        for (std::size_t m = 0; m < count; ++m)
-        {
-          const Vec3 moving = u[m] - resisted_[m];
-          const double speed = moving.norm();
-          const Vec3 r = speed <= member_caps_[m] ? Vec3(-moving) : Vec3((-member_caps_[m] / speed) * moving);
-          u[m] += r - resisted_[m];
-          resisted_[m] = r;
-        }
-      };
-      solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.resistance_sweeps, resist);
-    }
-    for (std::size_t m = 0; m < count; ++m)
-      free_u_[m] = base_u_[m] + resisted_[m];
-    group.u = free_u_;
-    solveGroupContacts(group, rest, slack);
-    for (std::size_t r = 0; r < group.rows.size(); ++r)
-    {
-      links_[row_links_[r]].impulse = group.rows[r].impulse;
-      links_[row_links_[r]].solved_at = x;
-    }
-  }
-  finishGroup(x);
 }
 
-void World::solveGroupContacts(ContactGroup& group, double rest, double slack)
+double World::groupSpan(double x) const
+{
+  // The rest of the step, or on a curved floor, as much of it as keeps each member's chord
+  // within what the floor allows (Ground::longestChord()): the group is solved again where
+  // the span ends, as a ball alone goes on from where its chord is cut.
+  const double rest = 1 - x;
+  if (chord_ends_.empty() || !(rest > 0))
+    return std::max(rest, 0.0);
+  double span = rest;
+  for (std::size_t m = 0; m < members_.size(); ++m)
+  {
+    const double length = rest * dt_ * (member_velocities_[m] + rest * member_pulls_[m]).norm();
+    const double longest = ground_.longestChord(balls_[members_[m]].radius);
+    if (length > longest)
+      span = std::min(span, rest * (longest / length));
+  }
+  return span;
+}
+
+void World::makeRows(double span)
+{
+  ContactGroup& group = contact_group_.get();
+  row_links_.clear();
+  for (std::size_t m = 0; m < members_.size(); ++m)
+  {
+    const std::size_t a = members_[m];
+    const Vec3& pa = member_positions_[m];
+    for (std::uint32_t r = first_link_[a]; r != kNone32;)
+    {
+      const std::uint32_t index = r;
+      const ContactLink& l = links_[r];
+      const bool mine = l.a == a;
+      r = mine ? l.next_a : l.next_b;
+      if (!mine)
+        continue;  // (each contact once, from its first ball)
+      ContactRow row;
+      row.a = static_cast<std::uint32_t>(m);
+      row.impulse = l.rate * span;  // (the warm start: its last solve's, at the rate it had)
+      // (a contact may close by its gap over the span: speculative)
+      Vec3 d;
+      double gap = 0.0;
+      if (l.b & kWallRow)
+      {
+        d = walls_[l.b & ~kWallRow].closestPoint(pa) - pa;
+        gap = d.norm() - balls_[a].radius;
+        Vec3 dir = ground_.along(d.normalized(), member_normals_[m]);
+        row.push_a = dir.squaredNorm() < settings_.wall_along_floor_squared ? Vec3(d.normalized()) : Vec3(dir.normalized());
+      }
+      else
+      {
+        const std::uint32_t mb = group.localOf(l.b);
+        d = member_positions_[mb] - pa;
+        gap = d.norm() - (balls_[a].radius + balls_[l.b].radius);
+        row.b = mb;
+        row.push_a = ground_.along(d.normalized(), member_normals_[m]);
+        row.push_b = ground_.along(d.normalized(), member_normals_[mb]);
+      }
+      if (!(d.norm() > 0))
+        continue;
+      row.target = gap / span;
+      group.rows.push_back(row);
+      row_links_.push_back(index);
+    }
+  }
+  // (the rows in the order of their contacts' keys, whatever order they were made in)
+  std::vector<std::size_t> order(group.rows.size());
+  for (std::size_t r = 0; r < order.size(); ++r)
+    order[r] = r;
+  const auto keyOf = [&](std::size_t r) { return linkKey(links_[row_links_[r]].a, links_[row_links_[r]].b); };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keyOf(a) < keyOf(b); });
+  std::vector<ContactRow> rows(order.size());
+  std::vector<std::uint32_t> links(order.size());
+  for (std::size_t r = 0; r < order.size(); ++r)
+  {
+    rows[r] = group.rows[order[r]];
+    links[r] = row_links_[order[r]];
+  }
+  group.rows.swap(rows);
+  row_links_.swap(links);
+}
+
+void World::solveRows(double span)
+{
+  ContactGroup& group = contact_group_.get();
+  const std::size_t count = members_.size();
+  base_u_.resize(count);
+  for (std::size_t m = 0; m < count; ++m)
+    base_u_[m] = dt_ * (member_velocities_[m] + span * member_pulls_[m]);
+  free_u_.resize(count);
+  resisted_.assign(count, Vec3::Zero());
+  const double slack = roundoffAt(member_positions_[0], 0.0, settings_);
+  // Rolling resistance with the contacts: after each sweep of projected Gauss-Seidel
+  // over the contacts, each member's resistance opposes its motion with its contacts'
+  // pushes, up to its cap, and stops it where that is enough (a box constraint on a
+  // friction impulse, as in Box2D's solver); then the contacts are solved exactly, with
+  // the resistance found.
+  if (friction_ && std::any_of(member_caps_.begin(), member_caps_.end(), [](double c) { return c > 0; }))
+  {
+    group.u = base_u_;
+    const auto resist = [&](std::vector<Vec3>& u) {
+      for (std::size_t m = 0; m < count; ++m)
+      {
+        const Vec3 moving = u[m] - resisted_[m];
+        const double cap = span * member_caps_[m];
+        const double speed = moving.norm();
+        const Vec3 r = speed <= cap ? Vec3(-moving) : Vec3((-cap / speed) * moving);
+        u[m] += r - resisted_[m];
+        resisted_[m] = r;
+      }
+    };
+    solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.resistance_sweeps, resist);
+  }
+  for (std::size_t m = 0; m < count; ++m)
+    free_u_[m] = base_u_[m] + resisted_[m];
+  group.u = free_u_;
+  solveGroupContacts(group, span, slack);
+  for (std::size_t r = 0; r < group.rows.size(); ++r)
+    links_[row_links_[r]].rate = group.rows[r].impulse / span;
+}
+
+void World::solveGroupContacts(ContactGroup& group, double span, double slack)
 {
   const std::size_t count = members_.size();
   const auto project = [&](std::vector<Vec3>& u) {
@@ -354,7 +394,7 @@ void World::solveGroupContacts(ContactGroup& group, double rest, double slack)
       return;
     for (std::size_t m = 0; m < count; ++m)
       if (!motions_[members_[m]].frozen)
-        u[m] = (onFloor(members_[m], member_positions_[m] + rest * u[m]) - member_positions_[m]) / rest;
+        u[m] = (onFloor(members_[m], member_positions_[m] + span * u[m]) - member_positions_[m]) / span;
   };
   // On a curved floor the rows are the contacts' distances linearized where the step
   // starts; the ends put back on the floor can lie closer. Each row's target then takes
@@ -379,19 +419,19 @@ void World::solveGroupContacts(ContactGroup& group, double rest, double slack)
     double deepest = 0.0;
     for (ContactRow& row : group.rows)
     {
-      const Vec3 ea = member_positions_[row.a] + rest * group.u[row.a];
+      const Vec3 ea = member_positions_[row.a] + span * group.u[row.a];
       double gap = 0.0;
       const ContactLink& l = links_[row_links_[static_cast<std::size_t>(&row - group.rows.data())]];
       if (row.b == ContactRow::kImmovable)
         gap = walls_[l.b & ~kWallRow].distance(ea) - balls_[members_[row.a]].radius;
       else
-        gap = (member_positions_[row.b] + rest * group.u[row.b] - ea).norm() -
+        gap = (member_positions_[row.b] + span * group.u[row.b] - ea).norm() -
               (balls_[members_[row.a]].radius + balls_[members_[row.b]].radius);
-      const double linear = rest * (row.target - closingOf(group.u, row));
+      const double linear = span * (row.target - closingOf(group.u, row));
       if (gap < linear && gap < 0)
       {
         deepest = std::max(deepest, -gap);
-        row.target += (gap - linear) / rest;
+        row.target += (gap - linear) / span;
       }
     }
     if (!(deepest > slack))
@@ -404,7 +444,7 @@ bool World::rollsInGroup(std::size_t i, const Vec3& n) const
   return friction_ && frictionUnder(n).holdsRolling(spins_[i].inertia);
 }
 
-void World::finishGroup(double x)
+void World::finishGroup(double x, double span)
 {
   ContactGroup& group = contact_group_.get();
   for (std::size_t m = 0; m < members_.size(); ++m)
@@ -419,6 +459,8 @@ void World::finishGroup(double x)
     const Vec3 spin_about_n = member_rolls_[m] ? Vec3(spinAt(b, x).dot(n) * n) : Vec3::Zero();
     beginMotion(b, x, member_positions_[m], v);
     motions_[b].b = group.u[m];
+    if (!chord_ends_.empty())
+      chord_ends_[b] = span > 0 ? x + span : 1.0;  // (where the group is solved again)
     group_velocity_[b] = member_velocities_[m];
     group_motion_[b] = 1;
     motions_[b].held = false;
@@ -460,8 +502,8 @@ World::ContactGroup& World::endGroup()
   for (const std::uint32_t index : linksInKeyOrder())
   {
     const ContactLink& l = links_[index];
-    if (l.impulse > 0 && settings_.warm_start)
-      warm_[linkKey(l.a, l.b)] = l.solved_at > 0 ? l.impulse / (1 - l.solved_at) : l.impulse;  // (a whole step's)
+    if (l.rate > 0 && settings_.warm_start)
+      warm_[linkKey(l.a, l.b)] = l.rate;
     const Ball& a = balls_[l.a];
     if (l.b & kWallRow)
     {
@@ -528,46 +570,73 @@ void World::boundGroupEnergies()
 
 void World::separateAtEnd()
 {
-  for (int sweep = 0; sweep < settings_.position_sweeps; ++sweep)
+  // Each pass: the step's contacts as rows on the balls' moves along the floor, the
+  // overlapping ones to open by their depth, the others to close by no more than their
+  // gap, solved as the velocities are (exactly, whatever the masses: a light ball jammed
+  // between a heavy one and a wall is not pushed back and forth); then each ball back on
+  // the floor, which the next pass corrects.
+  for (int pass = 0; pass < settings_.position_sweeps; ++pass)
   {
+    ContactGroup& group = contact_group_.get();
+    group.clear();
     double deepest = 0.0;
     for (const std::uint32_t index : linksInKeyOrder())
     {
       const ContactLink& l = links_[index];
-      Ball& a = balls_[l.a];
-      const double inv_a = inverseMass(l.a);
+      const Ball& a = balls_[l.a];
+      ContactRow row;
+      Vec3 d;
+      double gap = 0.0;
       if (l.b & kWallRow)
       {
-        const Vec3 d = walls_[l.b & ~kWallRow].closestPoint(a.position) - a.position;
-        const double dist = d.norm();
-        const double depth = a.radius - dist;
-        if (!(depth > 0) || !(dist > 0) || inv_a == 0)
-          continue;
-        deepest = std::max(deepest, depth);
-        const Vec3 move = -(depth / dist) * d;
-        const Vec3 to = onFloor(l.a, a.position + move);
-        motions_[l.a].b += to - a.position;
-        a.position = to;
-        continue;
+        d = walls_[l.b & ~kWallRow].closestPoint(a.position) - a.position;
+        gap = d.norm() - a.radius;
       }
-      Ball& b = balls_[l.b];
-      const double inv_b = inverseMass(l.b);
-      const Vec3 d = b.position - a.position;
-      const double dist = d.norm();
-      const double depth = a.radius + b.radius - dist;
-      if (!(depth > 0) || !(dist > 0) || !(inv_a + inv_b > 0))
+      else
+      {
+        d = balls_[l.b].position - a.position;
+        gap = d.norm() - (a.radius + balls_[l.b].radius);
+      }
+      if (!(d.norm() > 0) || !(gap <= settings_.touch_slack))
         continue;
-      deepest = std::max(deepest, depth);
-      const Vec3 u = d / dist;
-      const Vec3 to_a = onFloor(l.a, a.position - (depth * inv_a / (inv_a + inv_b)) * u);
-      const Vec3 to_b = onFloor(l.b, b.position + (depth * inv_b / (inv_a + inv_b)) * u);
-      motions_[l.a].b += to_a - a.position;
-      motions_[l.b].b += to_b - b.position;
-      a.position = to_a;
-      b.position = to_b;
+      deepest = std::max(deepest, -gap);
+      // (along the floor, not unit: a move u along it changes the distance by u . push;
+      // where the floor all but faces the contact, along the contact's normal)
+      const auto push = [&](std::size_t i) {
+        const Vec3 t = ground_.along(d.normalized(), floor_normals_[i]);
+        return t.squaredNorm() < settings_.separation_min_share ? Vec3(d.normalized()) : t;
+      };
+      row.a = group.localOf(l.a);
+      row.push_a = push(l.a);
+      if (!(l.b & kWallRow))
+      {
+        row.b = group.localOf(l.b);
+        row.push_b = push(l.b);
+      }
+      row.target = gap;
+      group.rows.push_back(row);
     }
     if (!(deepest > 0))
       break;
+    for (std::size_t k = 0; k < group.size(); ++k)
+    {
+      const std::size_t i = group.ballAt(k);
+      group.u[k] = Vec3::Zero();
+      group.inv_mass[k] = groupInverseMass(i, rollsInGroup(i, floor_normals_[i]));
+    }
+    const std::vector<Vec3> still(group.size(), Vec3::Zero());
+    const double slack = roundoffAt(balls_[group.ballAt(0)].position, 0.0, settings_);
+    if (!solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.group_sweeps).converged &&
+        !solveContactsExactly(still, group.inv_mass, group.rows, group.u, slack, settings_.exact_solves))
+      ++stats_.unsettled_contacts;
+    for (std::size_t k = 0; k < group.size(); ++k)
+    {
+      const std::size_t i = group.ballAt(k);
+      Ball& ball = balls_[i];
+      const Vec3 to = onFloor(i, ball.position + group.u[k]);
+      motions_[i].b += to - ball.position;
+      ball.position = to;
+    }
   }
 }
 }  // namespace ball_collision_sim::core
