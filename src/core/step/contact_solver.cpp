@@ -11,6 +11,9 @@ namespace
 /// A's diagonal is taken this much larger: rows that say the same (a jam's) leave A
 /// singular, and this makes them share their push equally [ratio].
 constexpr double kRegularization = 1e-10;
+/// ... and its solution refined this many times against A (each takes its error down by
+/// about the regularization's factor) [refinements].
+constexpr int kRefinements = 2;
 }  // namespace
 
 bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std::vector<ContactRow>& rows,
@@ -50,6 +53,7 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
         if (r.b != ContactRow::kImmovable)
           of_body[r.b].push_back(p);
       }
+      Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(n);
       for (std::size_t k = 0; k < of_body.size(); ++k)
       {
         if (inv[k] == 0)
@@ -62,18 +66,28 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
             const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
             const ContactRow& t = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(q)])];
             const auto body = static_cast<std::uint32_t>(k);
-            double a = inv[k] * coefficient(r, body).dot(coefficient(t, body));
+            const double a = inv[k] * coefficient(r, body).dot(coefficient(t, body));
             if (p == q)
-              a *= 1 + kRegularization;  // (contacts that say the same, in a jam, leave A singular)
+              diagonal[p] += a;
             entries.emplace_back(p, q, a);
           }
       }
+      // (contacts that say the same, in a jam, leave A singular: it is factorized with its
+      // diagonal a little larger, and the solution refined against A itself)
+      for (int p = 0; p < n; ++p)
+        entries.emplace_back(p, p, kRegularization * diagonal[p]);
       Eigen::SparseMatrix<double> A(n, n);
       A.setFromTriplets(entries.begin(), entries.end());
       Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> solver(A);
       if (solver.info() != Eigen::Success)
         return false;
-      const Eigen::VectorXd x = solver.solve(rhs);
+      Eigen::VectorXd x = solver.solve(rhs);
+      for (int refine = 0; refine < kRefinements; ++refine)
+      {
+        const Eigen::VectorXd residual =
+            rhs - (A.selfadjointView<Eigen::Lower>() * x - kRegularization * diagonal.cwiseProduct(x));
+        x += solver.solve(residual);
+      }
       if (solver.info() != Eigen::Success || !x.allFinite())
         return false;
       for (int p = 0; p < n; ++p)
