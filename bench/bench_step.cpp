@@ -64,12 +64,12 @@ void BM_S3Bowl(benchmark::State& state)
 }
 BENCHMARK(BM_S3Bowl)->Arg(1000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
-/// The pile at rest: stepped until every ball sleeps (at most 60 s), asleep on a curved
-/// floor; its label says how many did, after how many steps (how long piles take to come to
-/// rest varies from version to version: a frictionless pile can creep for tens of seconds).
+/// The pile at rest (with friction, bench::bowlPileAtRest()): stepped until every ball
+/// sleeps (at most 60 s), asleep on a curved floor; its label says how many did, after how
+/// many steps.
 void BM_S4BowlPile(benchmark::State& state)
 {
-  World world(ball_collision_sim::bench::bowlPile(static_cast<int>(state.range(0))));
+  World world(ball_collision_sim::bench::bowlPileAtRest(static_cast<int>(state.range(0))));
   for (int k = 0; k < 6000 && world.stats().sleeping_balls < world.balls().size(); ++k)
     world.step();
   // (a label, not counters: the CSV report wants every benchmark to have the same counters)

@@ -137,6 +137,20 @@ inline Scene bowlPile(int n, std::uint64_t seed = 4)
   s.random_balls->mass = {0.5, 2};
   return s;
 }
+/// S4 at rest: the same pile with friction (sliding 0.2, rolling resistance 0.01, spinning
+/// 0.044), which comes to rest and sleeps. (S3's bowl is a paraboloid: without friction a
+/// pile's centre of mass swings about its bottom as one body, and no contact inside the
+/// pile takes that energy.)
+inline Scene bowlPileAtRest(int n, std::uint64_t seed = 4)
+{
+  Scene s = bowlPile(n, seed);
+  core::FrictionDef f;
+  f.sliding = 0.2;
+  f.rolling = 0.01;
+  f.spinning = 0.044;
+  s.friction = f;
+  return s;
+}
 /// S5 gas in flight: n balls of radius 0.05 m and 1 kg without a floor, in a closed cube
 /// of walls (faces on all six sides) sized for a 2 % volume fraction, under gravity;
 /// they start on a cubic lattice, velocity components uniform in [-2, 2] m/s;

@@ -77,6 +77,20 @@ inline FloorDef bowl(double L, double h)
   return f;
 }
 
+/// Friction for piles in a bowl (sliding 0.2, rolling resistance 0.01, spinning 0.044):
+/// what takes their energy as they come to rest. The test bowls are paraboloids, where a
+/// frictionless pile's centre of mass swings as one body for good (every ball is pulled
+/// toward the bottom in proportion to its distance from it, and no contact inside the
+/// pile closes for that motion).
+inline core::FrictionDef pileFriction()
+{
+  core::FrictionDef f;
+  f.sliding = 0.2;
+  f.rolling = 0.01;
+  f.spinning = 0.044;
+  return f;
+}
+
 /// 60 balls (radius 0.05-0.08 m, 0.5-2 kg, up to 1 m/s) dropped in a 3 m square bowl
 /// 0.6 m deep at restitution 0.5: they settle into a pile at its bottom.
 inline Scene bowlPile(std::uint32_t seed)

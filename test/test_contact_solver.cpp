@@ -1,6 +1,6 @@
 // The contact solver (src/core/step/contact_solver.hpp) on its own: closed forms of
 // jams at rest, and the unique solution of a linear complementarity problem found by
-// trying every set of active contacts; the directions a ball may not move along
+// trying every set of active contacts, by its sweeps and by its exact stage; the directions a ball may not move along
 // (src/core/step/blocked_directions.hpp), kept out of exactly, as many as it has.
 #include "core/step/blocked_directions.hpp"
 #include "core/step/contact_solver.hpp"
@@ -163,6 +163,93 @@ TEST(ContactSolver, MatchesTheExactSolutionOfAnOffCentreJam)
     }
     for (int k = 0; k < 3; ++k)
       EXPECT_LT((u[k] - expected[k]).norm(), 1e-12) << pull.transpose() << " ball " << k;
+  }
+}
+
+// The exact stage (step::solveContactsExactly()) on its own, from no guess of which
+// contacts push: six balls on a plane, eight contacts among them and with two walls, each
+// allowed to close by a gap of its own; random masses and free motions. Its impulses and
+// motions are those of the unique solution found by trying all 256 sets of pushing
+// contacts, to 1e-12.
+TEST(ContactSolver, TheExactStageFindsWhichContactsPush)
+{
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const Vec3 up(0, 0, 1);
+  const std::array<std::pair<std::uint32_t, std::uint32_t>, 8> pairs = {
+      {{0, 1}, {1, 2}, {0, 2}, {2, 3}, {3, 4}, {4, 5}, {3, 5}, {0, ContactRow::kImmovable}}};
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    std::vector<double> inv(6);
+    std::vector<Vec3> free(6);
+    for (int k = 0; k < 6; ++k)
+    {
+      inv[k] = 1 / (1.5 + unit(rng));
+      free[k] = Vec3(unit(rng), unit(rng), 0);
+    }
+    std::vector<ContactRow> rows;
+    for (const auto& [i, j] : pairs)
+    {
+      const Vec3 normal = Vec3(unit(rng), unit(rng), 0).normalized();
+      ContactRow row = pair(i, j, normal, up, up);
+      row.target = 0.2 * (unit(rng) + 1);  // (the gap it may close by)
+      rows.push_back(row);
+    }
+    const auto closings = [&](const std::vector<Vec3>& u) {
+      Eigen::VectorXd c(rows.size());
+      for (std::size_t p = 0; p < rows.size(); ++p)
+        c(static_cast<int>(p)) = step::closingOf(u, rows[p]) - rows[p].target;
+      return c;
+    };
+    const auto apply = [&](const Eigen::VectorXd& lambda) {
+      std::vector<Vec3> u = free;
+      for (std::size_t p = 0; p < rows.size(); ++p)
+      {
+        u[rows[p].a] -= lambda(static_cast<int>(p)) * inv[rows[p].a] * rows[p].push_a;
+        if (rows[p].b != ContactRow::kImmovable)
+          u[rows[p].b] += lambda(static_cast<int>(p)) * inv[rows[p].b] * rows[p].push_b;
+      }
+      return u;
+    };
+    // W column by column: what a unit impulse at each contact does to every closing
+    Eigen::MatrixXd W(8, 8);
+    const Eigen::VectorXd c0 = closings(free);
+    for (int q = 0; q < 8; ++q)
+      W.col(q) = c0 - closings(apply(Eigen::VectorXd::Unit(8, q)));
+    Eigen::VectorXd exact = Eigen::VectorXd::Constant(8, -1);
+    for (int set = 0; set < 256; ++set)
+    {
+      std::vector<int> active;
+      for (int p = 0; p < 8; ++p)
+        if (set & (1 << p))
+          active.push_back(p);
+      Eigen::VectorXd lambda = Eigen::VectorXd::Zero(8);
+      if (!active.empty())
+      {
+        Eigen::MatrixXd Wa(active.size(), active.size());
+        Eigen::VectorXd ca(active.size());
+        for (std::size_t p = 0; p < active.size(); ++p)
+        {
+          ca(static_cast<int>(p)) = c0(active[p]);
+          for (std::size_t q = 0; q < active.size(); ++q)
+            Wa(static_cast<int>(p), static_cast<int>(q)) = W(active[p], active[q]);
+        }
+        const Eigen::VectorXd la = Wa.ldlt().solve(ca);
+        for (std::size_t p = 0; p < active.size(); ++p)
+          lambda(active[p]) = la(static_cast<int>(p));
+      }
+      if (lambda.minCoeff() >= -1e-13 && (c0 - W * lambda).maxCoeff() <= 1e-13)
+        exact = lambda;
+    }
+    ASSERT_GE(exact.minCoeff(), -1e-13) << "trial " << trial;
+    std::vector<Vec3> u = free;
+    ASSERT_TRUE(step::solveContactsExactly(free, inv, rows, u, 1e-13, 64)) << "trial " << trial;
+    const std::vector<Vec3> expected = apply(exact);
+    for (int p = 0; p < 8; ++p)
+      EXPECT_NEAR(rows[static_cast<std::size_t>(p)].impulse, exact(p), 1e-12) << "trial " << trial << " contact " << p;
+    for (int k = 0; k < 6; ++k)
+      EXPECT_LT((u[static_cast<std::size_t>(k)] - expected[static_cast<std::size_t>(k)]).norm(), 1e-12)
+          << "trial " << trial << " ball " << k;
   }
 }
 

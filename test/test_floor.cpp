@@ -510,7 +510,7 @@ TEST(Bowl, AFastBallsChordsAreCutToStayOnTheFloor)
   uncut.chord_turn = uncut.chord_sag = std::numeric_limits<double>::infinity();
   World whole(scene, uncut);
   const OffTheFloor whole_off = offTheFloor(whole, b.radius);
-  EXPECT_GT(whole_off.impacts, 250u);
+  EXPECT_GT(whole_off.impacts, 200u);  // (its path off the floor meets the walls less often)
   EXPECT_LT(whole_off.at_step_ends, 1e-9);
   EXPECT_GT(whole_off.at_impacts, 0.05);
 }

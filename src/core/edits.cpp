@@ -1,7 +1,7 @@
 // Edits between steps: adding, moving, striking and removing balls, adding and removing
 // walls. Each checks its input first and changes nothing when it refuses. Reads and
 // writes balls_, spins_, feet_, walls_; an edit forgets the step's visiting order and
-// wakes sleeping balls where what held them may have changed.
+// wakes the sleeping balls it touches (a wall's, all: what held them may have changed).
 #include "ball_collision_sim/core/world.hpp"
 
 #include "step/floor_motion.hpp"
@@ -93,8 +93,12 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
   result.error = place(def, landing, id, foot);
   if (!result.error.empty())
     return result;
+  // (what leaned on it where it was wakes, and what it touches where it is, and itself)
+  wakeTouching(balls_[s].position, balls_[s].radius);
+  wakeTouching(def.position, def.radius);
   balls_[s].position = def.position;
   balls_[s].velocity = def.velocity;
+  balls_[s].asleep = false;
   balls_[s].quiet_steps = 0;  // (the ball the edit moved counts its still steps again)
   if (friction_)
     spins_[s] = makeSpin(def, foot);
@@ -148,6 +152,7 @@ AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
     spin.kind = frictionUnder(ground_.normalUnder(footOf(s))).kindOf(spin.inertia, ball.radius, velocity, w);
   }
   ball.velocity = velocity;
+  wakeTouching(ball.position, ball.radius);  // (itself, and what it may push)
   ball.quiet_steps = 0;  // (the ball the edit set going counts its still steps again)
   forgetOrder();
   result.ok = true;
@@ -184,6 +189,7 @@ bool World::removeBall(int id)
     return false;
   sortById();  // (then its slot is its place in balls())
   const std::size_t k = indexOf(id);
+  wakeTouching(balls_[k].position, balls_[k].radius);  // what leaned on it
   if (!feet_.empty())
     feet_.erase(feet_.begin() + static_cast<std::ptrdiff_t>(k));
   if (!spins_.empty())

@@ -52,6 +52,7 @@ std::vector<LostBall> World::removeLostBalls()
     if (!why.empty())
     {
       lost.push_back({balls_[k], angularVelocity(k), motionKind(k), inertia(k), std::move(why)});
+      wakeTouching(balls_[k].position, balls_[k].radius);  // what leaned on it
       continue;
     }
     if (kept != k)

@@ -100,7 +100,6 @@ void World::reset()
 
 void World::forgetOrder()
 {
-  wakeAll();
   sortById();
   order_age_ = 0;
   motions_ready_ = false;
@@ -138,6 +137,7 @@ void World::step()
   step_starts_.clear();
   predictMotions();            // each ball's free motion over the step, on the floor, and its swept box
   buildBroadPhase();           // the swept boxes into a uniform grid
+  formRestingGroups();         // resting contacts as constraints, each group's motions solved
   findFirstImpacts();          // exact times of impact of nearby pairs and walls
   resolveEventsInTimeOrder();  // earliest first; re-detect only the balls involved
   // The next step visits the balls in this step's cell order, so that neighbours in

@@ -114,6 +114,17 @@ public:
   const Vec3& normal() const { return normal_; }
   /// Gravity along the floor, g_t [m/s^2].
   const Vec3& gravityAlong() const { return g_t_; }
+  /// Rolling resistance's deceleration of a rolling ball, mu_r g_n [m/s^2].
+  double rollingResistance() const { return mu_.rolling * g_n_; }
+  /// Friction grips a ball of inertia k here, so that it rolls rather than slides: there is
+  /// sliding friction, and it holds rolling against gravity along the floor,
+  /// k |g_t| / (1 + k) <= mu_s g_n.
+  bool holdsRolling(double k) const
+  {
+    return mu_.sliding > 0 && k * g_t_.norm() / (1 + k) <= mu_.sliding * g_n_;
+  }
+  /// There is sliding friction: spin and motion exchange energy.
+  bool grips() const { return mu_.sliding > 0; }
 
 private:
   /// Removes slip u by the impulse at the contact point that stops it.

@@ -38,6 +38,23 @@ struct StepSettings
   /// more than this part of the largest it started with (or resting_speed_floor): the
   /// usual relative tolerance of an iterative solver [ratio].
   double contact_tolerance = 1e-6;
+  /// Passes over a step's resting contacts at its end that open those its groups' solves
+  /// left overlapping (their residual: each pass solves them together, then puts the
+  /// balls back on the floor, which the next pass corrects) [passes].
+  int position_sweeps = 8;
+  /// ... where a contact's normal has less than this of it (squared) along the floor, the
+  /// move that opens it is along the normal itself (along the floor it would be long) [1].
+  double separation_min_share = 0.01;
+  bool warm_start = true;
+  int group_sweeps = 20;
+  int group_passes = 4;
+  /// Direct solves the contact solver's exact stage may take, changing which contacts push
+  /// between them (step::solveContactsExactly()); a group of hundreds needs a few [solves].
+  int exact_solves = 256;
+  /// Sweeps of the contact solver over a group with rolling resistance, each followed by
+  /// the members' resistance, before its contacts are solved exactly with the resistance
+  /// found (what is left is a resistance a little off its cap) [sweeps].
+  int resistance_sweeps = 100;
   /// Passes of alternating corrections (onto the floor, out of blocked directions, the
   /// approach of a resting pair) before giving up: each pass halves what is left in
   /// practice, and 32 halvings reach round-off [passes].

@@ -21,6 +21,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <unordered_map>
 #include <vector>
 
 namespace ball_collision_sim::core
@@ -61,7 +62,9 @@ struct WorldStats
 {
   std::uint64_t steps = 0;
   std::uint64_t events = 0;          ///< handled collisions, resting contacts included
-  std::uint64_t resting_events = 0;
+  std::uint64_t resting_events = 0;  ///< of them, contacts met mid-step that rest
+  /// resting contacts solved as constraints, each counted once for each step it is in
+  std::uint64_t resting_contacts = 0;
   std::uint64_t stale_events = 0;    ///< queued impacts dropped because a ball moved on
   std::uint64_t frozen_balls = 0;    ///< balls stopped for a step by the per-step event cap
   /// balls held still for the rest of a step: jammed at a resting contact, or with no
@@ -312,6 +315,20 @@ private:
     Vec3 along_ball;   ///< the normal's part along the floor under `ball`
     Vec3 along_other;  ///< ... and under `other`
   };
+  /// A resting contact as a constraint of the step: balls a and b (visiting indices), or
+  /// ball a and wall w (b = kWallRow | w); next_a and next_b link the rows of each ball.
+  struct ContactLink
+  {
+    std::uint32_t a;
+    std::uint32_t b;
+    std::uint32_t next_a;
+    std::uint32_t next_b;
+    /// the last solve's impulse per unit of the step it spanned, its next solve's warm
+    /// start (the last step's, until solved in this one)
+    double rate;
+  };
+  static constexpr std::uint32_t kWallRow = 0x80000000u;
+  static constexpr std::uint32_t kNone32 = 0xffffffffu;
   /// A group of balls joined by resting contacts, as the contact solver takes it
   /// (src/core/step/contact_group.hpp).
   struct ContactGroup;
@@ -366,9 +383,6 @@ private:
   /// where gravity closed a pair fast enough, then no closing speed left at any contact
   /// (the contact solver), along the floor.
   void settleRestingVelocities();
-  /// The step's resting contacts as the contact solver takes them, for the velocities
-  /// at the step's end (after the bounces that gravity's closing speed makes).
-  ContactGroup& velocityGroup();
   /// Turns ball i by its rolling over the step's move d (its angular velocity follows
   /// from its velocity when asked for: angularVelocity()).
   void roll(std::size_t i, const Vec3& floor_normal, const Vec3& d);
@@ -389,12 +403,6 @@ private:
     Vec3 n, na, nb, along_a, along_b, ta, tb;
     double inv_a, inv_b;
   };
-  /// A resting contact blocks the approach of a ball that the other cannot give way to
-  /// (both when both are all but still); returns whether both are.
-  bool blockAtRest(const PairContact& c, const Vec3& va, const Vec3& vb);
-  /// No approach left in the motions of a resting pair, and a pair that would close in
-  /// again at once, or is jammed, held still for the rest of the step.
-  void settleRestingPair(const PairContact& c, double x, const Vec3& pa, const Vec3& pb, bool both_still);
   /// Where ball i's chord ends: 1, or on a curved floor where it was cut (cutChord()).
   double chordEnd(std::size_t i) const { return chord_ends_.empty() ? 1.0 : chord_ends_[i]; }
   /// A chord of ball i (from `position` with start velocity v0) longer than the floor
@@ -405,10 +413,91 @@ private:
   /// Ball i's motion ends within the step (StepEvent::transition): its friction phase's,
   /// made exact by FrictionLaw::finish(), or its chord at a cut; a new one starts there.
   void resolveMotionEnd(const Event& event);
+  // Resting groups (src/core/step/resting_groups.cpp).
+  /// The step's resting contacts at its start: touching pairs and walls that close no
+  /// faster than they rest, each group of balls they join solved together.
+  void formRestingGroups();
+  /// The group of ball i (its union-find root), or kNone32.
+  std::uint32_t groupOf(std::size_t i);
+  /// Ball i is in a group (alone, if it was in none).
+  void joinGroup(std::size_t i);
+  /// The groups of balls i and j become one.
+  void mergeGroups(std::size_t i, std::size_t j);
+  /// Whether ball i is in a resting group this step.
+  bool grouped(std::size_t i) const { return !group_parent_.empty() && group_parent_[i] != kNone32; }
+  /// Whether ball i has a contact with `other` (a ball's visiting index, or kWallRow | w).
+  bool linked(std::size_t i, std::uint32_t other) const;
+  /// A resting contact between ball a and `other` (a ball, or kWallRow | w).
+  void link(std::size_t a, std::uint32_t other);
+  /// Ball i, on its group's motion, takes a change of velocity dv at x, where it is at
+  /// `position` (its group is to be solved again).
+  void takeImpulse(std::size_t i, double x, const Vec3& position, const Vec3& dv);
+  /// Ball i's velocity at x on its group's motion: its velocity where the motion starts,
+  /// plus the share so far of the impulses that its solve gave it over the rest of the
+  /// step (gravity's and its contacts', spread evenly); the motion's own at the step's end.
+  Vec3 groupVelocityAt(std::size_t i, double x) const;
+  /// The kinetic energy an impulse at x that takes ball i's velocity from `before` to
+  /// `after` (its chord's, as the impact sees it) gives it [J].
+  double impulseEnergy(std::size_t i, double x, const Vec3& before, const Vec3& after) const;
+  /// The motions of the group of ball i from x on: each member's free motion from where it
+  /// is at x, with no contact of the group closing by more than its gap (the contact
+  /// solver); each member gets the new motion, and mid-step (x > 0) is detected again.
+  void solveGroup(std::size_t i, double x);
+  /// The contacts of the group being solved (members_), exactly, from free_u_ over the
+  /// rest of the step, `rest`: contact_group_'s u and impulses.
+  void solveGroupContacts(ContactGroup& group, double span, double slack);
+  /// Each member of the group solved gets its motion from x over `span` (and with
+  /// friction, the spin of rolling with it).
+  void finishGroup(double x, double span);
+  /// The stages of solveGroup(): the members of ball i's group, in id order (members_);
+  /// where they are at x, their velocities there and what gravity adds per unit of the
+  /// step; the part of the rest of the step the solve spans; the rows of their contacts
+  /// (contact_group_); their motions over the span, solved.
+  void gatherGroup(std::size_t i);
+  void startMembers(double x);
+  double groupSpan(double x) const;
+  void makeRows(double span);
+  void solveRows(double span);
+  /// Ball i rolls in its group, under a floor of normal n: friction holds rolling there.
+  bool rollsInGroup(std::size_t i, const Vec3& n) const;
+  /// What an impulse along the floor moves ball i by, in a group: 1 / m, and where it
+  /// rolls (rolls) 1 / ((1 + k) m) [1/kg].
+  double groupInverseMass(std::size_t i, bool rolls) const;
+  /// Ball i's motion starts anew at x from `position` with velocity v0 (its record, and
+  /// where the step started it).
+  void beginMotion(std::size_t i, double x, const Vec3& position, const Vec3& v0);
+  /// The contacts of the step's groups that touch at its end, as the contact solver takes
+  /// them, and the resting contacts that sleeping reads.
+  ContactGroup& endGroup();
+  /// The step's contacts in the order of their keys (linkKey()), made at the commit.
+  const std::vector<std::uint32_t>& linksInKeyOrder();
+  /// The key of a contact of ball a with `other` by ids, whatever the records' order.
+  std::uint64_t linkKey(std::size_t a, std::uint32_t other) const;
+  /// No contact of the step's groups overlaps at its end: the overlapping ones opened by
+  /// moves along the floor, solved together (a few passes, each ball back on the floor
+  /// after each).
+  void separateAtEnd();
+
+  /// Each group ends the step with no more energy than its members had at its start plus
+  /// what impacts gave them: where the time step gives more, its velocities are scaled down.
+  void boundGroupEnergies();
+  /// Ball i's energy [J], kinetic with velocity v at position p (and where friction
+  /// grips, its spin's, the spin it has now), and potential.
+  double energyOf(std::size_t i, const Vec3& p, const Vec3& v) const
+  {
+    const Ball& ball = balls_[i];
+    double e = ball.mass * (0.5 * v.squaredNorm() - gravity_.dot(p));
+    if (friction_ && friction_->grips())
+      e += 0.5 * spins_[i].inertia * ball.mass * ball.radius * ball.radius * spins_[i].angular_velocity.squaredNorm();
+    return e;
+  }
   /// Ball i's new motion from x on; an impact (not a resting contact) lets a held ball
   /// go, and a ball still held after it keeps no motion for the rest of the step.
   void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact);
   void countEvent(std::size_t i);
+  /// Ball i has a new motion that no event of its own made (its group's): what was
+  /// predicted for it is stale, and its box follows the motion.
+  void renewMotion(std::size_t i);
   /// Ball i stays where it is through the step's resting contacts (counted once a step)
   /// and ends the step with no velocity; with friction its spin then follows its
   /// contacts (constrainSpin()).
@@ -423,8 +512,11 @@ private:
   /// something while all but still, and puts to sleep each group of them held together
   /// by resting contacts whose every ball has been so for sleep_steps steps.
   void sleepStillGroups();
-  /// Every ball awake (an edit: what held a group may be gone).
+  /// Every ball awake (an edit of the walls: what held a group may be gone).
   void wakeAll();
+  /// Wakes the sleeping balls that touch a ball of `radius` at `position` (an edit there:
+  /// what they lean on may have changed; the rest of their group wakes as they move).
+  void wakeTouching(const Vec3& position, double radius);
   /// Whether a wall parts two balls that touch (they then lean on it, not on each other).
   bool wallBetween(const Ball& a, const Ball& b) const;
   void recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,
@@ -604,6 +696,36 @@ private:
   std::vector<CollisionEvent> events_;
   bool record_events_ = true;
   std::vector<RestingContact> resting_;
+  /// Resting groups: per ball its union-find parent (kNone32: in none), the next member of
+  /// its group (a ring), and its first contact; the step's contacts.
+  std::vector<std::uint32_t> group_parent_;
+  std::vector<std::uint32_t> group_next_;
+  std::vector<std::uint32_t> first_link_;
+  std::vector<ContactLink> links_;
+  /// per ball: its motion is its group's (a chord at the constant velocity it starts with),
+  /// and its velocity where that motion starts, before the step's impulses
+  std::vector<std::uint8_t> group_motion_;
+  std::vector<Vec3> group_velocity_;
+  std::vector<std::uint32_t> row_links_;
+  std::vector<std::uint32_t> link_order_;
+  /// each contact's last impulse, by its balls' ids (and wall), for the next step's warm start
+  std::unordered_map<std::uint64_t, double> warm_;
+  std::vector<std::uint32_t> members_;
+  std::vector<Vec3> member_positions_;
+  std::vector<Vec3> member_normals_;
+  std::vector<Vec3> member_velocities_;
+  std::vector<Vec3> free_u_;
+  /// per member of the group being solved: its motion before rolling resistance [m],
+  /// gravity's pull [m/s per unit of the step], the most resistance takes from it [m per
+  /// unit of the step], whether it rolls, and what resistance took [m]
+  std::vector<Vec3> base_u_;
+  std::vector<Vec3> member_pulls_;
+  std::vector<double> member_caps_;
+  std::vector<char> member_rolls_;
+  std::vector<Vec3> resisted_;
+  /// per ball: its energy at the step's start plus what its impacts in the step gave it
+  /// (gathering worlds) [J]; a group ends the step with no more than its members' sum
+  std::vector<double> energy_ref_;
   /// the contact solver's work space
   Scratch<ContactGroup> contact_group_;
   std::vector<std::size_t> last_of_pair_;  ///< step::lastOfEachPair()'s, kept between steps

@@ -31,8 +31,6 @@ void World::ChordMotion::start(World& w, std::size_t i, double x, const Vec3& po
   const double rest = 1 - x;
   m.b = rest > 0 ? Vec3((w.predictedEnd(i, position, v0, rest * w.dt_) - position) / rest) : Vec3(w.dt_ * v0);
   w.cutChord(i, position, v0);
-  m.b = w.allowed(i, m.b);
-  endOnFloor(w, i);
   keepEnergy(w, i);
   if (w.motions_[i].held)
     m.b = Vec3::Zero();

@@ -19,7 +19,8 @@ void World::commitToFloor(bool predict_next)
 {
   // Without resting contacts every ball is finished in one pass; with them, velocities
   // are settled across the contacts first.
-  const bool settle = !resting_.empty() || !blocked_.get().empty();
+  const bool settle = !links_.empty();
+  stats_.resting_contacts += links_.size();
   std::uint64_t asleep = 0;
   if (settle)
     floor_normals_.resize(balls_.size());
@@ -44,7 +45,9 @@ void World::commitToFloor(bool predict_next)
     stats_.sleeping_balls = asleep;
     return;
   }
+  separateAtEnd();
   settleRestingVelocities();
+  boundGroupEnergies();
   for (std::size_t i = 0; i < balls_.size(); ++i)
     roll(i, floor_normals_[i], motions_[i].b);
   // Groups at rest sleep; where gravity does not pull along the floor, nothing gathers
@@ -97,70 +100,23 @@ World::Committed World::commitBall(std::size_t i, bool settle)
 void World::settleRestingVelocities()
 {
   // Resting contacts keep no closing speed into the step that follows.
-  for (std::size_t i = 0; i < balls_.size(); ++i)
-    balls_[i].velocity = redirected(i, balls_[i].velocity);
-  if (resting_.empty())
+  ContactGroup& group = endGroup();
+  if (group.rows.empty())
     return;
-  ContactGroup& group = velocityGroup();
   // (done where what closing is left is round-off of speeds, or of the closing there was)
   const double tolerance =
       std::max(settings_.resting_speed_floor, settings_.contact_tolerance * largestClosing(group.u, group.rows));
-  if (!solveContacts(group.u, group.inv_mass, group.rows, tolerance, settings_.contact_sweeps).converged)
+  const std::vector<Vec3> free = group.u;
+  if (!solveContacts(group.u, group.inv_mass, group.rows, tolerance, settings_.contact_sweeps).converged &&
+      !solveContactsExactly(free, group.inv_mass, group.rows, group.u, tolerance, settings_.exact_solves))
     ++stats_.unsettled_contacts;
   for (std::size_t k = 0; k < group.size(); ++k)
-    balls_[group.ballAt(k)].velocity = group.u[k];
-  for (std::size_t i = 0; i < balls_.size(); ++i)
   {
     // the impulses across the contacts may leave a velocity a part along the floor's
     // normal, which the floor takes (where speeds are the energy's, it keeps the speed)
-    Ball& ball = balls_[i];
-    ball.velocity = ground_.turned(ball.velocity, ground_.along(ball.velocity, floor_normals_[i]));
-  }
-}
-
-World::ContactGroup& World::velocityGroup()
-{
-  // The closing speed that gravity gave a pair in the step, where it is faster than the
-  // pair's resting speed, bounces as an impact would, pair by pair in the order they
-  // met; then every pair that rested in the step (by its last resting contact: the
-  // normal where they last met) is a constraint (no closing speed), and so is every
-  // direction a ball leans on a wall along, solved together (contact_solver.hpp).
-  ContactGroup& group = contact_group_.get();
-  group.clear();
-  lastOfEachPair(resting_, last_of_pair_);
-  std::size_t next_last = 0;
-  for (std::size_t r = 0; r < resting_.size(); ++r)
-  {
-    const RestingContact& contact = resting_[r];
-    Ball& a = balls_[contact.ball];
-    Ball& b = balls_[contact.other];
-    const double inv_a = inverseMass(contact.ball);
-    const double inv_b = inverseMass(contact.other);
-    const double closing = a.velocity.dot(contact.dir_ball) - b.velocity.dot(contact.dir_other);
-    const double rest = pairRestingSpeed(floor_normals_[contact.ball], a.position, a.radius,
-                                         floor_normals_[contact.other], b.position, b.radius);
-    if (closing > rest)
-    {
-      const double j = collisionImpulse(closing, inv_a, contact.dir_ball, inv_b, contact.dir_other, scene_.restitution);
-      a.velocity -= (j * inv_a) * contact.dir_ball;
-      b.velocity += (j * inv_b) * contact.dir_other;
-    }
-    if (next_last < last_of_pair_.size() && last_of_pair_[next_last] == r)
-    {
-      ++next_last;
-      group.addPair(contact.ball, contact.other, contact.along_ball, contact.along_other);
-    }
-  }
-  for (std::size_t k = 0; k < group.size(); ++k)
-  {
     const std::size_t i = group.ballAt(k);
-    group.u[k] = balls_[i].velocity;
-    group.inv_mass[k] = inverseMass(i);
-    if (const std::int32_t blocked = motions_[i].blocked; blocked >= 0)
-      group.addBlocked(k, blocked_.get(), blocked,
-                       [this](std::uint64_t source) { return isWallSource(source); });
+    balls_[i].velocity = ground_.turned(group.u[k], ground_.along(group.u[k], floor_normals_[i]));
   }
-  return group;
 }
 
 void World::roll(std::size_t i, const Vec3& normal, const Vec3& d)

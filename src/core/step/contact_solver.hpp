@@ -121,6 +121,19 @@ ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double>& inv_
   return out;
 }
 
+/// The rows' closings, exactly, from where the contact solver left them (the rows whose
+/// impulses are > 0 taken to push): the impulses that take the pushing rows' closings to
+/// their targets from the free vectors u_free, solved directly (A lambda = closing -
+/// target, A = J M^-1 J^T over the pushing rows, by sparse LDL^T; the subspace
+/// minimization of Silcowitz, Niebe and Erleben 2010 after projected Gauss-Seidel). Rows
+/// then change sides where they are wrong (a pushing row that pulls, a row left out that
+/// closes past its target by more than `slack`): all of them at once while that makes
+/// fewer wrong (block principal pivoting, Judice and Pires), else the first (Murty's
+/// rule, which ends for A positive definite), for at most `rounds` solves. True, with u
+/// and the impulses set, where no row is wrong.
+bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std::vector<ContactRow>& rows,
+                          std::vector<Vec3>& u, double slack, int rounds);
+
 /// The same without a projection after each sweep.
 inline ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double>& inv_mass,
                                   std::vector<ContactRow>& rows, double tolerance, int max_sweeps)

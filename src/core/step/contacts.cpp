@@ -93,6 +93,18 @@ void World::wakeAll()
   motions_ready_ = false;  // (a prediction made while they slept)
 }
 
+void World::wakeTouching(const Vec3& position, double radius)
+{
+  for (Ball& ball : balls_)
+    if (ball.asleep && (ball.position - position).norm() <= ball.radius + radius + settings_.touch_slack)
+    {
+      ball.asleep = false;
+      ball.quiet_steps = 0;
+      ++stats_.woken_balls;
+    }
+  motions_ready_ = false;
+}
+
 void World::sleepStillGroups()
 {
   // Groups: balls joined by the step's resting contacts, by union-find over the visiting

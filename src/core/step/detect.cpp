@@ -50,8 +50,9 @@ void World::detectWalls(std::size_t i)
     return;
   for (std::size_t w = 0; w < walls_.size(); ++w)
   {
-    if (!grid_.reaches(static_cast<std::uint32_t>(i), w))
-      continue;
+    if (!grid_.reaches(static_cast<std::uint32_t>(i), w) ||
+        (grouped(i) && linked(i, kWallRow | static_cast<std::uint32_t>(w))))
+      continue;  // (a wall the ball rests on is its group's constraint)
     const Wall& wall = walls_[w];
     const Ball& ball = balls_[i];
     const double rest = 1 - m.x0, slop = settings_.closing_slop;
@@ -69,6 +70,8 @@ void World::detectBall(std::size_t i, std::size_t j)
   const std::size_t a = std::min(i, j), b = std::max(i, j);
   if (motions_[a].frozen && motions_[b].frozen)
     return;  // neither moves (asleep, or stopped by the cap): no impact
+  if (grouped(a) && linked(a, static_cast<std::uint32_t>(b)))
+    return;  // a resting contact: a constraint of their group
   const Motion& ma = motions_[a];
   const Motion& mb = motions_[b];
   const double xs = std::max(ma.x0, mb.x0);

@@ -32,7 +32,7 @@ void World::ExactMotion::predict(World& w, std::size_t i, const Vec3& v) const
 void World::ExactMotion::start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const
 {
   Motion& m = w.motions_[i];
-  if (w.free_parabolas_ && w.motions_[i].blocked < 0)
+  if (w.free_parabolas_)
   {
     // free: the parabola the ground gives it, exactly
     m.b = w.dt_ * v0;
@@ -41,7 +41,6 @@ void World::ExactMotion::start(World& w, std::size_t i, double x, const Vec3& po
   }
   const double rest = 1 - x;
   m.b = rest > 0 ? Vec3((w.predictedEnd(i, position, v0, rest * w.dt_) - position) / rest) : Vec3(w.dt_ * v0);
-  m.b = w.allowed(i, m.b);
   keepEnergy(w, i);
 }
 

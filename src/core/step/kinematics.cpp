@@ -58,6 +58,8 @@ Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
 
 Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
+  if (!group_motion_.empty() && group_motion_[i])
+    return ground_.along(groupVelocityAt(i, x), normal);  // (its group's time step)
   if (friction_)
     return spin_motions_[i].phase->velocity(*this, i, x, position, normal);
   const Motion& m = motions_[i];
@@ -94,13 +96,10 @@ double World::pairRestingSpeed(const Vec3& na, const Vec3& pa, double ra, const 
   return std::max(restingSpeed(na, scene_.restitution, pa, ra), restingSpeed(nb, scene_.restitution, pb, rb));
 }
 
-void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact)
+void World::beginMotion(std::size_t i, double x, const Vec3& position, const Vec3& v0)
 {
   Motion& m = motions_[i];
-  Vec3& v0 = startVelocity(i);
-  if (impact)
-    motions_[i].held = false;
-  motions_[i].accelerates = false;
+  m.accelerates = false;
   m.x0 = x;
   if (step_start_of_[i] == kNoStepStart)
   {
@@ -109,16 +108,26 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
     step_starts_.push_back(balls_[i].position);
   }
   startPosition(i) = position;
+  startVelocity(i) = v0;
   if (!chord_ends_.empty())
     chord_ends_[i] = 1.0;
+  if (!group_motion_.empty())
+    group_motion_[i] = 0;
+}
+
+void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact)
+{
+  Motion& m = motions_[i];
+  if (impact)
+    motions_[i].held = false;
+  beginMotion(i, x, position, motions_[i].frozen ? Vec3::Zero() : velocity);
   if (motions_[i].frozen)
   {
-    v0 = m.b = Vec3::Zero();
+    m.b = Vec3::Zero();
     if (friction_)
       keepSpin(i);
     return;
   }
-  v0 = redirected(i, velocity);
   if (motions_[i].held)
   {
     m.b = Vec3::Zero();  // still held (no impact let it go): it keeps no motion
@@ -126,14 +135,12 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
       constrainSpin(i);
     return;
   }
-  if (friction_ && motions_[i].blocked < 0)
+  if (friction_)
   {
     if (!startFriction(i, x, true, impact))  // the phase its velocity and spin give it
       return;                                // (else the chord below, under the phase's pull)
   }
-  else if (friction_)
-    constrainSpin(i);  // (leaning on something: its contacts decide its motion)
-  floor_motion_->start(*this, i, x, position, v0);
+  floor_motion_->start(*this, i, x, position, startVelocity(i));
 }
 
 void World::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)
@@ -186,6 +193,15 @@ void World::resolveMotionEnd(const Event& event)
         sm.kind = MotionKind::kRolling;  // (its slip is gone: it rolls, or finds it cannot)
     }
     sm.w0 = w;
+  }
+  if (!group_motion_.empty() && group_motion_[i])
+  {
+    // (a member of a group: the group goes on from here, solved again, the spin it has
+    // now kept as it is until then)
+    if (friction_)
+      keepSpin(i);
+    solveGroup(i, event.x);
+    return;
   }
   startMotion(i, event.x, p, v, false);
   countEvent(i);

@@ -51,8 +51,6 @@ void World::resolveBallWall(const Event& event)
   const Vec3 p = positionAt(i, event.x);
   const Vec3 floor_normal = floorNormalAt(i, p);
   Vec3 v = onFloorVelocity(i, event.x, p, floor_normal);
-  if (friction_)
-    spin_motions_[i].w0 = spinAtEvent(i, event.x, floor_normal, v);
 
   const Vec3 n = -event.normal;  // from the ball toward the wall
   Vec3 dir = ground_.along(n, floor_normal);
@@ -61,26 +59,37 @@ void World::resolveBallWall(const Event& event)
   dir.normalize();
   const double closing = v.dot(dir);
   const bool resting = closing <= restingSpeed(floor_normal, wall.restitution, p, ball.radius);
+  if (resting && !group_parent_.empty())
+  {
+    // a resting contact: a constraint of the ball's group from now on
+    link(i, kWallRow | static_cast<std::uint32_t>(event.j));
+    joinGroup(i);
+    recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, 0.0, closing, true, event);
+    solveGroup(i, event.x);
+    return;
+  }
+  if (friction_)
+    spin_motions_[i].w0 = spinAtEvent(i, event.x, floor_normal, v);
   const double inv_mass = inverseMass(i);
   const double impulse =
       collisionImpulse(std::max(closing, 0.0), inv_mass, dir, 0.0, dir, resting ? 0.0 : wall.restitution);
+  const Vec3 before = v;
   v -= (impulse * inv_mass) * dir;
   if (friction_)
     ballWallFriction(i, n, floor_normal, resting ? 0.0 : impulse, v);
-
-  if (resting)
-  {
-    // leaning on the wall until the step ends; where the floor is not square to the wall,
-    // also no motion into the wall itself (else it comes back at once, again and again)
-    addBlocked(i, dir, wallSource(event.j, false), wall.restitution);
-    if (dir.dot(n) < 1 - settings_.same_direction)
-      addBlocked(i, n, wallSource(event.j, true), wall.restitution);
-  }
-  startMotion(i, event.x, p, v, !resting);
+  if (!energy_ref_.empty())
+    energy_ref_[i] += impulseEnergy(i, event.x, before, v);
+  if (!group_motion_.empty() && group_motion_[i])
+    takeImpulse(i, event.x, p, v - onFloorVelocity(i, event.x, p, floor_normal));  // (solved again below)
+  else
+    startMotion(i, event.x, p, v, !resting);
   recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
               event);
   countEvent(i);
-  detect(i);
+  if (grouped(i))
+    solveGroup(i, event.x);
+  else
+    detect(i);
 }
 
 void World::wakeOnImpact(std::size_t i, std::size_t j, double closing, double rest_speed)
@@ -106,6 +115,26 @@ void World::resolveBallBall(const Event& event)
     va = Vec3::Zero();
   if (motions_[j].frozen)
     vb = Vec3::Zero();
+
+  Vec3 n = pb - pa;
+  const double dist = n.norm();
+  n = dist > 0 ? Vec3(n / dist) : Vec3(Vec3::UnitX());
+  const double rest_speed = pairRestingSpeed(na, pa, a.radius, nb, pb, b.radius);
+  wakeOnImpact(i, j, n.dot(va - vb), rest_speed);
+  // Each ball is pushed along the normal's part tangent to the floor under it.
+  const Vec3 ta = ground_.along(n, na);
+  const Vec3 tb = ground_.along(n, nb);
+  const double closing = va.dot(ta) - vb.dot(tb);
+  const bool resting = closing <= rest_speed;
+  if (resting && !group_parent_.empty())
+  {
+    // a resting contact: the two balls' groups become one, with it as a constraint
+    link(std::min(i, j), static_cast<std::uint32_t>(std::max(i, j)));
+    mergeGroups(i, j);
+    recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, 0.0, closing, true, event);
+    solveGroup(i, event.x);
+    return;
+  }
   if (friction_)
   {
     // (the spins there, before the impact changes the velocities; they become the new
@@ -114,40 +143,53 @@ void World::resolveBallBall(const Event& event)
     spin_motions_[i].w0 = wa;
     spin_motions_[j].w0 = wb;
   }
-
-  Vec3 n = pb - pa;
-  const double dist = n.norm();
-  n = dist > 0 ? Vec3(n / dist) : Vec3(Vec3::UnitX());
-  const double rest_speed = pairRestingSpeed(na, pa, a.radius, nb, pb, b.radius);
-  wakeOnImpact(i, j, n.dot(va - vb), rest_speed);
-  // Each ball is pushed along the normal's part tangent to the floor under it, less any
-  // part toward what it leans on (that part of the impulse goes into the wall).
-  const Vec3 along_a = ground_.along(n, na);
-  const Vec3 along_b = ground_.along(n, nb);
-  const Vec3 ta = -allowed(i, -along_a);
-  const Vec3 tb = allowed(j, along_b);
   const double inv_a = inverseMass(i);
   const double inv_b = inverseMass(j);
-  const double closing = va.dot(ta) - vb.dot(tb);
-  const bool resting = closing <= rest_speed;
   const double impulse =
       collisionImpulse(std::max(closing, 0.0), inv_a, ta, inv_b, tb, resting ? 0.0 : scene_.restitution);
+  const Vec3 va_before = va, vb_before = vb;
   va -= (impulse * inv_a) * ta;
   vb += (impulse * inv_b) * tb;
 
-  const PairContact pair{i, j, n, na, nb, along_a, along_b, ta, tb, inv_a, inv_b};
+  const PairContact pair{i, j, n, na, nb, ta, tb, ta, tb, inv_a, inv_b};
   if (friction_)
     ballBallFriction(pair, resting ? 0.0 : impulse, va, vb);
-  const bool both_still = resting && blockAtRest(pair, va, vb);
-  startMotion(i, event.x, pa, va, !resting);
-  startMotion(j, event.x, pb, vb, !resting);
-  if (resting)
-    settleRestingPair(pair, event.x, pa, pb, both_still);
+  if (!energy_ref_.empty())
+  {
+    energy_ref_[i] += impulseEnergy(i, event.x, va_before, va);
+    energy_ref_[j] += impulseEnergy(j, event.x, vb_before, vb);
+  }
+  // (a ball on its group's motion takes the impulse into its free velocity, and its
+  // group is solved again below)
+  if (!group_motion_.empty() && group_motion_[i])
+    takeImpulse(i, event.x, pa, va - onFloorVelocity(i, event.x, pa, na));
+  else
+    startMotion(i, event.x, pa, va, !resting);
+  if (!group_motion_.empty() && group_motion_[j])
+    takeImpulse(j, event.x, pb, vb - onFloorVelocity(j, event.x, pb, nb));
+  else
+    startMotion(j, event.x, pb, vb, !resting);
   recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, impulse, closing, resting, event);
   countEvent(i);
   countEvent(j);
-  detect(i);
-  detect(j);
+  const bool group_i = grouped(i), group_j = grouped(j);
+  if (group_i)
+    solveGroup(i, event.x);
+  else
+    detect(i);
+  if (group_j && !(group_i && groupOf(i) == groupOf(j)))
+    solveGroup(j, event.x);
+  else if (!group_j)
+    detect(j);
+}
+
+void World::renewMotion(std::size_t i)
+{
+  // What was predicted for this ball before is stale now. Where the 16-bit epoch wraps,
+  // the events queued under the one it is back at would pass for current: none is.
+  if (++motions_[i].epoch == 0)
+    queue_.forget(static_cast<std::uint32_t>(i));
+  grid_.update(static_cast<std::uint32_t>(i), currentBox(i));
 }
 
 void World::countEvent(std::size_t i)
@@ -202,61 +244,5 @@ void World::recordEvents(bool record)
   record_events_ = record;
   if (!record)
     std::vector<CollisionEvent>().swap(events_);
-}
-bool World::blockAtRest(const PairContact& c, const Vec3& va, const Vec3& vb)
-{
-  const std::size_t i = c.i, j = c.j;
-  const Vec3 &along_a = c.along_a, &along_b = c.along_b;
-  // A ball that cannot move (held, or frozen: asleep or stopped by the event cap) blocks
-  // the other's approach for the rest of the step, as a wall does, and two balls that are
-  // both all but still (a pile at rest) block each other, so that piles settle in one
-  // event per contact instead of passing vanishing impulses back and forth. (A ball that
-  // gives way, however little, is left to: the corrections of the pair's motions weigh
-  // each ball by how far it can go, FloorMotion::separate().)
-  const double still = std::max(stillSpeed(c.na), stillSpeed(c.nb));
-  const bool both_still = va.norm() <= still && vb.norm() <= still;
-  const bool a_fixed = both_still || motions_[i].held || motions_[i].frozen;
-  const bool b_fixed = both_still || motions_[j].held || motions_[j].frozen;
-  if (a_fixed && along_b.squaredNorm() > 0)
-    addBlocked(j, -along_b.normalized(), ballSource(i), scene_.restitution);
-  if (b_fixed && along_a.squaredNorm() > 0)
-    addBlocked(i, along_a.normalized(), ballSource(j), scene_.restitution);
-  return both_still;
-}
-
-void World::settleRestingPair(const PairContact& c, double x, const Vec3& pa, const Vec3& pb, bool both_still)
-{
-  const std::size_t i = c.i, j = c.j;
-  const Vec3 &n = c.n, &ta = c.ta, &tb = c.tb;
-  const double inv_a = c.inv_a, inv_b = c.inv_b;
-  Motion& ma = motions_[i];
-  Motion& mb = motions_[j];
-  toChord(i);
-  toChord(j);
-  // No approach left in the motions either (gravity along the floor would press them
-  // together again at once); a held ball does not give way.
-  const double rest = 1 - x;
-  floor_motion_->separate(*this, c, rest, ma.held ? 0.0 : inv_a, mb.held ? 0.0 : inv_b, pa, pb);
-  // Two balls all but still whose motions still close in (a pile in a corner of a
-  // curved floor, where the floor, the walls and each other leave no room to settle
-  // into), or that are in a jam: they stay where they are for the rest of the step,
-  // whatever resting contact comes next (else each such contact would start them
-  // again, and one the next, without end). So do two whose motions still close in by
-  // more than detection lets pass, because keepEnergy turned them back into each other
-  // (shortened or slid downhill) or because neither could give way (on a curved floor,
-  // FloorMotion::separate()): it would find this contact again at once, and again.
-  keepEnergy(i);
-  keepEnergy(j);
-  const std::uint32_t jam = settings_.jam_events_per_ball_step;
-  const bool jammed = ma.events >= jam || mb.events >= jam;
-  const double closing_in = rest * (ma.b.dot(n) - mb.b.dot(n));
-  const bool again = closing_in > settings_.closing_slop * (balls_[i].radius + balls_[j].radius);
-  if (jammed || (both_still && closing_in > 0) || again)
-  {
-    ma.b = mb.b = Vec3::Zero();
-    hold(i);
-    hold(j);
-  }
-  resting_.push_back({i, j, ta, tb, c.along_a, c.along_b});
 }
 }  // namespace ball_collision_sim::core

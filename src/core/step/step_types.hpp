@@ -62,6 +62,12 @@ inline double World::inverseMass(std::size_t i) const
 {
   return motions_[i].frozen ? 0.0 : 1.0 / balls_[i].mass;
 }
+inline double World::groupInverseMass(std::size_t i, bool rolls) const
+{
+  if (motions_[i].frozen)
+    return 0.0;
+  return rolls ? 1.0 / ((1 + spins_[i].inertia) * balls_[i].mass) : 1.0 / balls_[i].mass;
+}
 /// A ball's friction phase in the step (worlds with friction), by visiting index: while
 /// `free`, its motion's parabola term is c = a dt^2 / 2 and its spin at x is
 /// w0 + alpha (x - x0) dt, until x_end, where the phase ends as `ends` says.

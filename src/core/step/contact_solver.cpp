@@ -1,0 +1,138 @@
+// The contact solver's exact stage (contact_solver.hpp): reads the free vectors and the
+// rows' first guess of which push; writes the vectors and the impulses.
+#include "contact_solver.hpp"
+
+#include <Eigen/SparseCholesky>
+
+namespace ball_collision_sim::core::step
+{
+namespace
+{
+/// A's diagonal is taken this much larger: rows that say the same (a jam's) leave A
+/// singular, and this makes them share their push equally [ratio].
+constexpr double kRegularization = 1e-10;
+/// ... and its solution refined this many times against A (each takes its error down by
+/// about the regularization's factor) [refinements].
+constexpr int kRefinements = 2;
+}  // namespace
+
+bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std::vector<ContactRow>& rows,
+                          std::vector<Vec3>& u, double slack, int rounds)
+{
+  std::vector<int> active;
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    if (rows[r].impulse > 0)
+      active.push_back(static_cast<int>(r));
+  const auto coefficient = [&](const ContactRow& row, std::uint32_t k) {
+    Vec3 c = Vec3::Zero();
+    if (row.a == k)
+      c += row.push_a;
+    if (row.b == k)
+      c -= row.push_b;
+    return c;
+  };
+  std::vector<char> in_active;
+  std::size_t fewest = rows.size() + 1;
+  int tries = 3;
+  for (int round = 0; round < rounds; ++round)
+  {
+    const int n = static_cast<int>(active.size());
+    std::vector<Vec3> trial = u_free;
+    std::vector<double> lambda(rows.size(), 0.0);
+    if (n > 0)
+    {
+      // (A's entries: rows that share a body, found through each body's rows)
+      std::vector<Eigen::Triplet<double>> entries;
+      Eigen::VectorXd rhs(n);
+      std::vector<std::vector<int>> of_body(u_free.size());
+      for (int p = 0; p < n; ++p)
+      {
+        const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
+        rhs[p] = closingOf(u_free, r) - r.target;
+        of_body[r.a].push_back(p);
+        if (r.b != ContactRow::kImmovable)
+          of_body[r.b].push_back(p);
+      }
+      Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(n);
+      for (std::size_t k = 0; k < of_body.size(); ++k)
+      {
+        if (inv[k] == 0)
+          continue;
+        for (const int p : of_body[k])
+          for (const int q : of_body[k])
+          {
+            if (q > p)
+              continue;  // (the solver reads the lower triangle)
+            const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
+            const ContactRow& t = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(q)])];
+            const auto body = static_cast<std::uint32_t>(k);
+            const double a = inv[k] * coefficient(r, body).dot(coefficient(t, body));
+            if (p == q)
+              diagonal[p] += a;
+            entries.emplace_back(p, q, a);
+          }
+      }
+      // (contacts that say the same, in a jam, leave A singular: it is factorized with its
+      // diagonal a little larger, and the solution refined against A itself)
+      for (int p = 0; p < n; ++p)
+        entries.emplace_back(p, p, kRegularization * diagonal[p]);
+      Eigen::SparseMatrix<double> A(n, n);
+      A.setFromTriplets(entries.begin(), entries.end());
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> solver(A);
+      if (solver.info() != Eigen::Success)
+        return false;
+      Eigen::VectorXd x = solver.solve(rhs);
+      for (int refine = 0; refine < kRefinements; ++refine)
+      {
+        const Eigen::VectorXd residual =
+            rhs - (A.selfadjointView<Eigen::Lower>() * x - kRegularization * diagonal.cwiseProduct(x));
+        x += solver.solve(residual);
+      }
+      if (solver.info() != Eigen::Success || !x.allFinite())
+        return false;
+      for (int p = 0; p < n; ++p)
+      {
+        const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
+        lambda[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])] = x[p];
+        trial[r.a] -= (x[p] * inv[r.a]) * r.push_a;
+        if (r.b != ContactRow::kImmovable)
+          trial[r.b] += (x[p] * inv[r.b]) * r.push_b;
+      }
+    }
+    // Block principal pivoting (Judice and Pires): every row that is wrong changes side
+    // (a pushing row whose impulse came out below zero, a row left out that closes), as
+    // long as that makes fewer wrong ones within a few rounds; else only the first wrong
+    // row does (Murty's rule, which ends for a positive definite A).
+    in_active.assign(rows.size(), 0);
+    for (const int r : active)
+      in_active[static_cast<std::size_t>(r)] = 1;
+    std::vector<int> wrong;
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      if (in_active[r] ? lambda[r] < 0 : closingOf(trial, rows[r]) - rows[r].target > slack)
+        wrong.push_back(static_cast<int>(r));
+    if (wrong.empty())
+    {
+      u = trial;
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        rows[r].impulse = lambda[r];
+      return true;
+    }
+    if (wrong.size() < fewest)
+    {
+      fewest = wrong.size();
+      tries = 3;
+    }
+    else if (tries > 0)
+      --tries;
+    else
+      wrong.resize(1);
+    for (const int r : wrong)
+      in_active[static_cast<std::size_t>(r)] ^= 1;
+    active.clear();
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      if (in_active[r])
+        active.push_back(static_cast<int>(r));
+  }
+  return false;
+}
+}  // namespace ball_collision_sim::core::step
