@@ -40,13 +40,28 @@ struct StepSettings
   double contact_tolerance = 1e-6;
   /// Passes over a step's resting contacts at its end that open those its groups' solves
   /// left overlapping (their residual: each pass solves them together, then puts the
-  /// balls back on the floor, which the next pass corrects) [passes].
+  /// balls back on the floor, which the next pass corrects) [passes] ...
   int position_sweeps = 8;
   /// ... where a contact's normal has less than this of it (squared) along the floor, the
   /// move that opens it is along the normal itself (along the floor it would be long) [1].
   double separation_min_share = 0.01;
+  /// Resting groups look for contacts to link no farther than a step at the resting speed
+  /// of the most dissipative restitution in the scene, plus this, for the round-off of
+  /// speeds [m/s] ...
+  double reach_speed_margin = 1e-3;
+  /// ... taking a restitution below this as this (at e = 0 every closing rests, and the
+  /// reach would have no bound) [1].
+  double reach_least_restitution = 1e-3;
+  /// A group's solve starts from each contact's last impulse (the last step's, or what is
+  /// left of this step's last solve): a pile at rest then needs next to no sweeps. Off,
+  /// from none (for comparison) [on/off].
   bool warm_start = true;
+  /// Sweeps of projected Gauss-Seidel over a group's contacts before the exact stage: a
+  /// guess of which contacts push, which the exact stage corrects [sweeps].
   int group_sweeps = 20;
+  /// Solves of a group on a curved floor, each with its contacts' linearization corrected
+  /// where the last one's ends landed on the floor (Newton's method on their distances);
+  /// what the last leaves is opened at the step's end (position_sweeps) [solves].
   int group_passes = 4;
   /// Direct solves the contact solver's exact stage may take, changing which contacts push
   /// between them (step::solveContactsExactly()); a group of hundreds needs a few [solves].

@@ -443,6 +443,12 @@ private:
   /// is at x, with no contact of the group closing by more than its gap (the contact
   /// solver); each member gets the new motion, and mid-step (x > 0) is detected again.
   void solveGroup(std::size_t i, double x);
+  /// The stages of formRestingGroups(): the resting contacts with walls, and between
+  /// balls, within `reach` [m] at the step's start, linked; how near a contact closing at
+  /// its resting speed, pulled along the floor at `pull`, must be to be linked [m].
+  void linkRestingWalls(double reach);
+  void linkRestingPairs(double reach);
+  double speculativeReach(double rest_speed, double pull) const;
   /// The contacts of the group being solved (members_), exactly, from free_u_ over the
   /// rest of the step, `rest`: contact_group_'s u and impulses.
   void solveGroupContacts(ContactGroup& group, double span, double slack);
@@ -477,6 +483,9 @@ private:
   /// moves along the floor, solved together (a few passes, each ball back on the floor
   /// after each).
   void separateAtEnd();
+  /// separateAtEnd()'s rows (contact_group_): the step's contacts within touch_slack, each
+  /// to close by no more than its gap along the floor; the deepest overlap [m].
+  double separationRows();
 
   /// Each group ends the step with no more energy than its members had at its start plus
   /// what impacts gave them: where the time step gives more, its velocities are scaled down.

@@ -14,6 +14,107 @@ constexpr double kRegularization = 1e-10;
 /// ... and its solution refined this many times against A (each takes its error down by
 /// about the regularization's factor) [refinements].
 constexpr int kRefinements = 2;
+/// Rounds that all wrong rows change side together may go without making fewer of them
+/// before only the first does (Murty's rule, which ends) [rounds].
+constexpr int kPivotTries = 3;
+
+/// A, the pushing rows' W = J M^-1 J^T (its lower triangle, its diagonal a little larger),
+/// its diagonal as it is, and the right side, their closings past their targets at u_free.
+struct PushingSystem
+{
+  Eigen::SparseMatrix<double> A;
+  Eigen::VectorXd diagonal;
+  Eigen::VectorXd rhs;
+};
+
+PushingSystem pushingSystem(const std::vector<Vec3>& u_free, const std::vector<double>& inv,
+                            const std::vector<ContactRow>& rows, const std::vector<int>& active)
+{
+  const int n = static_cast<int>(active.size());
+  const auto coefficient = [&](const ContactRow& row, std::uint32_t k) {
+    Vec3 c = Vec3::Zero();
+    if (row.a == k)
+      c += row.push_a;
+    if (row.b == k)
+      c -= row.push_b;
+    return c;
+  };
+  // (A's entries: rows that share a body, found through each body's rows)
+  std::vector<Eigen::Triplet<double>> entries;
+  PushingSystem out;
+  Eigen::VectorXd& rhs = out.rhs;
+  rhs.resize(n);
+  std::vector<std::vector<int>> of_body(u_free.size());
+  for (int p = 0; p < n; ++p)
+  {
+    const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
+    rhs[p] = closingOf(u_free, r) - r.target;
+    of_body[r.a].push_back(p);
+    if (r.b != ContactRow::kImmovable)
+      of_body[r.b].push_back(p);
+  }
+  Eigen::VectorXd& diagonal = out.diagonal;
+  diagonal = Eigen::VectorXd::Zero(n);
+  for (std::size_t k = 0; k < of_body.size(); ++k)
+  {
+    if (inv[k] == 0)
+      continue;
+    for (const int p : of_body[k])
+      for (const int q : of_body[k])
+      {
+        if (q > p)
+          continue;  // (the solver reads the lower triangle)
+        const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
+        const ContactRow& t = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(q)])];
+        const auto body = static_cast<std::uint32_t>(k);
+        const double a = inv[k] * coefficient(r, body).dot(coefficient(t, body));
+        if (p == q)
+          diagonal[p] += a;
+        entries.emplace_back(p, q, a);
+      }
+  }
+  // (contacts that say the same, in a jam, leave A singular: it is factorized with its
+  // diagonal a little larger, and the solution refined against A itself)
+  for (int p = 0; p < n; ++p)
+    entries.emplace_back(p, p, kRegularization * diagonal[p]);
+  out.A.resize(n, n);
+  out.A.setFromTriplets(entries.begin(), entries.end());
+  return out;
+}
+
+/// The impulses of the rows `active` (taken to push) that take their closings to their
+/// targets from u_free, solved directly, into lambda, and the vectors they leave, into
+/// trial; false where A could not be factorized.
+bool solvePushing(const std::vector<Vec3>& u_free, const std::vector<double>& inv, const std::vector<ContactRow>& rows,
+                  const std::vector<int>& active, std::vector<Vec3>& trial, std::vector<double>& lambda)
+{
+  const int n = static_cast<int>(active.size());
+  const PushingSystem system = pushingSystem(u_free, inv, rows, active);
+  const Eigen::SparseMatrix<double>& A = system.A;
+  const Eigen::VectorXd& rhs = system.rhs;
+  const Eigen::VectorXd& diagonal = system.diagonal;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> solver(A);
+  if (solver.info() != Eigen::Success)
+    return false;
+  Eigen::VectorXd x = solver.solve(rhs);
+  for (int refine = 0; refine < kRefinements; ++refine)
+  {
+    const Eigen::VectorXd residual =
+        rhs - (A.selfadjointView<Eigen::Lower>() * x - kRegularization * diagonal.cwiseProduct(x));
+    x += solver.solve(residual);
+  }
+  if (solver.info() != Eigen::Success || !x.allFinite())
+    return false;
+  for (int p = 0; p < n; ++p)
+  {
+    const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
+    lambda[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])] = x[p];
+    trial[r.a] -= (x[p] * inv[r.a]) * r.push_a;
+    if (r.b != ContactRow::kImmovable)
+      trial[r.b] += (x[p] * inv[r.b]) * r.push_b;
+  }
+  return true;
+}
 }  // namespace
 
 bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std::vector<ContactRow>& rows,
@@ -23,82 +124,16 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
   for (std::size_t r = 0; r < rows.size(); ++r)
     if (rows[r].impulse > 0)
       active.push_back(static_cast<int>(r));
-  const auto coefficient = [&](const ContactRow& row, std::uint32_t k) {
-    Vec3 c = Vec3::Zero();
-    if (row.a == k)
-      c += row.push_a;
-    if (row.b == k)
-      c -= row.push_b;
-    return c;
-  };
   std::vector<char> in_active;
   std::size_t fewest = rows.size() + 1;
-  int tries = 3;
+  int tries = kPivotTries;
   for (int round = 0; round < rounds; ++round)
   {
     const int n = static_cast<int>(active.size());
     std::vector<Vec3> trial = u_free;
     std::vector<double> lambda(rows.size(), 0.0);
-    if (n > 0)
-    {
-      // (A's entries: rows that share a body, found through each body's rows)
-      std::vector<Eigen::Triplet<double>> entries;
-      Eigen::VectorXd rhs(n);
-      std::vector<std::vector<int>> of_body(u_free.size());
-      for (int p = 0; p < n; ++p)
-      {
-        const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
-        rhs[p] = closingOf(u_free, r) - r.target;
-        of_body[r.a].push_back(p);
-        if (r.b != ContactRow::kImmovable)
-          of_body[r.b].push_back(p);
-      }
-      Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(n);
-      for (std::size_t k = 0; k < of_body.size(); ++k)
-      {
-        if (inv[k] == 0)
-          continue;
-        for (const int p : of_body[k])
-          for (const int q : of_body[k])
-          {
-            if (q > p)
-              continue;  // (the solver reads the lower triangle)
-            const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
-            const ContactRow& t = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(q)])];
-            const auto body = static_cast<std::uint32_t>(k);
-            const double a = inv[k] * coefficient(r, body).dot(coefficient(t, body));
-            if (p == q)
-              diagonal[p] += a;
-            entries.emplace_back(p, q, a);
-          }
-      }
-      // (contacts that say the same, in a jam, leave A singular: it is factorized with its
-      // diagonal a little larger, and the solution refined against A itself)
-      for (int p = 0; p < n; ++p)
-        entries.emplace_back(p, p, kRegularization * diagonal[p]);
-      Eigen::SparseMatrix<double> A(n, n);
-      A.setFromTriplets(entries.begin(), entries.end());
-      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> solver(A);
-      if (solver.info() != Eigen::Success)
-        return false;
-      Eigen::VectorXd x = solver.solve(rhs);
-      for (int refine = 0; refine < kRefinements; ++refine)
-      {
-        const Eigen::VectorXd residual =
-            rhs - (A.selfadjointView<Eigen::Lower>() * x - kRegularization * diagonal.cwiseProduct(x));
-        x += solver.solve(residual);
-      }
-      if (solver.info() != Eigen::Success || !x.allFinite())
-        return false;
-      for (int p = 0; p < n; ++p)
-      {
-        const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
-        lambda[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])] = x[p];
-        trial[r.a] -= (x[p] * inv[r.a]) * r.push_a;
-        if (r.b != ContactRow::kImmovable)
-          trial[r.b] += (x[p] * inv[r.b]) * r.push_b;
-      }
-    }
+    if (n > 0 && !solvePushing(u_free, inv, rows, active, trial, lambda))
+      return false;
     // Block principal pivoting (Judice and Pires): every row that is wrong changes side
     // (a pushing row whose impulse came out below zero, a row left out that closes), as
     // long as that makes fewer wrong ones within a few rounds; else only the first wrong
@@ -120,7 +155,7 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
     if (wrong.size() < fewest)
     {
       fewest = wrong.size();
-      tries = 3;
+      tries = kPivotTries;
     }
     else if (tries > 0)
       --tries;

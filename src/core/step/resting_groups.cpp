@@ -126,24 +126,36 @@ void World::formRestingGroups()
     energy_ref_[i] = energyOf(i, balls_[i].position, balls_[i].velocity);
   links_.clear();
   link_order_.clear();
-  const double touch = settings_.touch_slack;
-  // Speculative contacts: a pair or wall that closes no faster than it rests, near enough
-  // to close its gap within the step (at its resting speed, and what gravity along the
-  // floor adds), is a constraint from the step's start, which allows it to close by its
-  // gap; else it would meet as an event early in each step, and be solved again there.
-  const auto speculative = [&](double rest_speed, const Vec3& fn) {
-    return dt_ * (rest_speed + dt_ * ground_.gravityAlong(fn));
-  };
-  // (the largest of them, a first filter: gravity itself for its part along the floor,
-  // and a millimetre a second for the round-off of speeds)
+  // (the farthest any contact can be linked from, a first filter: gravity itself for its
+  // part along the floor, and a margin for the round-off of speeds)
   const double g = gravity_.norm();
   const auto bound = [&](double e) {
-    const double bounces = e < 1 ? settings_.resting_steps * dt_ * g * (1 - e) / (2 * std::max(e, 1e-3)) : 0.0;
-    return dt_ * (bounces + 1e-3 + dt_ * g);
+    const double least = settings_.reach_least_restitution;
+    const double bounces = e < 1 ? settings_.resting_steps * dt_ * g * (1 - e) / (2 * std::max(e, least)) : 0.0;
+    return dt_ * (bounces + settings_.reach_speed_margin + dt_ * g);
   };
   double reach = bound(scene_.restitution);
   for (const Wall& wall : walls_)
     reach = std::max(reach, bound(wall.restitution));
+  linkRestingWalls(reach);
+  linkRestingPairs(reach);
+  for (std::size_t i = 0; i < n; ++i)
+    if (group_parent_[i] == i)
+      solveGroup(i, 0.0);
+}
+
+double World::speculativeReach(double rest_speed, double pull) const
+{
+  // Speculative contacts: a pair or wall that closes no faster than it rests, near enough
+  // to close its gap within the step (at its resting speed, and what gravity along the
+  // floor adds), is a constraint from the step's start, which allows it to close by its
+  // gap; else it would meet as an event early in each step, and be solved again there.
+  return dt_ * (rest_speed + dt_ * pull);
+}
+
+void World::linkRestingWalls(double reach)
+{
+  const double touch = settings_.touch_slack;
   grid_.forEachNearObstacle([&](std::uint32_t i) {
     if (motions_[i].frozen)
       return;
@@ -161,16 +173,22 @@ void World::formRestingGroups()
       dir = dir.squaredNorm() < settings_.wall_along_floor_squared ? Vec3(d / dist) : Vec3(dir.normalized());
       const double rest_speed = restingSpeed(fn, walls_[w].restitution, ball.position, ball.radius);
       const double closing = ball.velocity.dot(dir);
+      const double pull = ground_.gravityAlong(fn);
       // (one that moves away faster than gravity along the floor can turn it back within
       // the step does not meet it)
-      if (std::abs(closing) <= rest_speed && closing + dt_ * ground_.gravityAlong(fn) > 0 &&
-          dist - ball.radius <= touch + speculative(rest_speed, fn))
+      if (std::abs(closing) <= rest_speed && closing + dt_ * pull > 0 &&
+          dist - ball.radius <= touch + speculativeReach(rest_speed, pull))
       {
         link(i, kWallRow | static_cast<std::uint32_t>(w));
         joinGroup(i);
       }
     }
   });
+}
+
+void World::linkRestingPairs(double reach)
+{
+  const double touch = settings_.touch_slack;
   grid_.forEachPair([&](std::uint32_t i, std::uint32_t j) {
     if (motions_[i].frozen && motions_[j].frozen)
       return;
@@ -185,16 +203,14 @@ void World::formRestingGroups()
     const Vec3 na = floorNormalAt(i, a.position), nb = floorNormalAt(j, b.position);
     const double closing = a.velocity.dot(ground_.along(u, na)) - b.velocity.dot(ground_.along(u, nb));
     const double rest_speed = pairRestingSpeed(na, a.position, a.radius, nb, b.position, b.radius);
-    if (std::abs(closing) <= rest_speed && closing + dt_ * (ground_.gravityAlong(na) + ground_.gravityAlong(nb)) > 0 &&
-        gap <= touch + std::max(speculative(rest_speed, na), speculative(rest_speed, nb)))
+    const double pull_a = ground_.gravityAlong(na), pull_b = ground_.gravityAlong(nb);
+    if (std::abs(closing) <= rest_speed && closing + dt_ * (pull_a + pull_b) > 0 &&
+        gap <= touch + std::max(speculativeReach(rest_speed, pull_a), speculativeReach(rest_speed, pull_b)))
     {
       link(std::min(i, j), std::max(i, j));
       mergeGroups(i, j);
     }
   });
-  for (std::size_t i = 0; i < n; ++i)
-    if (group_parent_[i] == i)
-      solveGroup(i, 0.0);
 }
 
 void World::solveGroup(std::size_t i, double x)
@@ -568,6 +584,50 @@ void World::boundGroupEnergies()
   }
 }
 
+double World::separationRows()
+{
+  ContactGroup& group = contact_group_.get();
+  group.clear();
+  double deepest = 0.0;
+  for (const std::uint32_t index : linksInKeyOrder())
+  {
+    const ContactLink& l = links_[index];
+    const Ball& a = balls_[l.a];
+    ContactRow row;
+    Vec3 d;
+    double gap = 0.0;
+    if (l.b & kWallRow)
+    {
+      d = walls_[l.b & ~kWallRow].closestPoint(a.position) - a.position;
+      gap = d.norm() - a.radius;
+    }
+    else
+    {
+      d = balls_[l.b].position - a.position;
+      gap = d.norm() - (a.radius + balls_[l.b].radius);
+    }
+    if (!(d.norm() > 0) || !(gap <= settings_.touch_slack))
+      continue;
+    deepest = std::max(deepest, -gap);
+    // (along the floor, not unit: a move u along it changes the distance by u . push;
+    // where the floor all but faces the contact, along the contact's normal)
+    const auto push = [&](std::size_t i) {
+      const Vec3 t = ground_.along(d.normalized(), floor_normals_[i]);
+      return t.squaredNorm() < settings_.separation_min_share ? Vec3(d.normalized()) : t;
+    };
+    row.a = group.localOf(l.a);
+    row.push_a = push(l.a);
+    if (!(l.b & kWallRow))
+    {
+      row.b = group.localOf(l.b);
+      row.push_b = push(l.b);
+    }
+    row.target = gap;
+    group.rows.push_back(row);
+  }
+  return deepest;
+}
+
 void World::separateAtEnd()
 {
   // Each pass: the step's contacts as rows on the balls' moves along the floor, the
@@ -578,44 +638,7 @@ void World::separateAtEnd()
   for (int pass = 0; pass < settings_.position_sweeps; ++pass)
   {
     ContactGroup& group = contact_group_.get();
-    group.clear();
-    double deepest = 0.0;
-    for (const std::uint32_t index : linksInKeyOrder())
-    {
-      const ContactLink& l = links_[index];
-      const Ball& a = balls_[l.a];
-      ContactRow row;
-      Vec3 d;
-      double gap = 0.0;
-      if (l.b & kWallRow)
-      {
-        d = walls_[l.b & ~kWallRow].closestPoint(a.position) - a.position;
-        gap = d.norm() - a.radius;
-      }
-      else
-      {
-        d = balls_[l.b].position - a.position;
-        gap = d.norm() - (a.radius + balls_[l.b].radius);
-      }
-      if (!(d.norm() > 0) || !(gap <= settings_.touch_slack))
-        continue;
-      deepest = std::max(deepest, -gap);
-      // (along the floor, not unit: a move u along it changes the distance by u . push;
-      // where the floor all but faces the contact, along the contact's normal)
-      const auto push = [&](std::size_t i) {
-        const Vec3 t = ground_.along(d.normalized(), floor_normals_[i]);
-        return t.squaredNorm() < settings_.separation_min_share ? Vec3(d.normalized()) : t;
-      };
-      row.a = group.localOf(l.a);
-      row.push_a = push(l.a);
-      if (!(l.b & kWallRow))
-      {
-        row.b = group.localOf(l.b);
-        row.push_b = push(l.b);
-      }
-      row.target = gap;
-      group.rows.push_back(row);
-    }
+    const double deepest = separationRows();
     if (!(deepest > 0))
       break;
     for (std::size_t k = 0; k < group.size(); ++k)
