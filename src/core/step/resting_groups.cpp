@@ -126,6 +126,11 @@ void World::formRestingGroups()
     energy_ref_[i] = energyOf(i, balls_[i].position, balls_[i].velocity);
   links_.clear();
   link_order_.clear();
+  // Where gravity does not pull along the floor (a plane square to it), nothing brings
+  // balls together: a resting contact there is met within the step, as an event, and
+  // linked then; no search at the step's start.
+  if (!FloorMotion::gathers(*this))
+    return;
   // (the farthest any contact can be linked from, a first filter: gravity itself for its
   // part along the floor, and a margin for the round-off of speeds)
   const double g = gravity_.norm();
