@@ -1,6 +1,6 @@
 // The commit stage's own arithmetic (src/core/step/rolling.hpp) on its own: the turn of
 // a ball rolling without slip against the closed form of a rotation by |d| / r, the
-// series it takes sin and cos from, and the choice of each pair's last resting contact.
+// series it takes sin and cos from.
 #include "core/step/rolling.hpp"
 
 #include <gtest/gtest.h>
@@ -138,39 +138,4 @@ TEST(Rolled, NoMoveAlongTheFloorLeavesTheOrientationAsItWas)
     EXPECT_LT(angleBetween(step::rolled(q0, n, along * n, 0.3), q0),
               1e-15 + 8 * std::numeric_limits<double>::epsilon() * std::abs(along) / 0.3)
         << along;
-}
-
-TEST(LastOfEachPair, KeepsThePairsLastContactWhicheverWayRoundItNamesThem)
-{
-  // Against a count by hand: 20 random step's worth of contacts among 12 balls, each
-  // pair named either way round; the result is the index of each pair's last contact,
-  // ascending, and reusing the output list between calls changes nothing.
-  struct Contact
-  {
-    std::size_t ball;
-    std::size_t other;
-  };
-  std::mt19937_64 rng(3);
-  std::uniform_int_distribution<std::size_t> ball(0, 11);
-  std::vector<std::size_t> last;
-  for (int trial = 0; trial < 20; ++trial)
-  {
-    std::vector<Contact> contacts;
-    const int count = trial == 0 ? 0 : 1 + trial * 10;
-    std::map<std::pair<std::size_t, std::size_t>, std::size_t> latest;
-    for (int r = 0; r < count; ++r)
-    {
-      std::size_t a = ball(rng), b = ball(rng);
-      while (b == a)
-        b = ball(rng);
-      contacts.push_back({a, b});
-      latest[{std::min(a, b), std::max(a, b)}] = static_cast<std::size_t>(r);
-    }
-    std::vector<std::size_t> expected;
-    for (const auto& kv : latest)
-      expected.push_back(kv.second);
-    std::sort(expected.begin(), expected.end());
-    step::lastOfEachPair(contacts, last);
-    EXPECT_EQ(last, expected) << "trial " << trial;
-  }
 }

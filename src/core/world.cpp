@@ -128,8 +128,6 @@ void World::step()
 {
   events_.clear();
   transitions_.clear();
-  resting_.clear();
-  blocked_.get().clear();
   // (each commit takes back what it kept of where balls started; a step cut short, or
   // balls added or removed since, leave that to do here)
   if (!step_starts_.empty() || step_start_of_.size() != balls_.size())

@@ -25,10 +25,6 @@ struct StepSettings
   /// and acts as immovable: a guard against endless chatter in jammed piles; at most 4094
   /// (a ball's count is kept in 12 bits) [events].
   std::uint32_t max_events_per_ball_step = 256;
-  /// Two balls at a resting contact, one of which has had this many events in the step,
-  /// are in a jam that answers pair by pair only pass around: they are held for the rest
-  /// of the step [events].
-  std::uint32_t jam_events_per_ball_step = 16;
   /// Sweeps of the contact solver over a group's contacts (projected Gauss-Seidel) before
   /// it stops with closing left (counted: WorldStats::unsettled_contacts); each sweep
   /// takes a jam's closing down by a steady factor, and piles of hundreds settle in tens
@@ -70,20 +66,8 @@ struct StepSettings
   /// the members' resistance, before its contacts are solved exactly with the resistance
   /// found (what is left is a resistance a little off its cap) [sweeps].
   int resistance_sweeps = 100;
-  /// Passes of alternating corrections (onto the floor, out of blocked directions, the
-  /// approach of a resting pair) before giving up: each pass halves what is left in
-  /// practice, and 32 halvings reach round-off [passes].
-  int correction_passes = 32;
-  /// A motion kept out of its blocked directions may still point into one by this much
-  /// of its length, round-off of the projection (step::BlockedDirections::allowed()) [ratio].
-  double blocked_slack = 1e-14;
-  /// Two blocked directions this close to parallel are one (1 - cosine) [ratio].
-  double same_direction = 1e-12;
-  /// A correction of a motion on a curved floor smaller than this part of it is done
-  /// [ratio]; see also roundoff_epsilons.
-  double correction_tolerance = 1e-15;
-  /// Where corrections are down to this many machine epsilons of the positions'
-  /// magnitude, they only trade round-off back and forth [epsilons].
+  /// Positions are known to this many machine epsilons of their magnitude: gaps and
+  /// corrections below it are round-off [epsilons].
   double roundoff_epsilons = 16;
   /// A wall whose normal's part along the floor is shorter than this (squared) is
   /// parallel to the floor: a ball meets it in space, not along the floor [1].

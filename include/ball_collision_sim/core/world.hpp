@@ -28,7 +28,6 @@ namespace ball_collision_sim::core
 {
 namespace step
 {
-class BlockedDirections;  // src/core/step/blocked_directions.hpp
 }
 
 /// Energy of the world; potential is measured from the origin along gravity.
@@ -305,16 +304,6 @@ private:
   struct ExactMotion;
   struct ChordMotion;
   using Event = StepEvent;
-  /// Two balls resting on each other: no closing speed is left at the step's end.
-  struct RestingContact
-  {
-    std::size_t ball;
-    std::size_t other;
-    Vec3 dir_ball;   ///< direction of the normal impulse on `ball`
-    Vec3 dir_other;  ///< ... and, reversed, on `other`
-    Vec3 along_ball;   ///< the normal's part along the floor under `ball`
-    Vec3 along_other;  ///< ... and under `other`
-  };
   /// A resting contact as a constraint of the step: balls a and b (visiting indices), or
   /// ball a and wall w (b = kWallRow | w); next_a and next_b link the rows of each ball.
   struct ContactLink
@@ -589,30 +578,6 @@ private:
   void turn(std::size_t i, const Vec3& angle);
   /// The spin of a ball defined by `def` on the floor with normal n: its own, or rolling's.
   static Vec3 spinOf(const BallDef& def, const Vec3& n);
-  /// A parabola motion of ball i becomes its chord (the same end): the resting-contact
-  /// corrections work on chords. With friction, a ball in a phase is then under its
-  /// contacts (constrainSpin()).
-  void toChord(std::size_t i);
-  /// `w` less its parts along the directions the ball may not move this step.
-  Vec3 allowed(std::size_t i, const Vec3& w) const;
-  /// Velocity `v` of ball i turned out of its blocked directions, keeping its speed where
-  /// speeds come from energy (gravity along the floor).
-  Vec3 redirected(std::size_t i, const Vec3& v) const;
-  /// Ball i may not move along `direction` for the rest of the step: it leans on a contact
-  /// of this restitution, from `source` (blockedSource()).
-  void addBlocked(std::size_t i, const Vec3& direction, std::uint64_t source, double restitution);
-  /// The source of a blocked direction: wall w's along the floor, or its own normal
-  /// (own_normal), or ball j's (by its id, whatever the records' order).
-  static std::uint64_t wallSource(std::size_t w, bool own_normal)
-  {
-    return 2 * std::uint64_t{w} + (own_normal ? 1 : 0);
-  }
-  std::uint64_t ballSource(std::size_t j) const
-  {
-    return 2 * (std::uint64_t{walls_.size()} + static_cast<std::uint64_t>(balls_[j].id));
-  }
-  /// Whether a blocked direction's source is a wall (else a ball).
-  bool isWallSource(std::uint64_t source) const { return source < 2 * std::uint64_t{walls_.size()}; }
   /// Ball i's inverse mass in the step's responses: 0 while frozen (it does not give way).
   double inverseMass(std::size_t i) const;  // (step_types.hpp)
   /// While the step runs, a ball's position and velocity are those at the start of its
@@ -642,6 +607,10 @@ private:
     double chordSpeedSquared(const Vec3& b) const;
   };
   Vec3 onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const;
+  /// The direction a wall pushes a ball along, n the unit normal from the ball toward it:
+  /// n's part along the floor with this normal, or n itself where the floor all but faces
+  /// the wall (a wall parallel to the floor is met in space).
+  Vec3 wallPush(const Vec3& n, const Vec3& floor_normal) const;
   /// The closing speed at or below which an impact at restitution e is a resting contact.
   /// (At a ball of this radius centred at `position`: the round-off of positions there.)
   double restingSpeed(const Vec3& floor_normal, double restitution, const Vec3& position, double radius) const;
@@ -704,7 +673,6 @@ private:
   Vec2 no_foot_ = Vec2(0.5, 0.5);  ///< the foot point where the ground keeps none
   std::vector<CollisionEvent> events_;
   bool record_events_ = true;
-  std::vector<RestingContact> resting_;
   /// Resting groups: per ball its union-find parent (kNone32: in none), the next member of
   /// its group (a ring), and its first contact; the step's contacts.
   std::vector<std::uint32_t> group_parent_;
@@ -737,9 +705,6 @@ private:
   std::vector<double> energy_ref_;
   /// the contact solver's work space
   Scratch<ContactGroup> contact_group_;
-  std::vector<std::size_t> last_of_pair_;  ///< step::lastOfEachPair()'s, kept between steps
-  /// the directions balls may not move along for the rest of the step, emptied at its start
-  Scratch<step::BlockedDirections> blocked_;
 
   /// With friction: the laws under the plane's normal, each ball's spin beside balls_,
   /// the step's phases by visiting index, and the step's changes of kind.

@@ -36,40 +36,10 @@ void World::ChordMotion::start(World& w, std::size_t i, double x, const Vec3& po
     m.b = Vec3::Zero();
 }
 
-void World::ChordMotion::endOnFloor(World& w, std::size_t i)
-{
-  // The chord must end on the floor, where the step's end puts the ball: a ball moved
-  // there after its motion was checked could be pressed into what it touches. Taking
-  // out the blocked directions moves the end off the floor; back onto it and out of
-  // them again, in turn, until both hold to round-off. It ends out of them: a chord
-  // that goes on into what the ball leans on by round-off meets it again within the
-  // step, and again after that, an event each time that changes nothing.
-  Motion& m = w.motions_[i];
-  const double rest = w.chordEnd(i) - m.x0;
-  if (w.motions_[i].frozen || !(rest > 0))
-    return;
-  const StepSettings& settings = w.settings_;
-  const Vec3& p0 = w.startPosition(i);
-  const double roundoff = roundoffAt(p0, w.balls_[i].radius, settings);
-  for (int pass = 0; pass < settings.correction_passes; ++pass)
-  {
-    const Vec3 on = (w.onFloor(i, p0 + rest * m.b) - p0) / rest;
-    const Vec3 free = w.allowed(i, on);
-    const double off = (free - on).norm();
-    const bool done = off <= settings.correction_tolerance * on.norm() || rest * off <= roundoff;
-    // (a pass that leaves the motion as it was would be repeated as it is: fully blocked
-    // off the floor, say)
-    const bool same = free == m.b;
-    m.b = free;
-    if (done || same)
-      return;
-  }
-}
-
 double World::ChordMotion::endSpeedSquared(const World& w, std::size_t i, const EnergyCheck& energy) const
 {
-  // (endOnFloor has put the chord's end on the floor, or as near as its blocked
-  // directions let it: the chord's own end is what counts)
+  // (the chord's own end is what counts: one cut short of where its energy runs out
+  // ends off the floor)
   return energy.chordSpeedSquared(w.motions_[i].b);
 }
 
@@ -88,7 +58,7 @@ void World::ChordMotion::shorten(World& w, std::size_t i, const EnergyCheck& ene
   if (lo > 0)
   {
     const Vec3& p0 = w.startPosition(i);
-    const Vec3 b = w.allowed(i, (w.onFloor(i, p0 + rest * m.b) - p0) / rest);
+    const Vec3 b = (w.onFloor(i, p0 + rest * m.b) - p0) / rest;
     m.b = energy.chordSpeedSquared(b) >= 0 ? b : Vec3::Zero();
     if (m.b == Vec3::Zero())
       w.hold(i);
@@ -131,8 +101,8 @@ void World::ChordMotion::slideDownhill(World& w, const EnergyCheck& energy, doub
   const double longest = settings.slide_longest_reach * w.balls_[i].radius;
   while (count < settings.slide_doublings && std::ldexp(first, count) < longest)
     ++count;
-  const auto motionTo = [&](int k) {
-    return w.allowed(i, (w.onFloor(i, foot + (std::ldexp(first, k) / slope) * downhill) - p0) / rest);
+  const auto motionTo = [&](int k) -> Vec3 {
+    return (w.onFloor(i, foot + (std::ldexp(first, k) / slope) * downhill) - p0) / rest;
   };
   const auto keeps = [&](const Vec3& b) { return energy.speedSquaredWith(b) >= 0 && energy.chordSpeedSquared(b) >= 0; };
   if (count == 0)
@@ -154,51 +124,6 @@ void World::ChordMotion::slideDownhill(World& w, const EnergyCheck& energy, doub
       fails = k;
   }
   m.b = found;
-}
-
-void World::ChordMotion::separate(World& w, const PairContact& c, double rest, double move_a, double move_b,
-                                  const Vec3& pa, const Vec3& pb) const
-{
-  // No approach left along the normal; putting the ends back on the floor can bring some
-  // back: in turn, a few times, until what approach is left is round-off of the positions.
-  Motion& ma = w.motions_[c.i];
-  Motion& mb = w.motions_[c.j];
-  const double roundoff =
-      roundoffAt(pa, w.balls_[c.i].radius, w.settings_) + roundoffAt(pb, w.balls_[c.j].radius, w.settings_);
-  // A ball gives way only as far as the floor and what it leans on let it: where its part
-  // of a correction, once they are done with it, closes the contact instead of opening it
-  // (in any pair; in piles about one correction in eight; at its worst a light ball
-  // wedged in a corner, whose free directions are nearly square to the contact or lead
-  // into it), that part is undone and the other ball gives all the way from then on
-  // (else each pass pushes the wedged ball further along its free direction, and the
-  // corrections grow without end). Where neither can give, the approach left stays, and
-  // the pair is held if it is more than round-off (World::settleRestingPair()).
-  double give_a = move_a, give_b = move_b;
-  const auto undoWhereClosing = [&](Motion& m, const Vec3& before, double away, double& give) {
-    // (away: the correction takes ball a's motion back along n, and ball b's on)
-    if (give > 0 && away * (before - m.b).dot(c.n) <= 0)
-    {
-      m.b = before;
-      give = 0.0;
-    }
-  };
-  for (int pass = 0; pass < w.settings_.correction_passes; ++pass)
-  {
-    const double into = ma.b.dot(c.n) - mb.b.dot(c.n);
-    const double k = give_a * c.ta.dot(c.n) + give_b * c.tb.dot(c.n);
-    if (!(into > 0 && k > 0 && rest * into > roundoff))
-      break;
-    const double jb = into / k;
-    const Vec3 before_a = ma.b, before_b = mb.b;
-    ma.b -= (jb * give_a) * c.ta;
-    mb.b += (jb * give_b) * c.tb;
-    if (!w.motions_[c.i].held)
-      endOnFloor(w, c.i);
-    if (!w.motions_[c.j].held)
-      endOnFloor(w, c.j);
-    undoWhereClosing(ma, before_a, 1.0, give_a);
-    undoWhereClosing(mb, before_b, -1.0, give_b);
-  }
 }
 
 FrictionLaw World::ChordMotion::lawUnder(const World& w, const Vec3& n) const

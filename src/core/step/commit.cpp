@@ -1,7 +1,7 @@
 // Stage 5, commit: every ball to the step's end, back on the floor, its velocity
 // there (solved across the step's resting contacts by the contact solver), its turn by
 // rolling; and, while the visiting order stays, the next step's prediction. Reads
-// motions_, step_starts_, resting_, blocked_; writes balls_, feet_, the contact solver's
+// motions_, step_starts_, the resting groups' links; writes balls_, feet_, the contact solver's
 // work space.
 #include "contact_group.hpp"
 #include "rolling.hpp"

@@ -1,6 +1,5 @@
 // A group of balls joined by resting contacts, as the contact solver takes it: the
-// balls by a local index, their vectors and inverse masses, and one row per contact and
-// per direction a ball leans on. Reused from step to step, so that it allocates only as
+// balls by a local index, their vectors and inverse masses, and one row per contact. Reused from step to step, so that it allocates only as
 // it grows. Not part of the public interface.
 #pragma once
 
@@ -42,22 +41,6 @@ struct World::ContactGroup
     row.push_a = push_i;
     row.push_b = push_j;
     rows.push_back(row);
-  }
-  /// The directions the group's k-th ball may not move along because of a wall (those
-  /// whose source from_wall(source) says is one; a ball's are the pair's own rows), each
-  /// a contact with something that does not give way.
-  template <class FromWall>
-  void addBlocked(std::uint32_t k, const step::BlockedDirections& blocked, std::int32_t set, FromWall&& from_wall)
-  {
-    for (std::size_t d = 0; d < blocked.count(set); ++d)
-    {
-      if (!from_wall(blocked.source(set, d)))
-        continue;
-      step::ContactRow row;
-      row.a = k;
-      row.push_a = blocked.direction(set, d);
-      rows.push_back(row);
-    }
   }
   void clear()
   {

@@ -1,7 +1,9 @@
 // Resting contacts: the directions a ball may not move along for the rest of the step,
 // holding balls still, and what a motion's energy allows (FloorMotion::keepEnergy(), with
 // the floor's motion type saying where its motion ends and how it is cut short).
-// Reads and writes motions_, blocked_, and a held ball's spin_motions_.
+// Reads and writes motions_, balls_' sleep, and a held ball's spin_motions_; reads the
+// contact solver's work space (the step's resting contacts at its end).
+#include "contact_group.hpp"
 #include "spin_phase.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
@@ -12,41 +14,6 @@
 namespace ball_collision_sim::core
 {
 using namespace step;
-
-Vec3 World::allowed(std::size_t i, const Vec3& w) const
-{
-  const std::int32_t blocked = motions_[i].blocked;
-  if (blocked < 0)
-    return w;
-  // A wall's own normal is blocked beside its direction along the floor (for chords off
-  // a curved floor); on a plane it lets a motion out of the plane through (a ball in a
-  // corner of two walls would move straight up or down), which the plane takes.
-  return ground_.inPlane(blocked_.made().allowed(blocked, w, settings_.blocked_slack));
-}
-
-Vec3 World::redirected(std::size_t i, const Vec3& v) const
-{
-  // What a ball leans on takes the part of its velocity into it (the bounces that a
-  // resting contact sums); an elastic contact (e = 1, where only speeds at round-off
-  // rest) only turns it: where gravity pulls along the floor a ball's speed is its
-  // energy's (onFloorVelocity), and the turn keeps it.
-  const std::int32_t blocked = motions_[i].blocked;
-  const Vec3 free = allowed(i, v);
-  if (blocked < 0 || !blocked_.made().elastic(blocked))
-    return free;
-  return ground_.turned(v, free);
-}
-
-void World::addBlocked(std::size_t i, const Vec3& direction, std::uint64_t source, double restitution)
-{
-  Motion& m = motions_[i];
-  BlockedDirections& blocked = blocked_.get();
-  if (m.blocked < 0)
-    m.blocked = blocked.open();
-  blocked.add(m.blocked, direction, source, settings_.same_direction);
-  if (restitution < 1)
-    blocked.markInelastic(m.blocked);
-}
 
 void World::wakeGroup(std::size_t first)
 {
@@ -107,8 +74,10 @@ void World::wakeTouching(const Vec3& position, double radius)
 
 void World::sleepStillGroups()
 {
-  // Groups: balls joined by the step's resting contacts, by union-find over the visiting
-  // order (its smallest index stands for a group; the same groups whatever the order).
+  // Groups: balls joined by the step's resting contacts that touch at its end (endGroup()'s
+  // rows), by union-find over the visiting order (its smallest index stands for a group;
+  // the same groups whatever the order).
+  const ContactGroup& group = contact_group_.made();
   const std::size_t n = balls_.size();
   std::vector<std::uint32_t> parent(n);
   for (std::size_t k = 0; k < n; ++k)
@@ -119,12 +88,17 @@ void World::sleepStillGroups()
     return k;
   };
   std::vector<char> leans(n, 0);
-  for (const RestingContact& c : resting_)
+  for (const ContactRow& row : group.rows)
   {
-    leans[c.ball] = leans[c.other] = 1;
-    if (motions_[c.ball].asleep || motions_[c.other].asleep)
+    const std::size_t i = group.ballAt(row.a);
+    leans[i] = 1;
+    if (row.b == ContactRow::kImmovable)
+      continue;  // (a wall)
+    const std::size_t j = group.ballAt(row.b);
+    leans[j] = 1;
+    if (motions_[i].asleep || motions_[j].asleep)
       continue;  // a sleeping ball holds the other like a wall does
-    const std::size_t a = root(c.ball), b = root(c.other);
+    const std::size_t a = root(i), b = root(j);
     parent[std::max(a, b)] = static_cast<std::uint32_t>(std::min(a, b));
   }
   // a group sleeps when every ball in it has been still long enough
@@ -134,7 +108,7 @@ void World::sleepStillGroups()
     Ball& ball = balls_[k];
     if (ball.asleep)
       continue;
-    const bool still = (leans[k] || motions_[k].blocked >= 0) && ball.velocity.norm() <= settings_.sleep_speed;
+    const bool still = leans[k] && ball.velocity.norm() <= settings_.sleep_speed;
     ball.quiet_steps = still ? static_cast<std::uint16_t>(std::min<int>(ball.quiet_steps + 1, 0xffff)) : 0;
     if (ball.quiet_steps < sleep_steps_)
       restless[root(k)] = 1;

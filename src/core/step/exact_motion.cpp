@@ -58,22 +58,6 @@ void World::ExactMotion::shorten(World& w, std::size_t i, const EnergyCheck&, do
   w.motions_[i].b *= start > 0 ? start / (start - full) : 0.0;
 }
 
-void World::ExactMotion::separate(World& w, const PairContact& c, double rest, double move_a, double move_b,
-                                  const Vec3&, const Vec3&) const
-{
-  // No approach left along the impulse's directions: one correction does it (the
-  // motions stay in the plane).
-  Motion& ma = w.motions_[c.i];
-  Motion& mb = w.motions_[c.j];
-  const double into = ma.b.dot(c.ta) - mb.b.dot(c.tb);
-  const double k = move_a * c.ta.dot(c.ta) + move_b * c.tb.dot(c.tb);
-  if (!(into > 0 && k > 0 && rest * into > 0))
-    return;
-  const double jb = into / k;
-  ma.b -= (jb * move_a) * c.ta;
-  mb.b += (jb * move_b) * c.tb;
-}
-
 FrictionLaw World::ExactMotion::lawUnder(const World& w, const Vec3&) const
 {
   return *w.friction_;  // the plane's (or no floor's) own

@@ -29,7 +29,7 @@ struct World::FloorMotion
   /// friction phase set it).
   virtual void predict(World& w, std::size_t i, const Vec3& v) const = 0;
   /// Ball i's motion from x on, from `position` with start velocity v0 after a contact
-  /// has redirected it: a free ball's path, or a chord kept out of its blocked directions.
+  /// has redirected it.
   virtual void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const = 0;
   /// Shortens ball i's motion where its end would lie higher than its energy reaches
   /// (where gravity pulls along the floor, and the ball moves for the rest of the step).
@@ -40,11 +40,6 @@ struct World::FloorMotion
   /// at the motion's start and end (full < 0); on a curved floor a motion whose energy
   /// runs out at once slides downhill as far as it can, or the ball is held.
   virtual void shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full) const = 0;
-  /// Takes the approach left in a resting pair's motions out of them, after the impulse
-  /// at pa and pb, with `rest` of the step to go; each ball gives way by its inverse mass
-  /// (move_a, move_b: 0 where it is held).
-  virtual void separate(World& w, const PairContact& c, double rest, double move_a, double move_b, const Vec3& pa,
-                        const Vec3& pb) const = 0;
 
   // Friction.
   /// The friction laws under the floor's normal n.
@@ -77,8 +72,6 @@ struct World::ExactMotion final : World::FloorMotion
   void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
   double endSpeedSquared(const World& w, std::size_t i, const EnergyCheck& energy) const override;
   void shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full) const override;
-  void separate(World& w, const PairContact& c, double rest, double move_a, double move_b, const Vec3& pa,
-                const Vec3& pb) const override;
   FrictionLaw lawUnder(const World& w, const Vec3& n) const override;
   void rollOn(World&, std::size_t, const FrictionLaw&) const override {}
   bool drivenMotion(World& w, std::size_t i, const FrictionLaw& law) const override;
@@ -98,8 +91,6 @@ struct World::ChordMotion final : World::FloorMotion
   void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
   double endSpeedSquared(const World& w, std::size_t i, const EnergyCheck& energy) const override;
   void shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full) const override;
-  void separate(World& w, const PairContact& c, double rest, double move_a, double move_b, const Vec3& pa,
-                const Vec3& pb) const override;
   FrictionLaw lawUnder(const World& w, const Vec3& n) const override;
   void rollOn(World& w, std::size_t i, const FrictionLaw& law) const override;
   bool drivenMotion(World& w, std::size_t i, const FrictionLaw& law) const override;
@@ -110,8 +101,6 @@ struct World::ChordMotion final : World::FloorMotion
                  bool rolling) const override;
 
 private:
-  /// The chord moved to end on the floor and kept out of the ball's blocked directions.
-  static void endOnFloor(World& w, std::size_t i);
   /// Where on its chord (a fraction in [0, 1]) the ball's speed runs out.
   static double energyRunsOut(const World& w, const EnergyCheck& energy, double start, double full);
   /// A motion starting above or below the floor where the energy does not reach: the

@@ -36,21 +36,6 @@ Vec3 World::parabolaOf(std::size_t i) const
   return parabolas_ && motions_[i].accelerates ? pathTerm(i) : Vec3::Zero();
 }
 
-void World::toChord(std::size_t i)
-{
-  const bool parabola = motions_[i].accelerates;
-  if (parabola)
-  {
-    Motion& m = motions_[i];
-    m.b += (1 - m.x0) * pathTerm(i);
-    motions_[i].accelerates = false;
-  }
-  // (its contacts decide its motion from now on, and what it costs: gravity's work, not
-  // its phase's pull, which for a still ball leaves gravity along the floor out)
-  if (friction_ && (parabola || spin_motions_[i].phase->ownsMotion()))
-    constrainSpin(i);
-}
-
 Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
 {
   return ground_.normalAt(position, guessOf(i));
@@ -69,6 +54,12 @@ Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const
 double World::stillSpeed(const Vec3& floor_normal) const
 {
   return settings_.resting_steps * dt_ * ground_.gravityAlong(floor_normal) + settings_.resting_speed_floor;
+}
+
+Vec3 World::wallPush(const Vec3& n, const Vec3& floor_normal) const
+{
+  const Vec3 along = ground_.along(n, floor_normal);
+  return along.squaredNorm() < settings_.wall_along_floor_squared ? n : Vec3(along.normalized());
 }
 
 double World::restingSpeed(const Vec3& floor_normal, double restitution, const Vec3& position, double radius) const

@@ -53,10 +53,7 @@ void World::resolveBallWall(const Event& event)
   Vec3 v = onFloorVelocity(i, event.x, p, floor_normal);
 
   const Vec3 n = -event.normal;  // from the ball toward the wall
-  Vec3 dir = ground_.along(n, floor_normal);
-  if (dir.squaredNorm() < settings_.wall_along_floor_squared)
-    dir = n;  // a wall parallel to the floor: answer in space
-  dir.normalize();
+  const Vec3 dir = wallPush(n, floor_normal);
   const double closing = v.dot(dir);
   const bool resting = closing <= restingSpeed(floor_normal, wall.restitution, p, ball.radius);
   if (resting && !group_parent_.empty())

@@ -174,8 +174,7 @@ void World::linkRestingWalls(double reach)
       if (!(dist > 0) || !(dist - ball.radius <= touch + reach))
         continue;
       const Vec3 fn = floorNormalAt(i, ball.position);
-      Vec3 dir = ground_.along(d / dist, fn);
-      dir = dir.squaredNorm() < settings_.wall_along_floor_squared ? Vec3(d / dist) : Vec3(dir.normalized());
+      const Vec3 dir = wallPush(d / dist, fn);
       const double rest_speed = restingSpeed(fn, walls_[w].restitution, ball.position, ball.radius);
       const double closing = ball.velocity.dot(dir);
       const double pull = ground_.gravityAlong(fn);
@@ -332,8 +331,7 @@ void World::makeRows(double span)
       {
         d = walls_[l.b & ~kWallRow].closestPoint(pa) - pa;
         gap = d.norm() - balls_[a].radius;
-        Vec3 dir = ground_.along(d.normalized(), member_normals_[m]);
-        row.push_a = dir.squaredNorm() < settings_.wall_along_floor_squared ? Vec3(d.normalized()) : Vec3(dir.normalized());
+        row.push_a = wallPush(d.normalized(), member_normals_[m]);
       }
       else
       {
@@ -517,7 +515,6 @@ World::ContactGroup& World::endGroup()
 {
   ContactGroup& group = contact_group_.get();
   group.clear();
-  resting_.clear();
   warm_.clear();
   const double touch = settings_.touch_slack;
   for (const std::uint32_t index : linksInKeyOrder())
@@ -532,13 +529,10 @@ World::ContactGroup& World::endGroup()
       const double dist = d.norm();
       if (!(dist - a.radius <= touch) || !(dist > 0))
         continue;
-      Vec3 dir = ground_.along(d / dist, floor_normals_[l.a]);
-      dir = dir.squaredNorm() < settings_.wall_along_floor_squared ? Vec3(d / dist) : Vec3(dir.normalized());
       ContactRow row;
       row.a = group.localOf(l.a);
-      row.push_a = dir;
+      row.push_a = wallPush(d / dist, floor_normals_[l.a]);
       group.rows.push_back(row);
-      resting_.push_back({l.a, l.a, dir, dir, dir, dir});
       continue;
     }
     const Ball& b = balls_[l.b];
@@ -549,7 +543,6 @@ World::ContactGroup& World::endGroup()
     const Vec3 u = d / dist;
     const Vec3 along_a = ground_.along(u, floor_normals_[l.a]), along_b = ground_.along(u, floor_normals_[l.b]);
     group.addPair(l.a, l.b, along_a, along_b);
-    resting_.push_back({l.a, l.b, along_a, along_b, along_a, along_b});
   }
   for (std::size_t k = 0; k < group.size(); ++k)
   {

@@ -1,7 +1,6 @@
 // The commit stage's own arithmetic, apart from the world so that it is tested on its
-// own (test/test_commit.cpp): a ball's turn as it rolls without slip, and which of the
-// step's resting contacts stands for each pair. Reads and writes only its arguments. Not
-// part of the public interface.
+// own (test/test_commit.cpp): a ball's turn as it rolls without slip. Reads and writes
+// only its arguments. Not part of the public interface.
 #pragma once
 
 #include "ball_collision_sim/core/types.hpp"
@@ -60,30 +59,4 @@ inline Quat rolled(const Quat& orientation, const Vec3& normal, const Vec3& d, d
   return q;
 }
 
-/// Of `contacts` (each with the indices `ball` and `other` of the two balls, in the order
-/// they met), the index of the last of each pair, whichever way round it names the two;
-/// ascending. `last` is reused.
-template <class Contact>
-void lastOfEachPair(const std::vector<Contact>& contacts, std::vector<std::size_t>& last)
-{
-  // (pairs by their smaller and larger index, then the order they met in)
-  last.resize(contacts.size());
-  for (std::size_t r = 0; r < contacts.size(); ++r)
-    last[r] = r;
-  const auto key = [&](std::size_t r) {
-    const Contact& c = contacts[r];
-    return std::make_tuple(std::min(c.ball, c.other), std::max(c.ball, c.other), r);
-  };
-  std::sort(last.begin(), last.end(), [&](std::size_t p, std::size_t q) { return key(p) < key(q); });
-  std::size_t kept = 0;
-  for (std::size_t k = 0; k < last.size(); ++k)
-  {
-    const bool final = k + 1 == last.size() || std::get<0>(key(last[k + 1])) != std::get<0>(key(last[k])) ||
-                       std::get<1>(key(last[k + 1])) != std::get<1>(key(last[k]));
-    if (final)
-      last[kept++] = last[k];
-  }
-  last.resize(kept);
-  std::sort(last.begin(), last.end());
-}
 }  // namespace ball_collision_sim::core::step

@@ -5,7 +5,6 @@
 
 #include "ball_collision_sim/core/world.hpp"
 
-#include "blocked_directions.hpp"
 #include "contact_solver.hpp"
 
 #include <cstdint>
@@ -52,7 +51,6 @@ struct World::Motion
   /// it stays where it is through resting contacts for the rest of the step (an impact
   /// lets it go), and ends the step with no velocity.
   std::uint16_t held : 1;
-  std::int32_t blocked = -1;     ///< its set of blocked directions this step (BlockedDirections), if any
 };
 
 /// The largest event cap a Motion's 12-bit count holds with one past it [events].
