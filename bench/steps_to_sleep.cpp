@@ -2,7 +2,7 @@
 // balls, with friction) and the piles of LongRun.DissipativePilesComeToRestAndSleep (60
 // and 200 balls at e = 0.5 and 0.9, in the walled bowl with friction and against the wall
 // at the foot of a 10 degree slope without) from five random starts each. Each is stepped until every ball sleeps, at most 60 s.
-// Prints CSV: the steps it took (-1: not in 60 s), the events and held balls until then,
+// Prints CSV: the steps it took (-1: not in 60 s), the events and stopped balls until then,
 // and the largest rise of the total energy in a step [J].
 //   steps_to_sleep [LABEL]
 #include "fixtures.hpp"
@@ -40,7 +40,7 @@ void run(const std::string& label, const std::string& name, const Scene& scene)
   }
   std::printf("%s,%s,%zu,%d,%llu,%llu,%.3g\n", label.c_str(), name.c_str(), n, slept,
               static_cast<unsigned long long>(world.stats().events),
-              static_cast<unsigned long long>(world.stats().held_balls), rise);
+              static_cast<unsigned long long>(world.stats().stopped_balls), rise);
   std::fflush(stdout);
 }
 }  // namespace
@@ -48,7 +48,7 @@ void run(const std::string& label, const std::string& name, const Scene& scene)
 int main(int argc, char** argv)
 {
   const std::string label = argc > 1 ? argv[1] : "this";
-  std::printf("version,scene,balls,steps_to_sleep,events,held_balls,largest_rise_J\n");
+  std::printf("version,scene,balls,steps_to_sleep,events,stopped_balls,largest_rise_J\n");
   run(label, "S4", ball_collision_sim::bench::bowlPileAtRest(200));
   run(label, "S4", ball_collision_sim::bench::bowlPileAtRest(300));
   for (const double e : {0.5, 0.9})

@@ -111,7 +111,7 @@ struct StepSettings
   /// ... and strays at most about this part of the ball's radius from the surface (L^2 k /
   /// 8, for the floor's curvature k; the centre's surface, r further out, curves by up to
   /// R / (R - r) more in a hollow of radius R): a ball stopped part way along its chord
-  /// (held) ends the step there, off the floor by the sag, and a small ball's long chord
+  /// (where its energy runs out) ends the step there, off the floor by the sag, and a small ball's long chord
   /// would leave it floating several radii above it. A small fast ball's step is then cut
   /// into v dt / sqrt(8 chord_sag r / k) chords, each an event that counts toward
   /// max_events_per_ball_step [ratio].

@@ -66,9 +66,9 @@ struct WorldStats
   std::uint64_t resting_contacts = 0;
   std::uint64_t stale_events = 0;    ///< queued impacts dropped because a ball moved on
   std::uint64_t frozen_balls = 0;    ///< balls stopped for a step by the per-step event cap
-  /// balls held still for the rest of a step: jammed at a resting contact, or with no
-  /// motion their energy allows
-  std::uint64_t held_balls = 0;
+  /// motions on a curved floor stopped where they start, the ball's energy run out there
+  /// (a turning point: no motion and no speed for the rest of it)
+  std::uint64_t stopped_balls = 0;
   std::uint64_t sleeping_balls = 0;  ///< balls asleep after the last step (not a sum)
   std::uint64_t woken_balls = 0;     ///< balls woken by impacts
   std::uint64_t transitions = 0;     ///< changes of a ball's motion kind (friction)
@@ -489,17 +489,26 @@ private:
       e += 0.5 * spins_[i].inertia * ball.mass * ball.radius * ball.radius * spins_[i].angular_velocity.squaredNorm();
     return e;
   }
-  /// Ball i's new motion from x on; an impact (not a resting contact) lets a held ball
-  /// go, and a ball still held after it keeps no motion for the rest of the step.
+  /// After an impact: its balls' groups solved again from its time on, or the balls
+  /// detected again.
+  void goOnAfter(const Event& event);
+  /// Ball i's velocity v after an impulse at x, where it is at p on the floor with this
+  /// normal (`before`: its velocity before; `impact`: not a resting contact's): its new
+  /// motion, or its group's free velocity; what the impulse gave it counts toward the
+  /// energy its group may end with.
+  void takeVelocity(std::size_t i, double x, const Vec3& p, const Vec3& normal, const Vec3& before, const Vec3& v,
+                    bool impact);
+  /// Ball i's new motion from x on, from `position` with `velocity` (`impact`: an impact
+  /// gave it, not a resting contact or a chord's or phase's end).
   void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact);
   void countEvent(std::size_t i);
   /// Ball i has a new motion that no event of its own made (its group's): what was
   /// predicted for it is stale, and its box follows the motion.
   void renewMotion(std::size_t i);
-  /// Ball i stays where it is through the step's resting contacts (counted once a step)
-  /// and ends the step with no velocity; with friction its spin then follows its
-  /// contacts (constrainSpin()).
-  void hold(std::size_t i);
+  /// Ball i's energy has run out where its motion starts (a turning point): it has no
+  /// motion and no speed from there (until an event gives it some); with friction its
+  /// spin then follows its contacts (constrainSpin()).
+  void stop(std::size_t i);
   /// An impact between balls i and j closing at `closing` along their normal wakes the
   /// group of the one asleep, where it is faster than the pair's resting speed.
   void wakeOnImpact(std::size_t i, std::size_t j, double closing, double rest_speed);
@@ -537,8 +546,8 @@ private:
   /// Ball i has no motion for the rest of the step (frozen by the cap, or asleep): its
   /// spin stays as it is.
   void keepSpin(std::size_t i);
-  /// Ball i's motion from its start on is its contacts' (held, or kept out of blocked
-  /// directions): its spin follows FrictionLaw::constrained().
+  /// Ball i's motion from its start on is not its phase's (its group's, or stopped where
+  /// its energy ran out): its spin follows FrictionLaw::constrained().
   void constrainSpin(std::size_t i);
   /// Records a transition at x where ball i's kind is not the one last reported.
   void recordKind(std::size_t i, double x);
@@ -589,9 +598,6 @@ private:
   Vec3 floorNormalAt(std::size_t i, const Vec3& position) const;
   /// Where the ball i centred at q is put back on the floor (q itself without a floor).
   Vec3 onFloor(std::size_t i, const Vec3& q) const;
-  /// Shortens ball i's motion where its end would lie higher than its energy reaches
-  /// (FloorMotion::keepEnergy()).
-  void keepEnergy(std::size_t i);
   /// The speed ball i's motion would end with, from its energy at the motion's start.
   struct EnergyCheck
   {

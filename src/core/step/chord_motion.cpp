@@ -32,18 +32,23 @@ void World::ChordMotion::start(World& w, std::size_t i, double x, const Vec3& po
   m.b = rest > 0 ? Vec3((w.predictedEnd(i, position, v0, rest * w.dt_) - position) / rest) : Vec3(w.dt_ * v0);
   w.cutChord(i, position, v0);
   keepEnergy(w, i);
-  if (w.motions_[i].held)
-    m.b = Vec3::Zero();
 }
 
-double World::ChordMotion::endSpeedSquared(const World& w, std::size_t i, const EnergyCheck& energy) const
+void World::ChordMotion::keepEnergy(World& w, std::size_t i)
 {
+  const double rest = w.chordEnd(i) - w.motions_[i].x0;
+  if (w.motions_[i].frozen || !(rest > 0))
+    return;
+  const EnergyCheck energy{&w, i, rest};
   // (the chord's own end is what counts: one cut short of where its energy runs out
   // ends off the floor)
-  return energy.chordSpeedSquared(w.motions_[i].b);
+  const double full = energy.chordSpeedSquared(w.motions_[i].b);
+  if (full >= 0)
+    return;
+  shorten(w, i, energy, energy.speedSquared(0.0), full);
 }
 
-void World::ChordMotion::shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full) const
+void World::ChordMotion::shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full)
 {
   // The chord ends higher than the ball's energy reaches (a turning point, or a ball in
   // a pile whose constraints turned its motion uphill): it stops where the energy runs
@@ -59,9 +64,10 @@ void World::ChordMotion::shorten(World& w, std::size_t i, const EnergyCheck& ene
   {
     const Vec3& p0 = w.startPosition(i);
     const Vec3 b = (w.onFloor(i, p0 + rest * m.b) - p0) / rest;
-    m.b = energy.chordSpeedSquared(b) >= 0 ? b : Vec3::Zero();
-    if (m.b == Vec3::Zero())
-      w.hold(i);
+    if (energy.chordSpeedSquared(b) >= 0)
+      m.b = b;
+    else
+      w.stop(i);
     return;
   }
   slideDownhill(w, energy, start);
@@ -82,19 +88,18 @@ void World::ChordMotion::slideDownhill(World& w, const EnergyCheck& energy, doub
   // A motion that starts at an impact inside the step starts on the chord, below or
   // above the floor; where the floor above it is higher than the energy reaches, the
   // ball slides downhill from there instead, as far as it takes to be low enough.
-  // Where it finds no way, it is held: it stays put through the step's resting contacts.
-  // (keepEnergy only ever holds a ball: an impact, not a new motion, lets it go)
+  // Where it finds no way, its energy has run out where it is: it stops (World::stop()).
   const Vec3& p0 = w.startPosition(i);
   const Vec3 foot = w.onFloor(i, p0);
   const Vec3 downhill = tangentPart(w.gravity_, w.floorNormalAt(i, foot));
   const double slope = downhill.norm();
   if (!(slope > 0))
-    return w.hold(i);
+    return w.stop(i);
   // (a short way only: the chord's sag is small next to the ball; else it stays put)
   // The reaches tried are first * 2^k below half the radius. Where the energy left grows
   // with the reach (the lower the end, the more), halving the range of k after the
   // longest has shown that one does finds the shortest that does; elsewhere it finds one
-  // that does, or, where the longest does not, holds the ball (which makes no energy).
+  // that does, or, where the longest does not, stops the ball (which makes no energy).
   const StepSettings& settings = w.settings_;
   const double first = std::max(-start / slope, settings.slide_first_reach * w.balls_[i].radius);
   int count = 0;
@@ -106,10 +111,10 @@ void World::ChordMotion::slideDownhill(World& w, const EnergyCheck& energy, doub
   };
   const auto keeps = [&](const Vec3& b) { return energy.speedSquaredWith(b) >= 0 && energy.chordSpeedSquared(b) >= 0; };
   if (count == 0)
-    return w.hold(i);
+    return w.stop(i);
   Vec3 found = motionTo(count - 1);
   if (!keeps(found))
-    return w.hold(i);
+    return w.stop(i);
   int fails = -1, works = count - 1;  // the largest k known to fail, the smallest known to work
   while (works - fails > 1)
   {

@@ -75,10 +75,8 @@ World::Committed World::commitBall(std::size_t i, bool settle)
   std::uint32_t& start = step_start_of_[i];
   const Vec3 moved = end.centre - (start == kNoStepStart ? ball.position : step_starts_[start]);
   start = kNoStepStart;
-  // (a ball that ends the step without motion, frozen or held still by its contacts,
-  // keeps no speed it does not move with)
-  const Motion& m = motions_[i];
-  ball.velocity = m.frozen || m.held ? Vec3::Zero() : onFloorVelocity(i, 1.0, end.centre, end.normal);
+  // (a ball frozen by the event cap keeps no speed it does not move with)
+  ball.velocity = motions_[i].frozen ? Vec3::Zero() : onFloorVelocity(i, 1.0, end.centre, end.normal);
   if (friction_)
   {
     // its own spin at the end, and its turn over the step by the mean of its spins

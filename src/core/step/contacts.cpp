@@ -1,7 +1,7 @@
 // Resting contacts: the directions a ball may not move along for the rest of the step,
 // holding balls still, and what a motion's energy allows (FloorMotion::keepEnergy(), with
 // the floor's motion type saying where its motion ends and how it is cut short).
-// Reads and writes motions_, balls_' sleep, and a held ball's spin_motions_; reads the
+// Reads and writes motions_, balls_' sleep, and a stopped ball's spin_motions_; reads the
 // contact solver's work space (the step's resting contacts at its end).
 #include "contact_group.hpp"
 #include "spin_phase.hpp"
@@ -127,13 +127,12 @@ void World::sleepStillGroups()
   stats_.sleeping_balls = asleep;
 }
 
-void World::hold(std::size_t i)
+void World::stop(std::size_t i)
 {
-  if (!motions_[i].held)
-    ++stats_.held_balls;
-  motions_[i].held = true;
-  // (with friction its spin then follows from its contacts too, not from a phase whose
-  // motion it does not make: FrictionLaw::constrained())
+  ++stats_.stopped_balls;
+  motions_[i].b = startVelocity(i) = Vec3::Zero();
+  // (with friction its spin then follows from its contacts, not from a phase whose motion
+  // it does not make: FrictionLaw::constrained())
   if (friction_ && spin_motions_[i].phase->ownsMotion())
     constrainSpin(i);
 }
@@ -154,22 +153,5 @@ double World::EnergyCheck::chordSpeedSquared(const Vec3& b) const
   if (world->friction_)
     return world->spin_motions_[i].phase->chordSpeedSquared(*world, i, rest, b);
   return world->linearChordSpeedSquared(i, rest, b);
-}
-
-void World::keepEnergy(std::size_t i)
-{
-  floor_motion_->keepEnergy(*this, i);
-}
-
-void World::FloorMotion::keepEnergy(World& w, std::size_t i) const
-{
-  const double rest = w.chordEnd(i) - w.motions_[i].x0;
-  if (w.ground_.straight() || w.motions_[i].frozen || !(rest > 0))
-    return;
-  const EnergyCheck energy{&w, i, rest};
-  const double full = endSpeedSquared(w, i, energy);
-  if (full >= 0)
-    return;
-  shorten(w, i, energy, energy.speedSquared(0.0), full);
 }
 }  // namespace ball_collision_sim::core

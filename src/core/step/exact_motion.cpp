@@ -39,23 +39,9 @@ void World::ExactMotion::start(World& w, std::size_t i, double x, const Vec3& po
     w.motions_[i].accelerates = true;
     return;
   }
+  // (no pull along the floor: the motion is the line at v0, its energy its start's)
   const double rest = 1 - x;
   m.b = rest > 0 ? Vec3((w.predictedEnd(i, position, v0, rest * w.dt_) - position) / rest) : Vec3(w.dt_ * v0);
-  keepEnergy(w, i);
-}
-
-double World::ExactMotion::endSpeedSquared(const World&, std::size_t, const EnergyCheck& energy) const
-{
-  return energy.speedSquared(1.0);
-}
-
-void World::ExactMotion::shorten(World& w, std::size_t i, const EnergyCheck&, double start, double full) const
-{
-  // The chord ends higher than the ball's energy reaches (a ball in a pile whose
-  // constraints turned its motion uphill): it stops where the energy runs out, which is
-  // linear along the chord, so that no energy is made.
-  // (round-off may leave the end a hair too high; the speed is clamped to zero then)
-  w.motions_[i].b *= start > 0 ? start / (start - full) : 0.0;
 }
 
 FrictionLaw World::ExactMotion::lawUnder(const World& w, const Vec3&) const

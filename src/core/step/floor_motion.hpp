@@ -4,8 +4,9 @@
 //   gravity's part along the plane (a line where it has none); a ball under its contacts
 //   moves on a chord in the plane, and its energy is linear along the chord.
 // - ChordMotion (a curved floor): every motion is a chord between points of the floor,
-//   no longer than the floor allows, put back on it after every correction and kept
-//   within the ball's energy; friction laws are taken under the normal where the ball is.
+//   no longer than the floor allows, and kept within the ball's energy (cut where the
+//   energy runs out, or stopped where that is at once); friction laws are taken under the normal
+//   where the ball is.
 // A new kind of motion is a new type here, not a branch in the step's stages.
 // Reads and writes what the World's stages give it (motions_, spin_motions_, the motions' starts).
 #pragma once
@@ -31,15 +32,6 @@ struct World::FloorMotion
   /// Ball i's motion from x on, from `position` with start velocity v0 after a contact
   /// has redirected it.
   virtual void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const = 0;
-  /// Shortens ball i's motion where its end would lie higher than its energy reaches
-  /// (where gravity pulls along the floor, and the ball moves for the rest of the step).
-  void keepEnergy(World& w, std::size_t i) const;
-  /// |v|^2 where ball i's motion ends, from its energy (below zero: higher than it reaches).
-  virtual double endSpeedSquared(const World& w, std::size_t i, const EnergyCheck& energy) const = 0;
-  /// Cuts ball i's motion where its speed runs out, `start` and `full` its speed squared
-  /// at the motion's start and end (full < 0); on a curved floor a motion whose energy
-  /// runs out at once slides downhill as far as it can, or the ball is held.
-  virtual void shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full) const = 0;
 
   // Friction.
   /// The friction laws under the floor's normal n.
@@ -70,8 +62,6 @@ struct World::ExactMotion final : World::FloorMotion
   bool keepsFeet() const override { return false; }
   void predict(World& w, std::size_t i, const Vec3& v) const override;
   void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
-  double endSpeedSquared(const World& w, std::size_t i, const EnergyCheck& energy) const override;
-  void shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full) const override;
   FrictionLaw lawUnder(const World& w, const Vec3& n) const override;
   void rollOn(World&, std::size_t, const FrictionLaw&) const override {}
   bool drivenMotion(World& w, std::size_t i, const FrictionLaw& law) const override;
@@ -89,8 +79,6 @@ struct World::ChordMotion final : World::FloorMotion
   bool keepsFeet() const override { return true; }
   void predict(World& w, std::size_t i, const Vec3& v) const override;
   void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
-  double endSpeedSquared(const World& w, std::size_t i, const EnergyCheck& energy) const override;
-  void shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full) const override;
   FrictionLaw lawUnder(const World& w, const Vec3& n) const override;
   void rollOn(World& w, std::size_t i, const FrictionLaw& law) const override;
   bool drivenMotion(World& w, std::size_t i, const FrictionLaw& law) const override;
@@ -101,6 +89,12 @@ struct World::ChordMotion final : World::FloorMotion
                  bool rolling) const override;
 
 private:
+  /// Shortens ball i's chord where its end would lie higher than its energy reaches.
+  static void keepEnergy(World& w, std::size_t i);
+  /// Cuts ball i's chord where its speed runs out, `start` and `full` its speed squared
+  /// at the chord's start and end (full < 0); a motion whose energy runs out at once
+  /// slides downhill as far as it can, or the ball stops (World::stop()).
+  static void shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full);
   /// Where on its chord (a fraction in [0, 1]) the ball's speed runs out.
   static double energyRunsOut(const World& w, const EnergyCheck& energy, double start, double full);
   /// A motion starting above or below the floor where the energy does not reach: the

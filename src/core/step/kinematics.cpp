@@ -109,21 +109,12 @@ void World::beginMotion(std::size_t i, double x, const Vec3& position, const Vec
 void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact)
 {
   Motion& m = motions_[i];
-  if (impact)
-    motions_[i].held = false;
   beginMotion(i, x, position, motions_[i].frozen ? Vec3::Zero() : velocity);
   if (motions_[i].frozen)
   {
     m.b = Vec3::Zero();
     if (friction_)
       keepSpin(i);
-    return;
-  }
-  if (motions_[i].held)
-  {
-    m.b = Vec3::Zero();  // still held (no impact let it go): it keeps no motion
-    if (friction_)
-      constrainSpin(i);
     return;
   }
   if (friction_)

@@ -74,19 +74,11 @@ void World::resolveBallWall(const Event& event)
   v -= (impulse * inv_mass) * dir;
   if (friction_)
     ballWallFriction(i, n, floor_normal, resting ? 0.0 : impulse, v);
-  if (!energy_ref_.empty())
-    energy_ref_[i] += impulseEnergy(i, event.x, before, v);
-  if (!group_motion_.empty() && group_motion_[i])
-    takeImpulse(i, event.x, p, v - onFloorVelocity(i, event.x, p, floor_normal));  // (solved again below)
-  else
-    startMotion(i, event.x, p, v, !resting);
+  takeVelocity(i, event.x, p, floor_normal, before, v, !resting);
   recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
               event);
   countEvent(i);
-  if (grouped(i))
-    solveGroup(i, event.x);
-  else
-    detect(i);
+  goOnAfter(event);
 }
 
 void World::wakeOnImpact(std::size_t i, std::size_t j, double closing, double rest_speed)
@@ -106,12 +98,8 @@ void World::resolveBallBall(const Event& event)
   const Vec3 pb = positionAt(j, event.x);
   const Vec3 na = floorNormalAt(i, pa);
   const Vec3 nb = floorNormalAt(j, pb);
-  Vec3 va = onFloorVelocity(i, event.x, pa, na);
-  Vec3 vb = onFloorVelocity(j, event.x, pb, nb);
-  if (motions_[i].frozen)
-    va = Vec3::Zero();
-  if (motions_[j].frozen)
-    vb = Vec3::Zero();
+  Vec3 va = motions_[i].frozen ? Vec3::Zero() : onFloorVelocity(i, event.x, pa, na);
+  Vec3 vb = motions_[j].frozen ? Vec3::Zero() : onFloorVelocity(j, event.x, pb, nb);
 
   Vec3 n = pb - pa;
   const double dist = n.norm();
@@ -134,11 +122,9 @@ void World::resolveBallBall(const Event& event)
   }
   if (friction_)
   {
-    // (the spins there, before the impact changes the velocities; they become the new
-    // motions' w0)
-    const Vec3 wa = spinAtEvent(i, event.x, na, va), wb = spinAtEvent(j, event.x, nb, vb);
-    spin_motions_[i].w0 = wa;
-    spin_motions_[j].w0 = wb;
+    // (the spins there, before the impact changes the velocities: the new motions' w0)
+    spin_motions_[i].w0 = spinAtEvent(i, event.x, na, va);
+    spin_motions_[j].w0 = spinAtEvent(j, event.x, nb, vb);
   }
   const double inv_a = inverseMass(i);
   const double inv_b = inverseMass(j);
@@ -151,33 +137,42 @@ void World::resolveBallBall(const Event& event)
   const PairContact pair{i, j, n, na, nb, ta, tb, ta, tb, inv_a, inv_b};
   if (friction_)
     ballBallFriction(pair, resting ? 0.0 : impulse, va, vb);
-  if (!energy_ref_.empty())
-  {
-    energy_ref_[i] += impulseEnergy(i, event.x, va_before, va);
-    energy_ref_[j] += impulseEnergy(j, event.x, vb_before, vb);
-  }
-  // (a ball on its group's motion takes the impulse into its free velocity, and its
-  // group is solved again below)
-  if (!group_motion_.empty() && group_motion_[i])
-    takeImpulse(i, event.x, pa, va - onFloorVelocity(i, event.x, pa, na));
-  else
-    startMotion(i, event.x, pa, va, !resting);
-  if (!group_motion_.empty() && group_motion_[j])
-    takeImpulse(j, event.x, pb, vb - onFloorVelocity(j, event.x, pb, nb));
-  else
-    startMotion(j, event.x, pb, vb, !resting);
+  takeVelocity(i, event.x, pa, na, va_before, va, !resting);
+  takeVelocity(j, event.x, pb, nb, vb_before, vb, !resting);
   recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, impulse, closing, resting, event);
   countEvent(i);
   countEvent(j);
-  const bool group_i = grouped(i), group_j = grouped(j);
+  goOnAfter(event);
+}
+
+void World::goOnAfter(const Event& event)
+{
+  const std::size_t i = event.i, j = event.j;
+  const bool group_i = grouped(i);
   if (group_i)
     solveGroup(i, event.x);
   else
     detect(i);
+  if (event.wall)
+    return;
+  const bool group_j = grouped(j);
   if (group_j && !(group_i && groupOf(i) == groupOf(j)))
     solveGroup(j, event.x);
   else if (!group_j)
     detect(j);
+}
+
+void World::takeVelocity(std::size_t i, double x, const Vec3& p, const Vec3& normal, const Vec3& before, const Vec3& v,
+                         bool impact)
+{
+  if (!energy_ref_.empty())
+    energy_ref_[i] += impulseEnergy(i, x, before, v);
+  // (a ball on its group's motion takes the impulse into its free velocity, and its
+  // group is solved again after the event)
+  if (!group_motion_.empty() && group_motion_[i])
+    takeImpulse(i, x, p, v - onFloorVelocity(i, x, p, normal));
+  else
+    startMotion(i, x, p, v, impact);
 }
 
 void World::renewMotion(std::size_t i)

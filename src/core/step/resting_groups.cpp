@@ -482,7 +482,6 @@ void World::finishGroup(double x, double span)
       chord_ends_[b] = span > 0 ? x + span : 1.0;  // (where the group is solved again)
     group_velocity_[b] = member_velocities_[m];
     group_motion_[b] = 1;
-    motions_[b].held = false;
     if (member_rolls_[m])
       spin_motions_[b].w0 = n.cross(v) / balls_[b].radius + spin_about_n;
     if (friction_)

@@ -33,7 +33,7 @@ inline double roundoffAt(const Vec3& p, double r, const StepSettings& settings)
 /// startVelocity()).
 struct World::Motion
 {
-  Motion() : events(0), frozen(0), asleep(0), accelerates(0), held(0) {}
+  Motion() : events(0), frozen(0), asleep(0), accelerates(0) {}
   double x0 = 0.0;               ///< where this motion starts, fraction of the step
   Vec3 b = Vec3::Zero();         ///< displacement per unit of x [m]; zero while frozen
   /// Bumped at every event of this ball: what was predicted before is stale. It counts
@@ -47,10 +47,6 @@ struct World::Motion
   std::uint16_t asleep : 1;      ///< frozen because the ball sleeps: an impact wakes it
   /// its motion is the parabola of a free ball (World::path_c_), not a chord
   std::uint16_t accelerates : 1;
-  /// Held (see hold()): in a jam at a resting contact, or left no motion its energy allows;
-  /// it stays where it is through resting contacts for the rest of the step (an impact
-  /// lets it go), and ends the step with no velocity.
-  std::uint16_t held : 1;
 };
 
 /// The largest event cap a Motion's 12-bit count holds with one past it [events].
