@@ -492,12 +492,11 @@ private:
   /// After an impact: its balls' groups solved again from its time on, or the balls
   /// detected again.
   void goOnAfter(const Event& event);
-  /// Ball i's velocity v after an impulse at x, where it is at p on the floor with this
-  /// normal (`before`: its velocity before; `impact`: not a resting contact's): its new
-  /// motion, or its group's free velocity; what the impulse gave it counts toward the
-  /// energy its group may end with.
-  void takeVelocity(std::size_t i, double x, const Vec3& p, const Vec3& normal, const Vec3& before, const Vec3& v,
-                    bool impact);
+  /// Ball i's velocity v after an impact's impulse at x, where it is at p on the floor
+  /// with this normal (`before`: its velocity before): its new motion, or its group's
+  /// free velocity; what the impulse gave it counts toward the energy its group may end
+  /// with.
+  void takeVelocity(std::size_t i, double x, const Vec3& p, const Vec3& normal, const Vec3& before, const Vec3& v);
   /// Ball i's new motion from x on, from `position` with `velocity` (`impact`: an impact
   /// gave it, not a resting contact or a chord's or phase's end).
   void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact);

@@ -15,7 +15,7 @@ constexpr double kRegularization = 1e-10;
 /// about the regularization's factor) [refinements].
 constexpr int kRefinements = 2;
 /// Rounds that all wrong rows change side together may go without making fewer of them
-/// before only the first does (Murty's rule, which ends) [rounds].
+/// before only the first does (Murty's rule, which ends for the regularized A) [rounds].
 constexpr int kPivotTries = 3;
 
 /// A, the pushing rows' W = J M^-1 J^T (its lower triangle, its diagonal a little larger),
@@ -84,9 +84,10 @@ PushingSystem pushingSystem(const std::vector<Vec3>& u_free, const std::vector<d
 
 /// The impulses of the rows `active` (taken to push) that take their closings to their
 /// targets from u_free, solved directly, into lambda, and the vectors they leave, into
-/// trial; false where A could not be factorized.
+/// trial; false where A could not be factorized. Refined (`refine`), the impulses are
+/// those of A itself; else those of A with its diagonal a little larger.
 bool solvePushing(const std::vector<Vec3>& u_free, const std::vector<double>& inv, const std::vector<ContactRow>& rows,
-                  const std::vector<int>& active, std::vector<Vec3>& trial, std::vector<double>& lambda)
+                  const std::vector<int>& active, std::vector<Vec3>& trial, std::vector<double>& lambda, bool refine)
 {
   const int n = static_cast<int>(active.size());
   const PushingSystem system = pushingSystem(u_free, inv, rows, active);
@@ -97,7 +98,7 @@ bool solvePushing(const std::vector<Vec3>& u_free, const std::vector<double>& in
   if (solver.info() != Eigen::Success)
     return false;
   Eigen::VectorXd x = solver.solve(rhs);
-  for (int refine = 0; refine < kRefinements; ++refine)
+  for (int pass = 0; refine && pass < kRefinements; ++pass)
   {
     const Eigen::VectorXd residual =
         rhs - (A.selfadjointView<Eigen::Lower>() * x - kRegularization * diagonal.cwiseProduct(x));
@@ -115,6 +116,19 @@ bool solvePushing(const std::vector<Vec3>& u_free, const std::vector<double>& in
   }
   return true;
 }
+
+/// The rows that are wrong where those in_active push with the impulses lambda and leave
+/// the vectors trial: a pushing row whose impulse came out below zero, a row left out that
+/// closes past its target by more than `slack`.
+std::vector<int> wrongRows(const std::vector<ContactRow>& rows, const std::vector<char>& in_active,
+                           const std::vector<Vec3>& trial, const std::vector<double>& lambda, double slack)
+{
+  std::vector<int> wrong;
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    if (in_active[r] ? lambda[r] < 0 : closingOf(trial, rows[r]) - rows[r].target > slack)
+      wrong.push_back(static_cast<int>(r));
+  return wrong;
+}
 }  // namespace
 
 bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std::vector<ContactRow>& rows,
@@ -127,26 +141,35 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
   std::vector<char> in_active;
   std::size_t fewest = rows.size() + 1;
   int tries = kPivotTries;
+  // (Murty's rule ends for a positive definite A; where contacts say the same, A itself
+  // is only semidefinite, and one row after another can go round in a cycle: from then
+  // on the rows are judged by the regularized A, which is definite)
+  bool refine = true;
   for (int round = 0; round < rounds; ++round)
   {
     const int n = static_cast<int>(active.size());
     std::vector<Vec3> trial = u_free;
     std::vector<double> lambda(rows.size(), 0.0);
-    if (n > 0 && !solvePushing(u_free, inv, rows, active, trial, lambda))
+    if (n > 0 && !solvePushing(u_free, inv, rows, active, trial, lambda, refine))
       return false;
-    // Block principal pivoting (Judice and Pires): every row that is wrong changes side
-    // (a pushing row whose impulse came out below zero, a row left out that closes), as
-    // long as that makes fewer wrong ones within a few rounds; else only the first wrong
-    // row does (Murty's rule, which ends for a positive definite A).
+    // Block principal pivoting (Judice and Pires): every row that is wrong changes side,
+    // as long as that makes fewer wrong ones within a few rounds; else only the first
+    // wrong row does (Murty's rule, which ends for a positive definite A).
     in_active.assign(rows.size(), 0);
     for (const int r : active)
       in_active[static_cast<std::size_t>(r)] = 1;
-    std::vector<int> wrong;
-    for (std::size_t r = 0; r < rows.size(); ++r)
-      if (in_active[r] ? lambda[r] < 0 : closingOf(trial, rows[r]) - rows[r].target > slack)
-        wrong.push_back(static_cast<int>(r));
+    std::vector<int> wrong = wrongRows(rows, in_active, trial, lambda, slack);
     if (wrong.empty())
     {
+      // (found by the regularized A: A's own impulses where they are right too)
+      std::vector<Vec3> refined = u_free;
+      std::vector<double> refined_lambda(rows.size(), 0.0);
+      if (!refine && solvePushing(u_free, inv, rows, active, refined, refined_lambda, true) &&
+          wrongRows(rows, in_active, refined, refined_lambda, slack).empty())
+      {
+        trial.swap(refined);
+        lambda.swap(refined_lambda);
+      }
       u = trial;
       for (std::size_t r = 0; r < rows.size(); ++r)
         rows[r].impulse = lambda[r];
@@ -160,7 +183,10 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
     else if (tries > 0)
       --tries;
     else
+    {
       wrong.resize(1);
+      refine = false;
+    }
     for (const int r : wrong)
       in_active[static_cast<std::size_t>(r)] ^= 1;
     active.clear();

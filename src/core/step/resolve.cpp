@@ -56,7 +56,7 @@ void World::resolveBallWall(const Event& event)
   const Vec3 dir = wallPush(n, floor_normal);
   const double closing = v.dot(dir);
   const bool resting = closing <= restingSpeed(floor_normal, wall.restitution, p, ball.radius);
-  if (resting && !group_parent_.empty())
+  if (resting)
   {
     // a resting contact: a constraint of the ball's group from now on
     link(i, kWallRow | static_cast<std::uint32_t>(event.j));
@@ -68,15 +68,13 @@ void World::resolveBallWall(const Event& event)
   if (friction_)
     spin_motions_[i].w0 = spinAtEvent(i, event.x, floor_normal, v);
   const double inv_mass = inverseMass(i);
-  const double impulse =
-      collisionImpulse(std::max(closing, 0.0), inv_mass, dir, 0.0, dir, resting ? 0.0 : wall.restitution);
+  const double impulse = collisionImpulse(closing, inv_mass, dir, 0.0, dir, wall.restitution);
   const Vec3 before = v;
   v -= (impulse * inv_mass) * dir;
   if (friction_)
-    ballWallFriction(i, n, floor_normal, resting ? 0.0 : impulse, v);
-  takeVelocity(i, event.x, p, floor_normal, before, v, !resting);
-  recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, resting,
-              event);
+    ballWallFriction(i, n, floor_normal, impulse, v);
+  takeVelocity(i, event.x, p, floor_normal, before, v);
+  recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, false, event);
   countEvent(i);
   goOnAfter(event);
 }
@@ -111,7 +109,7 @@ void World::resolveBallBall(const Event& event)
   const Vec3 tb = ground_.along(n, nb);
   const double closing = va.dot(ta) - vb.dot(tb);
   const bool resting = closing <= rest_speed;
-  if (resting && !group_parent_.empty())
+  if (resting)
   {
     // a resting contact: the two balls' groups become one, with it as a constraint
     link(std::min(i, j), static_cast<std::uint32_t>(std::max(i, j)));
@@ -128,18 +126,17 @@ void World::resolveBallBall(const Event& event)
   }
   const double inv_a = inverseMass(i);
   const double inv_b = inverseMass(j);
-  const double impulse =
-      collisionImpulse(std::max(closing, 0.0), inv_a, ta, inv_b, tb, resting ? 0.0 : scene_.restitution);
+  const double impulse = collisionImpulse(closing, inv_a, ta, inv_b, tb, scene_.restitution);
   const Vec3 va_before = va, vb_before = vb;
   va -= (impulse * inv_a) * ta;
   vb += (impulse * inv_b) * tb;
 
   const PairContact pair{i, j, n, na, nb, ta, tb, ta, tb, inv_a, inv_b};
   if (friction_)
-    ballBallFriction(pair, resting ? 0.0 : impulse, va, vb);
-  takeVelocity(i, event.x, pa, na, va_before, va, !resting);
-  takeVelocity(j, event.x, pb, nb, vb_before, vb, !resting);
-  recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, impulse, closing, resting, event);
+    ballBallFriction(pair, impulse, va, vb);
+  takeVelocity(i, event.x, pa, na, va_before, va);
+  takeVelocity(j, event.x, pb, nb, vb_before, vb);
+  recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, impulse, closing, false, event);
   countEvent(i);
   countEvent(j);
   goOnAfter(event);
@@ -162,8 +159,7 @@ void World::goOnAfter(const Event& event)
     detect(j);
 }
 
-void World::takeVelocity(std::size_t i, double x, const Vec3& p, const Vec3& normal, const Vec3& before, const Vec3& v,
-                         bool impact)
+void World::takeVelocity(std::size_t i, double x, const Vec3& p, const Vec3& normal, const Vec3& before, const Vec3& v)
 {
   if (!energy_ref_.empty())
     energy_ref_[i] += impulseEnergy(i, x, before, v);
@@ -172,7 +168,7 @@ void World::takeVelocity(std::size_t i, double x, const Vec3& p, const Vec3& nor
   if (!group_motion_.empty() && group_motion_[i])
     takeImpulse(i, x, p, v - onFloorVelocity(i, x, p, normal));
   else
-    startMotion(i, x, p, v, impact);
+    startMotion(i, x, p, v, true);
 }
 
 void World::renewMotion(std::size_t i)

@@ -113,8 +113,6 @@ void World::takeImpulse(std::size_t i, double x, const Vec3& position, const Vec
 
 void World::formRestingGroups()
 {
-  if (!ground_.floor())
-    return;
   const std::size_t n = balls_.size();
   group_parent_.assign(n, kNone32);
   group_next_.resize(n);
