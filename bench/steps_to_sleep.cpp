@@ -1,7 +1,9 @@
 // How long dissipative piles take to come to rest and sleep: S4 at rest (200 and 300
 // balls, with friction) and the piles of LongRun.DissipativePilesComeToRestAndSleep (60
 // and 200 balls at e = 0.5 and 0.9, in the walled bowl with friction and against the wall
-// at the foot of a 10 degree slope without) from five random starts each. Each is stepped until every ball sleeps, at most 60 s.
+// at the foot of a 10 degree slope without) from five random starts each; and without a
+// floor, 60 balls dropped into a box of five walls (fixtures::floorlessBoxDrop()) at e =
+// 0.5 and 0.9 from three starts each. Each is stepped until every ball sleeps, at most 60 s.
 // Prints CSV: the steps it took (-1: not in 60 s), the events and stopped balls until then,
 // and the largest rise of the total energy in a step [J].
 //   steps_to_sleep [LABEL]
@@ -18,6 +20,19 @@ namespace
 {
 using namespace ball_collision_sim::core;
 namespace fixtures = ball_collision_sim::test;
+
+// (the count of balls stopped where their energy ran out: WorldStats::stopped_balls,
+// held_balls in versions before it)
+template <class Stats>
+auto stoppedOf(const Stats& stats, int) -> decltype(stats.stopped_balls)
+{
+  return stats.stopped_balls;
+}
+template <class Stats>
+auto stoppedOf(const Stats& stats, long) -> decltype(stats.held_balls)
+{
+  return stats.held_balls;
+}
 
 void run(const std::string& label, const std::string& name, const Scene& scene)
 {
@@ -40,7 +55,7 @@ void run(const std::string& label, const std::string& name, const Scene& scene)
   }
   std::printf("%s,%s,%zu,%d,%llu,%llu,%.3g\n", label.c_str(), name.c_str(), n, slept,
               static_cast<unsigned long long>(world.stats().events),
-              static_cast<unsigned long long>(world.stats().stopped_balls), rise);
+              static_cast<unsigned long long>(stoppedOf(world.stats(), 0)), rise);
   std::fflush(stdout);
 }
 }  // namespace
@@ -65,5 +80,9 @@ int main(int argc, char** argv)
         run(label, "bowl" + tail, bowl);
         run(label, "slope" + tail, fixtures::slopeWithWall(n, 10, e, static_cast<std::uint64_t>(seed), n > 100 ? 3.0 : 2.0));
       }
+  for (const double e : {0.5, 0.9})
+    for (const int seed : {4, 5, 6})
+      run(label, "box without floor e=" + std::to_string(e).substr(0, 3) + " seed " + std::to_string(seed),
+          fixtures::floorlessBoxDrop(60, e, static_cast<std::uint64_t>(seed)));
   return 0;
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <vector>
 
 namespace ball_collision_sim::test
@@ -141,6 +142,33 @@ inline Scene slopeWithWall(int count, double degrees, double restitution, std::u
                  {f.point, f.v, 0.5 * up, {}},
                  {f.point + f.u, f.v, 0.5 * up, {}}};
   scene.random_balls = randomBalls(count, seed, {0.05, 0.08}, {0.5, 2}, {0, 1});
+  return scene;
+}
+
+/// No floor: `count` balls of 0.1 m and 1 kg dropped in a column (0.25 m apart, from
+/// 0.2 m up, at random across a 0.9 m square and drifting up to 0.45 m/s sideways) into a
+/// 1.2 m square box of five walls, 30 m tall, its bottom wall at z = 0; restitution e
+/// everywhere. They pile on the bottom wall, a few layers deep.
+inline Scene floorlessBoxDrop(int count, double e, std::uint64_t seed)
+{
+  Scene scene;
+  scene.restitution = e;
+  const double half = 0.6, height = 30;
+  scene.walls.push_back({Vec3(-half, -half, 0), Vec3(2 * half, 0, 0), Vec3(0, 2 * half, 0), {}});
+  addBox(scene, -half, half, -half, half, height);
+  for (WallDef& wall : scene.walls)
+    wall.restitution = e;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-0.45, 0.45);
+  for (int k = 0; k < count; ++k)
+  {
+    BallDef b;
+    b.radius = 0.1;
+    b.mass = 1;
+    b.position = Vec3(u(rng), u(rng), 0.2 + 0.25 * k);
+    b.velocity = Vec3(u(rng), u(rng), 0);
+    scene.balls.push_back(b);
+  }
   return scene;
 }
 

@@ -240,7 +240,9 @@ TEST(ContactSolver, TheExactStageFindsWhichContactsPush)
     }
     ASSERT_GE(exact.minCoeff(), -1e-13) << "trial " << trial;
     std::vector<Vec3> u = free;
-    ASSERT_TRUE(step::solveContactsExactly(free, inv, rows, u, 1e-13, 64)) << "trial " << trial;
+    step::ExactSettings stage;
+    stage.rounds = 64;
+    ASSERT_TRUE(step::solveContactsExactly(free, inv, rows, u, 1e-13, stage)) << "trial " << trial;
     const std::vector<Vec3> expected = apply(exact);
     for (int p = 0; p < 8; ++p)
       EXPECT_NEAR(rows[static_cast<std::size_t>(p)].impulse, exact(p), 1e-12) << "trial " << trial << " contact " << p;

@@ -326,28 +326,9 @@ TEST(LongRun, PilesWithoutAFloorComeToRestAndSleep)
 {
   for (const double e : {0.5, 0.9})
   {
-    Scene scene;  // no floor
-    scene.restitution = e;
-    const double half = 0.6, height = 30;
-    scene.walls.push_back({Vec3(-half, -half, 0), Vec3(2 * half, 0, 0), Vec3(0, 2 * half, 0), {}});
-    scene.walls.push_back({Vec3(-half, -half, 0), Vec3(2 * half, 0, 0), Vec3(0, 0, height), {}});
-    scene.walls.push_back({Vec3(-half, half, 0), Vec3(2 * half, 0, 0), Vec3(0, 0, height), {}});
-    scene.walls.push_back({Vec3(-half, -half, 0), Vec3(0, 2 * half, 0), Vec3(0, 0, height), {}});
-    scene.walls.push_back({Vec3(half, -half, 0), Vec3(0, 2 * half, 0), Vec3(0, 0, height), {}});
-    for (WallDef& wall : scene.walls)
-      wall.restitution = e;
-    std::mt19937_64 rng(7);
-    std::uniform_real_distribution<double> u(-0.45, 0.45);
     const int n = 100;
-    for (int k = 0; k < n; ++k)
-    {
-      BallDef b;
-      b.radius = 0.1;
-      b.mass = 1;
-      b.position = Vec3(u(rng), u(rng), 0.2 + 0.25 * k);
-      b.velocity = Vec3(u(rng), u(rng), 0);
-      scene.balls.push_back(b);
-    }
+    const double half = 0.6;
+    const Scene scene = floorlessBoxDrop(n, e, 7);
     const std::string what = "e=" + std::to_string(e);
     World world(scene);
     const double scale = world.energy().total() - n * 9.81 * 0.1;  // above the lowest it can reach

@@ -62,6 +62,17 @@ struct StepSettings
   /// Direct solves the contact solver's exact stage may take, changing which contacts push
   /// between them (step::solveContactsExactly()); a group of hundreds needs a few [solves].
   int exact_solves = 256;
+  /// The exact stage factorizes its matrix with the diagonal this much larger: contacts
+  /// that say the same (a jam's, a ball on three others and a wall) leave it singular,
+  /// and this makes them share their push equally [ratio] ...
+  double exact_regularization = 1e-10;
+  /// ... and refines the solution this many times against the matrix itself, each taking
+  /// its error down by about that factor, to round-off [refinements].
+  int exact_refinements = 2;
+  /// Rounds in which every wrong contact changes side together (block principal pivoting)
+  /// may go without making fewer wrong, before only the first does (Murty's rule, which
+  /// ends) [rounds].
+  int exact_pivot_tries = 3;
   /// Sweeps of the contact solver over a group with rolling resistance, each followed by
   /// the members' resistance, before its contacts are solved exactly with the resistance
   /// found (what is left is a resistance a little off its cap) [sweeps].

@@ -28,6 +28,7 @@ namespace ball_collision_sim::core
 {
 namespace step
 {
+struct ExactSettings;  // src/core/step/contact_solver.hpp
 }
 
 /// Energy of the world; potential is measured from the origin along gravity.
@@ -612,6 +613,8 @@ private:
     double chordSpeedSquared(const Vec3& b) const;
   };
   Vec3 onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const;
+  /// The contact solver's exact stage as settings_ ask (step_types.hpp).
+  step::ExactSettings exactSettings() const;
   /// The direction a wall pushes a ball along, n the unit normal from the ball toward it:
   /// n's part along the floor with this normal, or n itself where the floor all but faces
   /// the wall (a wall parallel to the floor is met in space).

@@ -106,7 +106,7 @@ void World::settleRestingVelocities()
       std::max(settings_.resting_speed_floor, settings_.contact_tolerance * largestClosing(group.u, group.rows));
   const std::vector<Vec3> free = group.u;
   if (!solveContacts(group.u, group.inv_mass, group.rows, tolerance, settings_.contact_sweeps).converged &&
-      !solveContactsExactly(free, group.inv_mass, group.rows, group.u, tolerance, settings_.exact_solves))
+      !solveContactsExactly(free, group.inv_mass, group.rows, group.u, tolerance, exactSettings()))
     ++stats_.unsettled_contacts;
   for (std::size_t k = 0; k < group.size(); ++k)
   {

@@ -8,16 +8,6 @@ namespace ball_collision_sim::core::step
 {
 namespace
 {
-/// A's diagonal is taken this much larger: rows that say the same (a jam's) leave A
-/// singular, and this makes them share their push equally [ratio].
-constexpr double kRegularization = 1e-10;
-/// ... and its solution refined this many times against A (each takes its error down by
-/// about the regularization's factor) [refinements].
-constexpr int kRefinements = 2;
-/// Rounds that all wrong rows change side together may go without making fewer of them
-/// before only the first does (Murty's rule, which ends for the regularized A) [rounds].
-constexpr int kPivotTries = 3;
-
 /// A, the pushing rows' W = J M^-1 J^T (its lower triangle, its diagonal a little larger),
 /// its diagonal as it is, and the right side, their closings past their targets at u_free.
 struct PushingSystem
@@ -28,7 +18,7 @@ struct PushingSystem
 };
 
 PushingSystem pushingSystem(const std::vector<Vec3>& u_free, const std::vector<double>& inv,
-                            const std::vector<ContactRow>& rows, const std::vector<int>& active)
+                            const std::vector<ContactRow>& rows, const std::vector<int>& active, double regularization)
 {
   const int n = static_cast<int>(active.size());
   const auto coefficient = [&](const ContactRow& row, std::uint32_t k) {
@@ -76,7 +66,7 @@ PushingSystem pushingSystem(const std::vector<Vec3>& u_free, const std::vector<d
   // (contacts that say the same, in a jam, leave A singular: it is factorized with its
   // diagonal a little larger, and the solution refined against A itself)
   for (int p = 0; p < n; ++p)
-    entries.emplace_back(p, p, kRegularization * diagonal[p]);
+    entries.emplace_back(p, p, regularization * diagonal[p]);
   out.A.resize(n, n);
   out.A.setFromTriplets(entries.begin(), entries.end());
   return out;
@@ -84,13 +74,14 @@ PushingSystem pushingSystem(const std::vector<Vec3>& u_free, const std::vector<d
 
 /// The impulses of the rows `active` (taken to push) that take their closings to their
 /// targets from u_free, solved directly, into lambda, and the vectors they leave, into
-/// trial; false where A could not be factorized. Refined (`refine`), the impulses are
-/// those of A itself; else those of A with its diagonal a little larger.
+/// trial; false where A could not be factorized. Refined `refinements` times, the impulses
+/// are those of A itself; not refined, those of A with its diagonal a little larger.
 bool solvePushing(const std::vector<Vec3>& u_free, const std::vector<double>& inv, const std::vector<ContactRow>& rows,
-                  const std::vector<int>& active, std::vector<Vec3>& trial, std::vector<double>& lambda, bool refine)
+                  const std::vector<int>& active, std::vector<Vec3>& trial, std::vector<double>& lambda,
+                  const ExactSettings& settings, int refinements)
 {
   const int n = static_cast<int>(active.size());
-  const PushingSystem system = pushingSystem(u_free, inv, rows, active);
+  const PushingSystem system = pushingSystem(u_free, inv, rows, active, settings.regularization);
   const Eigen::SparseMatrix<double>& A = system.A;
   const Eigen::VectorXd& rhs = system.rhs;
   const Eigen::VectorXd& diagonal = system.diagonal;
@@ -98,10 +89,10 @@ bool solvePushing(const std::vector<Vec3>& u_free, const std::vector<double>& in
   if (solver.info() != Eigen::Success)
     return false;
   Eigen::VectorXd x = solver.solve(rhs);
-  for (int pass = 0; refine && pass < kRefinements; ++pass)
+  for (int pass = 0; pass < refinements; ++pass)
   {
     const Eigen::VectorXd residual =
-        rhs - (A.selfadjointView<Eigen::Lower>() * x - kRegularization * diagonal.cwiseProduct(x));
+        rhs - (A.selfadjointView<Eigen::Lower>() * x - settings.regularization * diagonal.cwiseProduct(x));
     x += solver.solve(residual);
   }
   if (solver.info() != Eigen::Success || !x.allFinite())
@@ -132,7 +123,7 @@ std::vector<int> wrongRows(const std::vector<ContactRow>& rows, const std::vecto
 }  // namespace
 
 bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std::vector<ContactRow>& rows,
-                          std::vector<Vec3>& u, double slack, int rounds)
+                          std::vector<Vec3>& u, double slack, const ExactSettings& settings)
 {
   std::vector<int> active;
   for (std::size_t r = 0; r < rows.size(); ++r)
@@ -140,17 +131,17 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
       active.push_back(static_cast<int>(r));
   std::vector<char> in_active;
   std::size_t fewest = rows.size() + 1;
-  int tries = kPivotTries;
+  int tries = settings.pivot_tries;
   // (Murty's rule ends for a positive definite A; where contacts say the same, A itself
   // is only semidefinite, and one row after another can go round in a cycle: from then
   // on the rows are judged by the regularized A, which is definite)
   bool refine = true;
-  for (int round = 0; round < rounds; ++round)
+  for (int round = 0; round < settings.rounds; ++round)
   {
     const int n = static_cast<int>(active.size());
     std::vector<Vec3> trial = u_free;
     std::vector<double> lambda(rows.size(), 0.0);
-    if (n > 0 && !solvePushing(u_free, inv, rows, active, trial, lambda, refine))
+    if (n > 0 && !solvePushing(u_free, inv, rows, active, trial, lambda, settings, refine ? settings.refinements : 0))
       return false;
     // Block principal pivoting (Judice and Pires): every row that is wrong changes side,
     // as long as that makes fewer wrong ones within a few rounds; else only the first
@@ -164,7 +155,7 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
       // (found by the regularized A: A's own impulses where they are right too)
       std::vector<Vec3> refined = u_free;
       std::vector<double> refined_lambda(rows.size(), 0.0);
-      if (!refine && solvePushing(u_free, inv, rows, active, refined, refined_lambda, true) &&
+      if (!refine && solvePushing(u_free, inv, rows, active, refined, refined_lambda, settings, settings.refinements) &&
           wrongRows(rows, in_active, refined, refined_lambda, slack).empty())
       {
         trial.swap(refined);
@@ -178,7 +169,7 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
     if (wrong.size() < fewest)
     {
       fewest = wrong.size();
-      tries = kPivotTries;
+      tries = settings.pivot_tries;
     }
     else if (tries > 0)
       --tries;

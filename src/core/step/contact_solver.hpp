@@ -121,6 +121,21 @@ ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double>& inv_
   return out;
 }
 
+/// How the exact stage solves (from StepSettings, where each is explained).
+struct ExactSettings
+{
+  /// direct solves it may take, changing which rows push between them [solves]
+  int rounds = 256;
+  /// A's diagonal is taken this much larger, so that rows that say the same (a jam's)
+  /// share their push equally [ratio] ...
+  double regularization = 1e-10;
+  /// ... and the solution refined this many times against A itself [refinements]
+  int refinements = 2;
+  /// rounds that all wrong rows may change side together without making fewer of them,
+  /// before only the first does (Murty's rule) [rounds]
+  int pivot_tries = 3;
+};
+
 /// The rows' closings, exactly, from where the contact solver left them (the rows whose
 /// impulses are > 0 taken to push): the impulses that take the pushing rows' closings to
 /// their targets from the free vectors u_free, solved directly (A lambda = closing -
@@ -129,10 +144,10 @@ ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double>& inv_
 /// then change sides where they are wrong (a pushing row that pulls, a row left out that
 /// closes past its target by more than `slack`): all of them at once while that makes
 /// fewer wrong (block principal pivoting, Judice and Pires), else the first (Murty's
-/// rule, which ends for A positive definite), for at most `rounds` solves. True, with u
-/// and the impulses set, where no row is wrong.
+/// rule, which ends for A positive definite), for at most `settings.rounds` solves. True,
+/// with u and the impulses set, where no row is wrong.
 bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std::vector<ContactRow>& rows,
-                          std::vector<Vec3>& u, double slack, int rounds);
+                          std::vector<Vec3>& u, double slack, const ExactSettings& settings);
 
 /// The same without a projection after each sweep.
 inline ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double>& inv_mass,

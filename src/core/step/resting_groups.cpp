@@ -423,11 +423,11 @@ void World::solveGroupContacts(ContactGroup& group, double span, double slack)
       group.u = free_u_;
     // (the solve is linear, on the rows as they are; the ends go back on the floor after it)
     if (!solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.group_sweeps).converged &&
-        !solveContactsExactly(free_u_, group.inv_mass, group.rows, group.u, slack, settings_.exact_solves))
+        !solveContactsExactly(free_u_, group.inv_mass, group.rows, group.u, slack, exactSettings()))
     {
       // (more sweeps give the exact solve a better guess of which rows push)
       solveContacts(group.u, group.inv_mass, group.rows, slack, 8 * settings_.group_sweeps);
-      if (!solveContactsExactly(free_u_, group.inv_mass, group.rows, group.u, slack, settings_.exact_solves))
+      if (!solveContactsExactly(free_u_, group.inv_mass, group.rows, group.u, slack, exactSettings()))
         ++stats_.unsettled_contacts;  // (the exact solve found no answer: the sweeps' stays)
     }
     project(group.u);
@@ -645,7 +645,7 @@ void World::separateAtEnd()
     const std::vector<Vec3> still(group.size(), Vec3::Zero());
     const double slack = roundoffAt(balls_[group.ballAt(0)].position, 0.0, settings_);
     if (!solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.group_sweeps).converged &&
-        !solveContactsExactly(still, group.inv_mass, group.rows, group.u, slack, settings_.exact_solves))
+        !solveContactsExactly(still, group.inv_mass, group.rows, group.u, slack, exactSettings()))
       ++stats_.unsettled_contacts;
     for (std::size_t k = 0; k < group.size(); ++k)
     {

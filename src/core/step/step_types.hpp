@@ -49,6 +49,16 @@ struct World::Motion
   std::uint16_t accelerates : 1;
 };
 
+inline step::ExactSettings World::exactSettings() const
+{
+  step::ExactSettings exact;
+  exact.rounds = settings_.exact_solves;
+  exact.regularization = settings_.exact_regularization;
+  exact.refinements = settings_.exact_refinements;
+  exact.pivot_tries = settings_.exact_pivot_tries;
+  return exact;
+}
+
 /// The largest event cap a Motion's 12-bit count holds with one past it [events].
 constexpr std::uint32_t kMaxEventCap = (1u << 12) - 2;
 
