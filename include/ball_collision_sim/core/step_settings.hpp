@@ -55,6 +55,9 @@ struct StepSettings
   /// Sweeps of projected Gauss-Seidel over a group's contacts before the exact stage: a
   /// guess of which contacts push, which the exact stage corrects [sweeps].
   int group_sweeps = 20;
+  /// ... and where the exact stage finds no answer from that guess, this many more before
+  /// it tries once again [sweeps].
+  int group_retry_sweeps = 160;
   /// Solves of a group on a curved floor, each with its contacts' linearization corrected
   /// where the last one's ends landed on the floor (Newton's method on their distances);
   /// what the last leaves is opened at the step's end (position_sweeps) [solves].

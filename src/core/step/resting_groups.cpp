@@ -426,7 +426,7 @@ void World::solveGroupContacts(ContactGroup& group, double span, double slack)
         !solveContactsExactly(free_u_, group.inv_mass, group.rows, group.u, slack, exactSettings()))
     {
       // (more sweeps give the exact solve a better guess of which rows push)
-      solveContacts(group.u, group.inv_mass, group.rows, slack, 8 * settings_.group_sweeps);
+      solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.group_retry_sweeps);
       if (!solveContactsExactly(free_u_, group.inv_mass, group.rows, group.u, slack, exactSettings()))
         ++stats_.unsettled_contacts;  // (the exact solve found no answer: the sweeps' stays)
     }
