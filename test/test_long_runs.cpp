@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <random>
 
 using namespace ball_collision_sim::core;
@@ -421,10 +422,14 @@ TEST(LongRun, FrictionlessPileInABowlSwingsAsOneBody)
 // The same 200-ball pile at restitution 0.5 in the walled bowl, from five other random
 // starts: each comes to rest and sleeps within 30 s, whichever ball happens to end up
 // on the pile's edge (where a ball its neighbours hold still must not keep a speed it
-// does not move with, which kept the group awake for good).
+// does not move with, which kept the group awake for good). Under the sanitizers
+// (`make sanitize` sets BCS_SLOWDOWN), which run this 30 times slower and look for what
+// the code does to memory, not for the physics of another start, the first two.
 TEST(LongRun, BowlPilesSleepFromAnyStart)
 {
-  for (const std::uint64_t seed : {5u, 6u, 7u, 8u, 9u})
+  const std::vector<std::uint64_t> seeds =
+      std::getenv("BCS_SLOWDOWN") ? std::vector<std::uint64_t>{5, 6} : std::vector<std::uint64_t>{5, 6, 7, 8, 9};
+  for (const std::uint64_t seed : seeds)
   {
     Scene scene;
     scene.floor = bowl(3, 0.3);
