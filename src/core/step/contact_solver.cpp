@@ -134,7 +134,8 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
   int tries = settings.pivot_tries;
   // (Murty's rule ends for a positive definite A; where contacts say the same, A itself
   // is only semidefinite, and one row after another can go round in a cycle: from then
-  // on the rows are judged by the regularized A, which is definite)
+  // on the rows are judged by the regularized A, which is definite; near singular, its
+  // solves' round-off can still keep it from settling within `rounds`)
   bool refine = true;
   for (int round = 0; round < settings.rounds; ++round)
   {

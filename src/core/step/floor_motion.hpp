@@ -23,6 +23,9 @@ struct World::FloorMotion
 
   /// Balls keep foot points (World::feet_) between steps, as Newton's first guess.
   virtual bool keepsFeet() const = 0;
+  /// A motion's end is put back on the floor (a chord across a curved one): a group's
+  /// solved motions are, and its contacts' linearization is corrected where they end.
+  virtual bool endsPutOnFloor() const = 0;
   /// Gravity pulls balls along the floor, so that they gather into groups at rest.
   static bool gathers(const World& w) { return !w.ground_.straight(); }
 
@@ -60,6 +63,7 @@ struct World::FloorMotion
 struct World::ExactMotion final : World::FloorMotion
 {
   bool keepsFeet() const override { return false; }
+  bool endsPutOnFloor() const override { return false; }
   void predict(World& w, std::size_t i, const Vec3& v) const override;
   void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
   FrictionLaw lawUnder(const World& w, const Vec3& n) const override;
@@ -77,6 +81,7 @@ struct World::ExactMotion final : World::FloorMotion
 struct World::ChordMotion final : World::FloorMotion
 {
   bool keepsFeet() const override { return true; }
+  bool endsPutOnFloor() const override { return true; }
   void predict(World& w, std::size_t i, const Vec3& v) const override;
   void start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
   FrictionLaw lawUnder(const World& w, const Vec3& n) const override;

@@ -407,7 +407,7 @@ void World::solveGroupContacts(ContactGroup& group, double span, double slack)
 {
   const std::size_t count = members_.size();
   const auto project = [&](std::vector<Vec3>& u) {
-    if (!ground_.bends())
+    if (!floor_motion_->endsPutOnFloor())
       return;
     for (std::size_t m = 0; m < count; ++m)
       if (!motions_[members_[m]].frozen)
@@ -431,7 +431,7 @@ void World::solveGroupContacts(ContactGroup& group, double span, double slack)
         ++stats_.unsettled_contacts;  // (the exact solve found no answer: the sweeps' stays)
     }
     project(group.u);
-    if (!ground_.bends())
+    if (!floor_motion_->endsPutOnFloor())
       break;
     double deepest = 0.0;
     for (ContactRow& row : group.rows)
