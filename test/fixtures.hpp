@@ -227,4 +227,31 @@ double deepestOverlap(const Balls& balls)
   }
   return deepest;
 }
+
+/// The worst that stepping showed: the largest rise of the total energy in one step [J],
+/// and the deepest overlap between two balls after any step [m].
+struct WorstOfRun
+{
+  double energy_rise = 0;
+  double overlap = -1e300;
+};
+
+/// Steps the world `steps` times, calling after_step(k) after step k (from 0), and returns
+/// the worst of the run.
+template <class AfterStep>
+WorstOfRun stepWatching(core::World& world, int steps, AfterStep&& after_step)
+{
+  WorstOfRun worst;
+  double before = world.energy().total();
+  for (int k = 0; k < steps; ++k)
+  {
+    world.step();
+    const double now = world.energy().total();
+    worst.energy_rise = std::max(worst.energy_rise, now - before);
+    before = now;
+    worst.overlap = std::max(worst.overlap, deepestOverlap(world.balls()));
+    after_step(k);
+  }
+  return worst;
+}
 }  // namespace ball_collision_sim::test

@@ -252,6 +252,97 @@ TEST(ContactSolver, TheExactStageFindsWhichContactsPush)
   }
 }
 
+// A jam whose contacts say the same: balls stacked four layers deep in square packing
+// (each on four below it) between the five walls of a box they fill, their places off by
+// up to 1e-6 of a radius, each pushed down and sideways at random. The exact stage's
+// matrix is near singular and its impulses come out with either sign, so that pivoting
+// alone goes round without settling; the exact stage still finds the answer, from the
+// sweeps' guess or from none: no impulse pulls, no contact closes past its target, those
+// that push close exactly to it (within the regularization's 1e-10 of their push), the
+// motions are the same from either start (the answer's motions are unique), and no
+// kinetic energy is made.
+TEST(ContactSolver, TheExactStageSettlesAJamWhoseContactsSayTheSame)
+{
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const int layers = 4;
+  const double r = 1, side = 2 * r * layers, jiggle = 1e-6, near = 3 * jiggle;
+  for (int trial = 0; trial < 10; ++trial)
+  {
+    std::vector<Vec3> at;
+    for (int layer = 0; layer < layers; ++layer)
+      for (int i = 0; i < layers - layer; ++i)
+        for (int j = 0; j < layers - layer; ++j)
+          at.push_back(Vec3((2 * i + 1 + layer) * r, (2 * j + 1 + layer) * r, (1 + layer * std::sqrt(2.0)) * r) +
+                       jiggle * Vec3(unit(rng), unit(rng), unit(rng)));
+    const std::size_t n = at.size();
+    std::vector<double> inv(n);
+    std::vector<Vec3> free(n);
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      inv[k] = 1 / (1.5 + unit(rng));
+      free[k] = Vec3(unit(rng), unit(rng), unit(rng) - 1);
+    }
+    std::vector<ContactRow> rows;
+    const std::array<Vec3, 5> walls = {Vec3(0, 0, -1), Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(0, 1, 0)};
+    for (std::uint32_t a = 0; a < n; ++a)
+    {
+      for (std::uint32_t b = a + 1; b < n; ++b)
+        if ((at[b] - at[a]).norm() < 2 * r + near)
+        {
+          const Vec3 normal = (at[b] - at[a]).normalized();
+          ContactRow row;
+          row.a = a;
+          row.b = b;
+          row.push_a = row.push_b = normal;
+          row.target = 1e-16 * unit(rng);  // (round-off of the gap)
+          rows.push_back(row);
+        }
+      const std::array<double, 5> gaps = {at[a].z(), at[a].x(), side - at[a].x(), at[a].y(), side - at[a].y()};
+      for (std::size_t w = 0; w < walls.size(); ++w)
+        if (gaps[w] < r + near)
+        {
+          ContactRow row;
+          row.a = a;
+          row.push_a = row.push_b = walls[w];
+          row.target = 1e-16 * unit(rng);
+          rows.push_back(row);
+        }
+    }
+    ASSERT_GT(rows.size(), 3 * n) << "trial " << trial;  // (more contacts than the balls can move along)
+    std::vector<std::vector<Vec3>> answers;
+    for (const bool guess : {true, false})
+    {
+      std::vector<ContactRow> solved = rows;
+      std::vector<Vec3> u = free;
+      if (guess)
+        solveContacts(u, inv, solved, 1e-15, 20);
+      ASSERT_TRUE(step::solveContactsExactly(free, inv, solved, u, 1e-15, step::ExactSettings{}))
+          << "trial " << trial << " guess " << guess;
+      double kinetic_free = 0, kinetic = 0;
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        kinetic_free += free[k].squaredNorm() / inv[k];
+        kinetic += u[k].squaredNorm() / inv[k];
+      }
+      EXPECT_LE(kinetic, kinetic_free) << "trial " << trial;
+      for (const ContactRow& row : solved)
+      {
+        const double past = step::closingOf(u, row) - row.target;
+        EXPECT_GE(row.impulse, 0.0) << "trial " << trial;
+        EXPECT_LE(past, 1e-8) << "trial " << trial;
+        if (row.impulse > 0)
+        {
+          EXPECT_GE(past, -1e-8) << "trial " << trial;
+        }
+      }
+      answers.push_back(u);
+    }
+    for (std::size_t k = 0; k < n; ++k)
+      EXPECT_LT((answers[0][k] - answers[1][k]).norm(), 1e-8) << "trial " << trial << " ball " << k;
+  }
+}
+
 // A ball pressed against a wall by another: both stop, and the wall takes the second
 // ball's whole momentum through the first.
 TEST(ContactSolver, ChainAgainstAWall)

@@ -289,17 +289,9 @@ TEST(LongRun, DissipativePilesComeToRestAndSleep)
         for (const Ball& b : world.balls())
           mass += b.mass;
         const double scale = k0 + mass * world.gravity().norm() * 1.0;  // heights span under a metre
-        double before = world.energy().total(), worst_rise = 0, worst_overlap = -1;
-        for (int k = 0; k < 3000; ++k)
-        {
-          world.step();
-          const double now = world.energy().total();
-          worst_rise = std::max(worst_rise, now - before);
-          before = now;
-          worst_overlap = std::max(worst_overlap, deepestOverlap(world.balls()));
-        }
-        EXPECT_LT(worst_rise / scale, 1e-9) << what;
-        EXPECT_LT(worst_overlap, 1e-9) << what;
+        const WorstOfRun worst = stepWatching(world, 3000, [](int) {});
+        EXPECT_LT(worst.energy_rise / scale, 1e-9) << what;
+        EXPECT_LT(worst.overlap, 1e-9) << what;
         EXPECT_EQ(world.stats().sleeping_balls, static_cast<std::uint64_t>(n)) << what;
         EXPECT_LE(world.energy().kinetic, 1e-12 * k0) << what;
         const std::uint64_t events = world.stats().events;
@@ -320,38 +312,39 @@ TEST(LongRun, DissipativePilesComeToRestAndSleep)
 
 // Without a floor, balls dropped in a column into a box of five walls pile on its bottom
 // wall, three and four layers deep, and come to rest: the same resting groups, solved in
-// space. At restitution 0.5 and 0.9, 100 balls: no step makes energy, no overlap deeper
-// than 1e-9 m, none leaves the box or is stopped by the event cap, all asleep after 30 s
-// with no kinetic energy, and then at most 0.01 events per ball and step.
+// space. At restitution 0.5 and 0.9, 100 balls, and 60 whose contacts often say the same
+// (the exact stage's matrix near singular; its pivoting alone does not settle): no
+// step makes energy, no overlap deeper than 1e-9 m, every group's contacts solved, none
+// leaves the box or is stopped by the event cap, all asleep after 30 s with no kinetic
+// energy, and then at most 0.01 events per ball and step.
 TEST(LongRun, PilesWithoutAFloorComeToRestAndSleep)
 {
-  for (const double e : {0.5, 0.9})
+  struct Case
   {
-    const int n = 100;
+    double e;
+    int n;
+    std::uint64_t seed;
+  };
+  for (const Case c : {Case{0.5, 100, 7}, Case{0.9, 100, 7}, Case{0.9, 60, 6}})
+  {
     const double half = 0.6;
-    const Scene scene = floorlessBoxDrop(n, e, 7);
-    const std::string what = "e=" + std::to_string(e);
+    const Scene scene = floorlessBoxDrop(c.n, c.e, c.seed);
+    const std::string what = "e=" + std::to_string(c.e) + " n=" + std::to_string(c.n);
     World world(scene);
-    const double scale = world.energy().total() - n * 9.81 * 0.1;  // above the lowest it can reach
-    double before = world.energy().total(), worst_rise = 0, worst_overlap = -1;
-    for (int k = 0; k < 3000; ++k)
-    {
-      world.step();
-      const double now = world.energy().total();
-      worst_rise = std::max(worst_rise, now - before);
-      before = now;
-      worst_overlap = std::max(worst_overlap, deepestOverlap(world.balls()));
+    const double scale = world.energy().total() - c.n * 9.81 * 0.1;  // above the lowest it can reach
+    const WorstOfRun worst = stepWatching(world, 3000, [&](int k) {
       for (const Ball& b : world.balls())
         ASSERT_GE(b.position.z(), b.radius - 1e-9) << what << " step " << k << " ball " << b.id;
-    }
-    EXPECT_LT(worst_rise / scale, 1e-9) << what;
-    EXPECT_LT(worst_overlap, 1e-9) << what;
-    EXPECT_EQ(world.stats().sleeping_balls, static_cast<std::uint64_t>(n)) << what;
+    });
+    EXPECT_LT(worst.energy_rise / scale, 1e-9) << what;
+    EXPECT_LT(worst.overlap, 1e-9) << what;
+    EXPECT_EQ(world.stats().unsettled_contacts, 0u) << what;
+    EXPECT_EQ(world.stats().sleeping_balls, static_cast<std::uint64_t>(c.n)) << what;
     EXPECT_EQ(world.energy().kinetic, 0.0) << what;
     const std::uint64_t events = world.stats().events;
     for (int k = 0; k < 100; ++k)
       world.step();
-    EXPECT_LE(static_cast<double>(world.stats().events - events) / (100.0 * n), 0.01) << what;
+    EXPECT_LE(static_cast<double>(world.stats().events - events) / (100.0 * c.n), 0.01) << what;
     for (const Ball& b : world.balls())
       EXPECT_LE(b.position.head<2>().cwiseAbs().maxCoeff(), half - b.radius + 1e-9) << what << " ball " << b.id;
     EXPECT_EQ(world.stats().frozen_balls, 0u) << what;

@@ -63,7 +63,8 @@ struct StepSettings
   /// what the last leaves is opened at the step's end (position_sweeps) [solves].
   int group_passes = 4;
   /// Direct solves the contact solver's exact stage may take, changing which contacts push
-  /// between them (step::solveContactsExactly()); a group of hundreds needs a few [solves].
+  /// between them (step::solveContactsExactly()); a group of hundreds needs a few, a jam
+  /// whose contacts say the same tens [solves].
   int exact_solves = 256;
   /// The exact stage factorizes its matrix with the diagonal this much larger: contacts
   /// that say the same (a jam's, a ball on three others and a wall) leave it singular,
@@ -73,8 +74,8 @@ struct StepSettings
   /// its error down by about that factor, to round-off [refinements].
   int exact_refinements = 2;
   /// Rounds in which every wrong contact changes side together (block principal pivoting)
-  /// may go without making fewer wrong, before only the first does (Murty's rule, which
-  /// ends) [rounds].
+  /// may go without making fewer wrong, before the primal active-set method, which ends,
+  /// takes over (it takes one contact at a time, and so more solves) [rounds].
   int exact_pivot_tries = 3;
   /// Sweeps of the contact solver over a group with rolling resistance, each followed by
   /// the members' resistance, before its contacts are solved exactly with the resistance

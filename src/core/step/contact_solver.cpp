@@ -120,72 +120,166 @@ std::vector<int> wrongRows(const std::vector<ContactRow>& rows, const std::vecto
       wrong.push_back(static_cast<int>(r));
   return wrong;
 }
-}  // namespace
 
-bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std::vector<ContactRow>& rows,
-                          std::vector<Vec3>& u, double slack, const ExactSettings& settings)
+/// The vectors that u_free leaves where the rows push with the impulses lambda.
+std::vector<Vec3> pushedBy(const std::vector<Vec3>& u_free, const std::vector<double>& inv,
+                           const std::vector<ContactRow>& rows, const std::vector<double>& lambda)
+{
+  std::vector<Vec3> u = u_free;
+  for (std::size_t r = 0; r < rows.size(); ++r)
+  {
+    const ContactRow& row = rows[r];
+    u[row.a] -= (lambda[r] * inv[row.a]) * row.push_a;
+    if (row.b != ContactRow::kImmovable)
+      u[row.b] += (lambda[r] * inv[row.b]) * row.push_b;
+  }
+  return u;
+}
+
+/// The impulses with A's diagonal a little larger (a positive definite problem, with one
+/// answer), by the primal active-set method on its quadratic program (minimize
+/// lambda^T A lambda / 2 - lambda^T (closing - target) over lambda >= 0; Nocedal and
+/// Wright, Numerical Optimization, 16.5). From lambda (>= 0; out, the answer) it solves
+/// the pushing rows directly and steps toward that solve as far as every impulse stays
+/// >= 0; the rows that reach zero stop pushing. Once a solve needs no step back, the rows
+/// left out that close past their targets by more than `slack` start pushing. Each solve
+/// lowers the objective, so no set of pushing rows comes back and the method ends, near
+/// singular or not. Takes at most `solves` solves from the count; true where it ended.
+bool solveRegularized(const std::vector<Vec3>& u_free, const std::vector<double>& inv,
+                      const std::vector<ContactRow>& rows, std::vector<double>& lambda, double slack,
+                      const ExactSettings& settings, int& solves)
+{
+  std::vector<int> pushing;
+  std::vector<double> x(rows.size());
+  std::vector<Vec3> unused(u_free.size());
+  // (all the rows that close past their targets start pushing together, until that makes
+  // a step stop at once; from then on only the one that closes most: that one always
+  // ends up pushing and lowers the objective, so no set of rows comes back)
+  bool one_at_a_time = false;
+  for (; solves > 0; --solves)
+  {
+    pushing.clear();
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      if (lambda[r] > 0 || x[r] > 0)
+        pushing.push_back(static_cast<int>(r));
+    std::fill(x.begin(), x.end(), 0.0);
+    unused = u_free;
+    if (!pushing.empty() && !solvePushing(u_free, inv, rows, pushing, unused, x, settings, 0))
+      return false;
+    double step = 1.0;
+    for (const int r : pushing)
+      if (x[r] < 0)
+        step = std::min(step, lambda[r] / (lambda[r] - x[r]));
+    if (step < 1.0)
+    {
+      one_at_a_time = one_at_a_time || step == 0;
+      for (const int r : pushing)
+      {
+        const bool stops = x[r] < 0 && lambda[r] / (lambda[r] - x[r]) <= step;
+        lambda[r] = stops ? 0.0 : lambda[r] + step * (x[r] - lambda[r]);
+        x[r] = 0.0;
+      }
+      continue;
+    }
+    for (const int r : pushing)
+      lambda[r] = x[r];
+    const std::vector<Vec3> trial = pushedBy(u_free, inv, rows, lambda);
+    int closes_most = -1;
+    double most = slack;
+    for (std::size_t r = 0; r < rows.size(); ++r)
+    {
+      const double past = lambda[r] > 0 ? 0.0 : closingOf(trial, rows[r]) - rows[r].target;
+      if (past > slack && !one_at_a_time)
+        x[r] = 1.0;  // (taken to push in the next solve)
+      if (past > most)
+      {
+        most = past;
+        closes_most = static_cast<int>(r);
+      }
+    }
+    if (closes_most < 0)
+      return true;
+    x[static_cast<std::size_t>(closes_most)] = 1.0;
+  }
+  return false;
+}
+
+/// Block principal pivoting (Judice and Pires) from the rows whose impulses are > 0: every
+/// row that is wrong changes side, as long as that makes fewer wrong ones within
+/// `pivot_tries` rounds. True, with the impulses and the vectors they leave, where no row
+/// is left wrong within `solves` (counted down).
+bool pivotBlocks(const std::vector<Vec3>& u_free, const std::vector<double>& inv, const std::vector<ContactRow>& rows,
+                 std::vector<double>& lambda, std::vector<Vec3>& trial, double slack, const ExactSettings& settings,
+                 int& solves)
 {
   std::vector<int> active;
+  std::vector<char> in_active(rows.size(), 0);
   for (std::size_t r = 0; r < rows.size(); ++r)
     if (rows[r].impulse > 0)
-      active.push_back(static_cast<int>(r));
-  std::vector<char> in_active;
+      in_active[r] = 1;
   std::size_t fewest = rows.size() + 1;
   int tries = settings.pivot_tries;
-  // (Murty's rule ends for a positive definite A; where contacts say the same, A itself
-  // is only semidefinite, and one row after another can go round in a cycle: from then
-  // on the rows are judged by the regularized A, which is definite; near singular, its
-  // solves' round-off can still keep it from settling within `rounds`)
-  bool refine = true;
-  for (int round = 0; round < settings.rounds; ++round)
+  for (; solves > 0; --solves)
   {
-    const int n = static_cast<int>(active.size());
-    std::vector<Vec3> trial = u_free;
-    std::vector<double> lambda(rows.size(), 0.0);
-    if (n > 0 && !solvePushing(u_free, inv, rows, active, trial, lambda, settings, refine ? settings.refinements : 0))
+    active.clear();
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      if (in_active[r])
+        active.push_back(static_cast<int>(r));
+    trial = u_free;
+    std::fill(lambda.begin(), lambda.end(), 0.0);
+    if (!active.empty() &&
+        !solvePushing(u_free, inv, rows, active, trial, lambda, settings, settings.refinements))
       return false;
-    // Block principal pivoting (Judice and Pires): every row that is wrong changes side,
-    // as long as that makes fewer wrong ones within a few rounds; else only the first
-    // wrong row does (Murty's rule, which ends for a positive definite A).
-    in_active.assign(rows.size(), 0);
-    for (const int r : active)
-      in_active[static_cast<std::size_t>(r)] = 1;
-    std::vector<int> wrong = wrongRows(rows, in_active, trial, lambda, slack);
+    const std::vector<int> wrong = wrongRows(rows, in_active, trial, lambda, slack);
     if (wrong.empty())
-    {
-      // (found by the regularized A: A's own impulses where they are right too)
-      std::vector<Vec3> refined = u_free;
-      std::vector<double> refined_lambda(rows.size(), 0.0);
-      if (!refine && solvePushing(u_free, inv, rows, active, refined, refined_lambda, settings, settings.refinements) &&
-          wrongRows(rows, in_active, refined, refined_lambda, slack).empty())
-      {
-        trial.swap(refined);
-        lambda.swap(refined_lambda);
-      }
-      u = trial;
-      for (std::size_t r = 0; r < rows.size(); ++r)
-        rows[r].impulse = lambda[r];
       return true;
-    }
     if (wrong.size() < fewest)
     {
       fewest = wrong.size();
       tries = settings.pivot_tries;
     }
-    else if (tries > 0)
-      --tries;
-    else
-    {
-      wrong.resize(1);
-      refine = false;
-    }
+    else if (tries-- == 0)
+      return false;
     for (const int r : wrong)
       in_active[static_cast<std::size_t>(r)] ^= 1;
-    active.clear();
-    for (std::size_t r = 0; r < rows.size(); ++r)
-      if (in_active[r])
-        active.push_back(static_cast<int>(r));
   }
   return false;
+}
+}  // namespace
+
+bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std::vector<ContactRow>& rows,
+                          std::vector<Vec3>& u, double slack, const ExactSettings& settings)
+{
+  std::vector<double> lambda(rows.size());
+  std::vector<Vec3> trial;
+  int solves = settings.rounds;
+  if (!pivotBlocks(u_free, inv, rows, lambda, trial, slack, settings, solves))
+  {
+    // Where that does not settle, the problem with A's diagonal a little larger, from
+    // the contact solver's impulses, by a method that ends; then A's own impulses with
+    // the rows found, where they are right too.
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      lambda[r] = std::max(rows[r].impulse, 0.0);
+    if (!solveRegularized(u_free, inv, rows, lambda, slack, settings, solves))
+      return false;
+    std::vector<int> active;
+    std::vector<char> in_active(rows.size(), 0);
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      if (lambda[r] > 0)
+      {
+        in_active[r] = 1;
+        active.push_back(static_cast<int>(r));
+      }
+    trial = u_free;
+    std::vector<double> own(rows.size(), 0.0);
+    if (!active.empty() && solvePushing(u_free, inv, rows, active, trial, own, settings, settings.refinements) &&
+        wrongRows(rows, in_active, trial, own, slack).empty())
+      lambda.swap(own);
+    trial = pushedBy(u_free, inv, rows, lambda);
+  }
+  u.swap(trial);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    rows[r].impulse = lambda[r];
+  return true;
 }
 }  // namespace ball_collision_sim::core::step

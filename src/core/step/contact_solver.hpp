@@ -132,7 +132,7 @@ struct ExactSettings
   /// ... and the solution refined this many times against A itself [refinements]
   int refinements = 2;
   /// rounds that all wrong rows may change side together without making fewer of them,
-  /// before only the first does (Murty's rule) [rounds]
+  /// before the primal active-set method takes over [rounds]
   int pivot_tries = 3;
 };
 
@@ -143,9 +143,13 @@ struct ExactSettings
 /// minimization of Silcowitz, Niebe and Erleben 2010 after projected Gauss-Seidel). Rows
 /// then change sides where they are wrong (a pushing row that pulls, a row left out that
 /// closes past its target by more than `slack`): all of them at once while that makes
-/// fewer wrong (block principal pivoting, Judice and Pires), else the first (Murty's
-/// rule, which ends for A positive definite), for at most `settings.rounds` solves. True,
-/// with u and the impulses set, where no row is wrong.
+/// fewer wrong (block principal pivoting, Judice and Pires). Where that stalls (contacts
+/// that say the same leave A near singular, and its impulses come out with either sign),
+/// the problem with A's diagonal a little larger (definite: one answer) is solved by the
+/// primal active-set method from the sweeps' impulses, which lowers its objective at each
+/// solve and so ends; A's own impulses for the rows found are kept where they are right
+/// too. At most `settings.rounds` solves in all. True, with u and the impulses set, where
+/// no row is wrong.
 bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std::vector<ContactRow>& rows,
                           std::vector<Vec3>& u, double slack, const ExactSettings& settings);
 
