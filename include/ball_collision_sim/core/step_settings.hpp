@@ -64,8 +64,8 @@ struct StepSettings
   int group_passes = 4;
   /// Direct solves the contact solver's exact stage may take, changing which contacts push
   /// between them (step::solveContactsExactly()); a group of hundreds needs a few, a jam
-  /// whose contacts say the same tens [solves].
-  int exact_solves = 256;
+  /// whose contacts say the same tens to hundreds (one contact at a time) [solves].
+  int exact_solves = 1024;
   /// The exact stage factorizes its matrix with the diagonal this much larger: contacts
   /// that say the same (a jam's, a ball on three others and a wall) leave it singular,
   /// and this makes them share their push equally [ratio] ...

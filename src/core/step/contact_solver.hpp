@@ -125,7 +125,7 @@ ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double>& inv_
 struct ExactSettings
 {
   /// direct solves it may take, changing which rows push between them [solves]
-  int rounds = 256;
+  int rounds = 1024;
   /// A's diagonal is taken this much larger, so that rows that say the same (a jam's)
   /// share their push equally [ratio] ...
   double regularization = 1e-10;
