@@ -409,6 +409,8 @@ private:
   void formRestingGroups();
   /// The group of ball i (its union-find root), or kNone32.
   std::uint32_t groupOf(std::size_t i);
+  /// The groups' per-ball data, made for the step at its first contact.
+  void startGroups();
   /// Ball i is in a group (alone, if it was in none).
   void joinGroup(std::size_t i);
   /// The groups of balls i and j become one.
@@ -709,8 +711,11 @@ private:
   std::vector<char> member_rolls_;
   std::vector<Vec3> resisted_;
   /// per ball: its energy at the step's start plus what its impacts in the step gave it
-  /// (gathering worlds) [J]; a group ends the step with no more than its members' sum
+  /// [J]; a group ends the step with no more than its members' sum. Made with the groups'
+  /// data (startGroups()), from the records, which hold the step's start until the
+  /// commit, and what impacts gave before then (impact_energies_: ball, energy)
   std::vector<double> energy_ref_;
+  std::vector<std::pair<std::uint32_t, double>> impact_energies_;
   /// the contact solver's work space
   Scratch<ContactGroup> contact_group_;
 

@@ -21,6 +21,8 @@ using namespace step;
 
 std::uint32_t World::groupOf(std::size_t i)
 {
+  if (group_parent_.empty())
+    return kNone32;
   std::uint32_t k = group_parent_[i];
   if (k == kNone32)
     return kNone32;
@@ -29,8 +31,26 @@ std::uint32_t World::groupOf(std::size_t i)
   return k;
 }
 
+void World::startGroups()
+{
+  if (!group_parent_.empty())
+    return;
+  const std::size_t n = balls_.size();
+  group_parent_.assign(n, kNone32);
+  group_next_.resize(n);
+  first_link_.assign(n, kNone32);
+  group_motion_.assign(n, 0);
+  group_velocity_.resize(n);
+  energy_ref_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    energy_ref_[i] = energyOf(i, balls_[i].position, balls_[i].velocity);
+  for (const auto& [i, energy] : impact_energies_)
+    energy_ref_[i] += energy;
+}
+
 void World::joinGroup(std::size_t i)
 {
+  startGroups();
   if (group_parent_[i] != kNone32)
     return;
   group_parent_[i] = group_next_[i] = static_cast<std::uint32_t>(i);
@@ -49,6 +69,8 @@ void World::mergeGroups(std::size_t i, std::size_t j)
 
 bool World::linked(std::size_t i, std::uint32_t other) const
 {
+  if (first_link_.empty())
+    return false;
   for (std::uint32_t r = first_link_[i]; r != kNone32;)
   {
     const ContactLink& link = links_[r];
@@ -61,6 +83,7 @@ bool World::linked(std::size_t i, std::uint32_t other) const
 
 void World::link(std::size_t a, std::uint32_t other)
 {
+  startGroups();
   const auto r = static_cast<std::uint32_t>(links_.size());
   const auto warm = warm_.find(linkKey(a, other));
   const double rate = warm == warm_.end() ? 0.0 : warm->second;
@@ -114,14 +137,15 @@ void World::takeImpulse(std::size_t i, double x, const Vec3& position, const Vec
 void World::formRestingGroups()
 {
   const std::size_t n = balls_.size();
-  group_parent_.assign(n, kNone32);
-  group_next_.resize(n);
-  first_link_.assign(n, kNone32);
-  group_motion_.assign(n, 0);
-  group_velocity_.resize(n);
-  energy_ref_.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    energy_ref_[i] = energyOf(i, balls_[i].position, balls_[i].velocity);
+  // (the groups' per-ball data is made when the step links its first contact: a step
+  // without resting contacts reads and keeps none)
+  group_parent_.clear();
+  group_next_.clear();
+  first_link_.clear();
+  group_motion_.clear();
+  group_velocity_.clear();
+  energy_ref_.clear();
+  impact_energies_.clear();
   links_.clear();
   link_order_.clear();
   // Where gravity does not pull along the floor (a plane square to it), nothing brings
@@ -142,7 +166,7 @@ void World::formRestingGroups()
     reach = std::max(reach, bound(wall.restitution));
   linkRestingWalls(reach);
   linkRestingPairs(reach);
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < n && !group_parent_.empty(); ++i)
     if (group_parent_[i] == i)
       solveGroup(i, 0.0);
 }
@@ -551,6 +575,8 @@ World::ContactGroup& World::endGroup()
 }
 void World::boundGroupEnergies()
 {
+  if (group_parent_.empty())
+    return;
   const std::size_t n = balls_.size();
   std::vector<double> allowed(n, 0.0), now(n, 0.0), kinetic(n, 0.0);
   for (const std::uint32_t i : by_id_)  // (summed in id order, whatever the records' order)
