@@ -711,11 +711,8 @@ private:
   std::vector<char> member_rolls_;
   std::vector<Vec3> resisted_;
   /// per ball: its energy at the step's start plus what its impacts in the step gave it
-  /// [J]; a group ends the step with no more than its members' sum. Made with the groups'
-  /// data (startGroups()), from the records, which hold the step's start until the
-  /// commit, and what impacts gave before then (impact_energies_: ball, energy)
+  /// [J]; a group ends the step with no more than its members' sum
   std::vector<double> energy_ref_;
-  std::vector<std::pair<std::uint32_t, double>> impact_energies_;
   /// the contact solver's work space
   Scratch<ContactGroup> contact_group_;
 

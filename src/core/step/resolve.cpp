@@ -163,8 +163,6 @@ void World::takeVelocity(std::size_t i, double x, const Vec3& p, const Vec3& nor
 {
   if (!energy_ref_.empty())
     energy_ref_[i] += impulseEnergy(i, x, before, v);
-  else
-    impact_energies_.emplace_back(static_cast<std::uint32_t>(i), impulseEnergy(i, x, before, v));
   // (a ball on its group's motion takes the impulse into its free velocity, and its
   // group is solved again after the event)
   if (!group_motion_.empty() && group_motion_[i])

@@ -41,11 +41,6 @@ void World::startGroups()
   first_link_.assign(n, kNone32);
   group_motion_.assign(n, 0);
   group_velocity_.resize(n);
-  energy_ref_.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    energy_ref_[i] = energyOf(i, balls_[i].position, balls_[i].velocity);
-  for (const auto& [i, energy] : impact_energies_)
-    energy_ref_[i] += energy;
 }
 
 void World::joinGroup(std::size_t i)
@@ -144,8 +139,11 @@ void World::formRestingGroups()
   first_link_.clear();
   group_motion_.clear();
   group_velocity_.clear();
-  energy_ref_.clear();
-  impact_energies_.clear();
+  // (the energy each ball may end the step with: its own at the step's start, which its
+  // record holds only until its motion starts anew, and what impacts give it)
+  energy_ref_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    energy_ref_[i] = energyOf(i, balls_[i].position, balls_[i].velocity);
   links_.clear();
   link_order_.clear();
   // Where gravity does not pull along the floor (a plane square to it), nothing brings
