@@ -1,7 +1,7 @@
 // Steps one scene as a version's own bench/scenes.hpp defines it, for
 // bench/side_by_side_own_scenes, which builds this file against each version's core and
-// scenes (the scenes' API changes between versions; this file uses only what every
-// version since the step's stages has: billiards, bullets, bowl and bowlPile).
+// scenes (the scenes' API changes between versions; this file uses only what they have
+// had since before the step's stages: billiards, bullets, bowl and bowlPile).
 //   each_own_scenes s1|s2|s3|s4rest BALLS STEPS
 // s4rest: S4, the pile in the bowl, settled for 1,000 steps (10 s), untimed, then timed:
 // with friction where the version's scenes have it (bowlPileAtRest; built with
@@ -12,6 +12,7 @@
 #include "ball_collision_sim/core/world.hpp"
 
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>

@@ -237,7 +237,7 @@ struct WorstOfRun
 };
 
 /// Steps the world `steps` times, calling after_step(k) after step k (from 0), and returns
-/// the worst of the run.
+/// the worst of the run; stops early where after_step returns false.
 template <class AfterStep>
 WorstOfRun stepWatching(core::World& world, int steps, AfterStep&& after_step)
 {
@@ -250,7 +250,8 @@ WorstOfRun stepWatching(core::World& world, int steps, AfterStep&& after_step)
     worst.energy_rise = std::max(worst.energy_rise, now - before);
     before = now;
     worst.overlap = std::max(worst.overlap, deepestOverlap(world.balls()));
-    after_step(k);
+    if (!after_step(k))
+      break;
   }
   return worst;
 }

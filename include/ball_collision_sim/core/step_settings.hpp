@@ -64,7 +64,9 @@ struct StepSettings
   int group_passes = 4;
   /// Direct solves the contact solver's exact stage may take, changing which contacts push
   /// between them (step::solveContactsExactly()); a group of hundreds needs a few, a jam
-  /// whose contacts say the same tens to hundreds (one contact at a time) [solves].
+  /// whose contacts say the same about one per pushing contact (taken one at a time):
+  /// hundreds for a hundred balls packed tight, and more than this past about 140
+  /// (then the sweeps' answer stays, counted in WorldStats::unsettled_contacts) [solves].
   int exact_solves = 1024;
   /// The exact stage factorizes its matrix with the diagonal this much larger: contacts
   /// that say the same (a jam's, a ball on three others and a wall) leave it singular,

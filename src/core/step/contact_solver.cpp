@@ -167,11 +167,19 @@ bool solveRegularized(const std::vector<Vec3>& u_free, const std::vector<double>
     if (!pushing.empty() && !solvePushing(u_free, inv, rows, pushing, unused, x, settings, 0))
       return false;
     double step = 1.0;
+    bool blocked = false;
     for (const int r : pushing)
       if (x[r] < 0)
+      {
+        blocked = true;
         step = std::min(step, lambda[r] / (lambda[r] - x[r]));
-    if (step < 1.0)
+      }
+    if (blocked)
     {
+      // (one row started alone always pushes: where it does not, round-off has taken
+      // over, and the method would only go round)
+      if (step == 0 && one_at_a_time)
+        return false;
       one_at_a_time = one_at_a_time || step == 0;
       for (const int r : pushing)
       {
@@ -239,7 +247,10 @@ bool pivotBlocks(const std::vector<Vec3>& u_free, const std::vector<double>& inv
       tries = settings.pivot_tries;
     }
     else if (tries-- == 0)
+    {
+      --solves;
       return false;
+    }
     for (const int r : wrong)
       in_active[static_cast<std::size_t>(r)] ^= 1;
   }

@@ -133,7 +133,7 @@ void World::formRestingGroups()
 {
   const std::size_t n = balls_.size();
   // (the groups' per-ball data is made when the step links its first contact: a step
-  // without resting contacts reads and keeps none)
+  // without resting contacts reads none, and a world that never had one keeps none)
   group_parent_.clear();
   group_next_.clear();
   first_link_.clear();
