@@ -73,12 +73,12 @@ PushingSystem pushingSystem(const std::vector<Vec3>& u_free, const std::vector<d
 }
 
 /// The impulses of the rows `active` (taken to push) that take their closings to their
-/// targets from u_free, solved directly, into lambda, and the vectors they leave, into
-/// trial; false where A could not be factorized. Refined `refinements` times, the impulses
+/// targets from u_free, solved directly, into lambda (pushedBy() gives the vectors they
+/// leave); false where A could not be factorized. Refined `refinements` times, the impulses
 /// are those of A itself; not refined, those of A with its diagonal a little larger.
 bool solvePushing(const std::vector<Vec3>& u_free, const std::vector<double>& inv, const std::vector<ContactRow>& rows,
-                  const std::vector<int>& active, std::vector<Vec3>& trial, std::vector<double>& lambda,
-                  const ExactSettings& settings, int refinements)
+                  const std::vector<int>& active, std::vector<double>& lambda, const ExactSettings& settings,
+                  int refinements)
 {
   const int n = static_cast<int>(active.size());
   const PushingSystem system = pushingSystem(u_free, inv, rows, active, settings.regularization);
@@ -98,13 +98,7 @@ bool solvePushing(const std::vector<Vec3>& u_free, const std::vector<double>& in
   if (solver.info() != Eigen::Success || !x.allFinite())
     return false;
   for (int p = 0; p < n; ++p)
-  {
-    const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
     lambda[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])] = x[p];
-    trial[r.a] -= (x[p] * inv[r.a]) * r.push_a;
-    if (r.b != ContactRow::kImmovable)
-      trial[r.b] += (x[p] * inv[r.b]) * r.push_b;
-  }
   return true;
 }
 
@@ -151,7 +145,6 @@ bool solveRegularized(const std::vector<Vec3>& u_free, const std::vector<double>
 {
   std::vector<int> pushing;
   std::vector<double> x(rows.size());
-  std::vector<Vec3> unused(u_free.size());
   // (all the rows that close past their targets start pushing together, until that makes
   // a step stop at once; from then on only the one that closes most: that one always
   // ends up pushing and lowers the objective, so no set of rows comes back)
@@ -163,8 +156,7 @@ bool solveRegularized(const std::vector<Vec3>& u_free, const std::vector<double>
       if (lambda[r] > 0 || x[r] > 0)
         pushing.push_back(static_cast<int>(r));
     std::fill(x.begin(), x.end(), 0.0);
-    unused = u_free;
-    if (!pushing.empty() && !solvePushing(u_free, inv, rows, pushing, unused, x, settings, 0))
+    if (!pushing.empty() && !solvePushing(u_free, inv, rows, pushing, x, settings, 0))
       return false;
     double step = 1.0;
     bool blocked = false;
@@ -233,11 +225,10 @@ bool pivotBlocks(const std::vector<Vec3>& u_free, const std::vector<double>& inv
     for (std::size_t r = 0; r < rows.size(); ++r)
       if (in_active[r])
         active.push_back(static_cast<int>(r));
-    trial = u_free;
     std::fill(lambda.begin(), lambda.end(), 0.0);
-    if (!active.empty() &&
-        !solvePushing(u_free, inv, rows, active, trial, lambda, settings, settings.refinements))
+    if (!active.empty() && !solvePushing(u_free, inv, rows, active, lambda, settings, settings.refinements))
       return false;
+    trial = pushedBy(u_free, inv, rows, lambda);
     const std::vector<int> wrong = wrongRows(rows, in_active, trial, lambda, slack);
     if (wrong.empty())
       return true;
@@ -281,10 +272,9 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
         in_active[r] = 1;
         active.push_back(static_cast<int>(r));
       }
-    trial = u_free;
     std::vector<double> own(rows.size(), 0.0);
-    if (!active.empty() && solvePushing(u_free, inv, rows, active, trial, own, settings, settings.refinements) &&
-        wrongRows(rows, in_active, trial, own, slack).empty())
+    if (!active.empty() && solvePushing(u_free, inv, rows, active, own, settings, settings.refinements) &&
+        wrongRows(rows, in_active, pushedBy(u_free, inv, rows, own), own, slack).empty())
       lambda.swap(own);
     trial = pushedBy(u_free, inv, rows, lambda);
   }
