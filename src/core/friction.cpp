@@ -25,6 +25,8 @@ const char* motionKindName(MotionKind kind)
       return "spinning";
     case MotionKind::kStationary:
       return "stationary";
+    case MotionKind::kFlying:
+      return "flying";
   }
   return "?";
 }

@@ -44,10 +44,45 @@ FloorFoot footUnder(const Floor& floor, const Vec3& p, double radius)
 }
 }  // namespace
 
-std::string placeOnFloor(BallDef& ball, const std::optional<Floor>& floor, Vec2* uv, Landing landing)
+namespace
 {
+/// placeOnFloor() as Landing::kAsGiven says: the centre and velocity stay as they are.
+std::string placeAsGiven(BallDef& ball, const Floor& floor, Vec2* uv, bool* flying)
+{
+  const FloorFoot foot = floor.project(ball.position, Vec2(0.5, 0.5));
+  if (!foot.inside)
+    return offTheFloor(foot);
+  const double gap = foot.height - ball.radius;
+  if (gap < -kContactTolerance)
+    return "below the floor (its centre is " + formatNumber(foot.height) + " m from the surface, less than its radius " +
+           formatNumber(ball.radius) + " m)";
+  // (touching the floor, it takes off at once where its velocity points away from it;
+  // else the floor takes the velocity's part into it)
+  const double along_normal = ball.velocity.dot(foot.normal);
+  const bool in_flight = gap > kContactTolerance || along_normal > 0;
+  if (!in_flight)
+    ball.velocity -= along_normal * foot.normal;
+  if (flying)
+    *flying = in_flight;
+  if (uv)
+    *uv = foot.uv;
+  return "";
+}
+}  // namespace
+
+Landing landingOf(BallPlacement placement)
+{
+  return placement == BallPlacement::kAsGiven ? Landing::kAsGiven : Landing::kNearest;
+}
+
+std::string placeOnFloor(BallDef& ball, const std::optional<Floor>& floor, Vec2* uv, Landing landing, bool* flying)
+{
+  if (flying)
+    *flying = false;
   if (!floor)
     return "";
+  if (landing == Landing::kAsGiven)
+    return placeAsGiven(ball, *floor, uv, flying);
   const FloorFoot foot = landing == Landing::kUnder ? footUnder(*floor, ball.position, ball.radius)
                                                     : floor->project(ball.position, Vec2(0.5, 0.5));
   if (!foot.inside)
@@ -75,9 +110,10 @@ std::string overlapMessage(const std::string& what, double depth)
 }
 
 std::string placeAmongWalls(BallDef& ball, const std::optional<Floor>& floor, const std::vector<Wall>& walls,
-                            Landing landing, Vec2* uv, const std::function<std::string(std::size_t)>& wall_name)
+                            Landing landing, Vec2* uv, const std::function<std::string(std::size_t)>& wall_name,
+                            bool* flying)
 {
-  std::string why = placeOnFloor(ball, floor, uv, landing);
+  std::string why = placeOnFloor(ball, floor, uv, landing, flying);
   if (why.empty())
     if (const auto overlap = wallOverlap(ball, walls))
       why = overlapMessage(wall_name(overlap->index), overlap->depth);
@@ -105,7 +141,7 @@ Placement::Placement(const Scene& scene)
 
 std::string Placement::place(BallDef& ball, Vec2* uv) const
 {
-  return placeAmongWalls(ball, floor_, walls_, Landing::kNearest, uv,
+  return placeAmongWalls(ball, floor_, walls_, landingOf(ball.placement), uv,
                          [](std::size_t k) { return "walls[" + std::to_string(k) + "]"; });
 }
 }  // namespace ball_collision_sim::core

@@ -158,6 +158,8 @@ private:
 
 bool checkFloor(Checker& check, const FloorDef& floor)
 {
+  if (floor.restitution)
+    check.unitInterval("floor.restitution", *floor.restitution);
   if (floor.type == FloorDef::Type::kPlane)
   {
     const bool point_ok = check.bounded("floor.point", floor.point, kMaxLength, "m");
@@ -318,6 +320,11 @@ std::vector<Ball> checkRandomBalls(Checker& check, const Scene& scene, bool fine
 
 }  // namespace
 
+const char* placementName(BallPlacement placement)
+{
+  return placement == BallPlacement::kAsGiven ? "as_given" : "on_floor";
+}
+
 std::vector<SceneIssue> validateBall(const BallDef& ball, const std::string& prefix)
 {
   std::vector<SceneIssue> issues;
@@ -355,8 +362,10 @@ PlacedBalls land(const Scene& scene, std::vector<Ball> random)
   PlacedBalls out;
   out.feet.assign(own + random.size(), Vec2(0.5, 0.5));  // (the first guess of each foot point)
   const auto put = [&](BallDef def, Ball& ball, Vec2& foot) {
-    placeOnFloor(def, floor, &foot);
+    bool flying = false;
+    placeOnFloor(def, floor, &foot, landingOf(def.placement), &flying);
     ball = ballRecord(def);
+    ball.flying = flying;
   };
   for (std::size_t k = 0; k < random.size(); ++k)
     put(randomBallDef(scene, random[k]), random[k], out.feet[own + k]);

@@ -14,6 +14,7 @@ struct CollisionEvent
   {
     kBallBall,
     kBallWall,
+    kBallFloor,  ///< a ball in flight lands on the floor (a bounce, or its last landing)
   };
   double time = 0.0;                  ///< exact time of impact [s]
   Vec3 point = Vec3::Zero();          ///< contact point [m]
@@ -21,7 +22,7 @@ struct CollisionEvent
   double impulse = 0.0;               ///< magnitude of the exchanged impulse [N s]
   double approach_speed = 0.0;        ///< normal closing speed before [m/s]
   int ball = -1;                      ///< id of the (first) ball
-  int other = -1;                     ///< id of the second ball or of the wall
+  int other = -1;                     ///< id of the second ball or of the wall; 0 for the floor
   Kind kind = Kind::kBallBall;
   WallFeature feature = WallFeature::kFace;  ///< ball-wall only
   /// true for a resting contact: the closing speed was below what gravity adds in a

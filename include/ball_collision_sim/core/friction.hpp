@@ -14,8 +14,9 @@ enum class MotionKind : std::uint8_t
   kRolling,     ///< moving without slip
   kSpinning,    ///< still, turning about the floor's normal only
   kStationary,  ///< still, not turning
+  kFlying,      ///< off the floor, on its parabola under gravity
 };
-/// "sliding", "rolling", "spinning", "stationary"
+/// "sliding", "rolling", "spinning", "stationary", "flying"
 const char* motionKindName(MotionKind kind);
 
 /// What ends a phase of constant accelerations (bits; several may end at once).

@@ -23,13 +23,19 @@ enum class Landing
   /// where it is: its centre must already rest on the floor, one radius above it
   /// (within kContactTolerance)
   kExact,
+  /// exactly where it is, its velocity whole (BallPlacement::kAsGiven): more than
+  /// kContactTolerance above the floor it is in flight; below the surface, refused
+  kAsGiven,
 };
 
 /// Puts a ball on the floor as `landing` says: its centre goes to foot + r n and its
 /// velocity loses its part normal to the floor. Returns why it cannot stand there (its
 /// foot is outside the floor, or its centre is not where `landing` allows), or "".
+/// `flying` (where given) tells whether the ball is in flight there (Landing::kAsGiven).
 std::string placeOnFloor(BallDef& ball, const std::optional<Floor>& floor, Vec2* uv = nullptr,
-                         Landing landing = Landing::kNearest);
+                         Landing landing = Landing::kNearest, bool* flying = nullptr);
+/// How a scene file's ball with this placement meets the floor.
+Landing landingOf(BallPlacement placement);
 
 /// The first wall a ball overlaps by more than kContactTolerance.
 struct Overlap
@@ -46,14 +52,15 @@ std::string overlapMessage(const std::string& what, double depth);
 /// floor as `landing` says and checks it against the walls; why it cannot stand there
 /// ("off the floor (...)", or overlapMessage() with `wall_name(k)` naming walls[k]), or "".
 std::string placeAmongWalls(BallDef& ball, const std::optional<Floor>& floor, const std::vector<Wall>& walls,
-                            Landing landing, Vec2* uv, const std::function<std::string(std::size_t)>& wall_name);
+                            Landing landing, Vec2* uv, const std::function<std::string(std::size_t)>& wall_name,
+                            bool* flying = nullptr);
 
 /// The floor and walls of a scene, to place balls among them.
 class Placement
 {
 public:
   explicit Placement(const Scene& scene);
-  /// placeOnFloor, then wallOverlap.
+  /// placeOnFloor as the ball's placement says, then wallOverlap.
   std::string place(BallDef& ball, Vec2* uv = nullptr) const;
   const std::optional<Floor>& floor() const { return floor_; }
   const std::vector<Wall>& walls() const { return walls_; }

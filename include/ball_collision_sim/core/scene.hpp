@@ -20,6 +20,8 @@ struct FloorDef
     kBiquadratic,  ///< tensor-product Bezier surface of 3x3 control points
   };
   Type type = Type::kPlane;
+  /// normal restitution of ball-floor impacts (landings), 0..1; unset: the scene's default
+  std::optional<double> restitution;
   Vec3 point = Vec3(-2.0, -2.0, 0.0);  ///< plane corner [m]
   Vec3 u = Vec3(4.0, 0.0, 0.0);        ///< plane edge vector [m]
   Vec3 v = Vec3(0.0, 4.0, 0.0);        ///< plane edge vector [m]
@@ -46,6 +48,20 @@ struct WallDef
 constexpr double kSolidInertia = 2.0 / 5;
 constexpr double kHollowInertia = 2.0 / 3;
 
+/// How a ball of a scene or an edit meets the floor.
+enum class BallPlacement : std::uint8_t
+{
+  /// put on the floor: the centre one radius above the surface point nearest it (scene
+  /// files) or under it along gravity (services), the velocity along the floor
+  kOnFloor,
+  /// the centre exactly at `position` and the velocity whole: more than
+  /// kContactTolerance above the floor it flies; touching it, it is on the floor and takes
+  /// off at once where its velocity points away; below the surface it is refused
+  kAsGiven,
+};
+/// "on_floor", "as_given"
+const char* placementName(BallPlacement placement);
+
 struct BallDef
 {
   Vec3 position = Vec3::Zero();  ///< centre [m]; put on the floor when there is one
@@ -56,6 +72,7 @@ struct BallDef
   /// about the floor's normal 0). Only a world with friction keeps a ball's own spin.
   std::optional<Vec3> angular_velocity;
   double inertia = kSolidInertia;  ///< k in I = k m r^2, in (0, 1]
+  BallPlacement placement = BallPlacement::kOnFloor;
 };
 
 /// Friction coefficients (Lakså and Bang 2005; pooltool's motion states). All >= 0.

@@ -162,6 +162,16 @@ struct StepSettings
   double grid_dense_cells_per_item = 4.0;
   double grid_dense_extra_cells = 1024.0;
 
+  // ---- flight -------------------------------------------------------------------------
+  /// A ball that leaves the floor slower along its normal than would keep it in flight
+  /// this long stays on the floor: a bounce at e < 1 is followed by endless ones, e
+  /// times as long each, whose flights sum to the series' limit; cut where the next would
+  /// be shorter than this, the ball lands for good at most min_flight_time / (1 - e)
+  /// early, its hops by then g min_flight_time^2 / 8 high (1e-11 m) [s]. The same holds
+  /// for the round-off of a velocity along the floor's normal after an impact or an
+  /// edit.
+  double min_flight_time = 1e-6;
+
   // ---- memory order -------------------------------------------------------------------
   /// The balls' records are put in the grid's cell order (the step's visiting order)
   /// anew every this many steps: balls move less than a cell in a step [steps].

@@ -72,7 +72,8 @@ struct WorldStats
   std::uint64_t stopped_balls = 0;
   std::uint64_t sleeping_balls = 0;  ///< balls asleep after the last step (not a sum)
   std::uint64_t woken_balls = 0;     ///< balls woken by impacts
-  std::uint64_t transitions = 0;     ///< changes of a ball's motion kind (friction)
+  std::uint64_t transitions = 0;     ///< changes of a ball's motion kind (friction, take-offs, landings)
+  std::uint64_t floor_impacts = 0;   ///< landings of balls in flight on the floor (bounces included)
   /// solves of a group's resting contacts that ran out of sweeps with closing left
   /// (StepSettings::contact_sweeps)
   std::uint64_t unsettled_contacts = 0;
