@@ -60,6 +60,8 @@ std::uint8_t motionConstant(core::MotionKind kind)
       return ball_collision_sim::BallState::SPINNING;
     case core::MotionKind::kStationary:
       return ball_collision_sim::BallState::STATIONARY;
+    case core::MotionKind::kFlying:
+      return ball_collision_sim::BallState::FLYING;
   }
   return ball_collision_sim::BallState::STATIONARY;
 }
@@ -101,7 +103,18 @@ ball_collision_sim::CollisionEvent toMsg(const core::CollisionEvent& event, cons
   ball_collision_sim::CollisionEvent msg;
   msg.header.stamp = ros::Time(event.time);
   msg.header.frame_id = frame_id;
-  msg.kind = event.kind == core::CollisionEvent::Kind::kBallBall ? msg.BALL_BALL : msg.BALL_WALL;
+  switch (event.kind)
+  {
+    case core::CollisionEvent::Kind::kBallBall:
+      msg.kind = msg.BALL_BALL;
+      break;
+    case core::CollisionEvent::Kind::kBallWall:
+      msg.kind = msg.BALL_WALL;
+      break;
+    case core::CollisionEvent::Kind::kBallFloor:
+      msg.kind = msg.BALL_FLOOR;
+      break;
+  }
   msg.ball = event.ball;
   msg.other = event.other;
   switch (event.feature)

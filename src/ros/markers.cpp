@@ -114,6 +114,8 @@ std_msgs::ColorRGBA ballColor(const core::Ball& ball, const BallColoring& colori
         return rgba(1.0, 0.6, 0.1, 1.0);
       case core::MotionKind::kStationary:
         return rgba(0.55, 0.55, 0.55, 1.0);
+      case core::MotionKind::kFlying:
+        return rgba(0.2, 0.85, 0.35, 1.0);
     }
   const double t = coloring.speed_max > 0 ? std::clamp(ball.velocity.norm() / coloring.speed_max, 0.0, 1.0) : 1.0;
   const std_msgs::ColorRGBA slow = rgba(0.2, 0.35, 1.0, 1.0), middle = rgba(0.9, 0.15, 0.65, 1.0),
