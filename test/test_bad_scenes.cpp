@@ -184,6 +184,25 @@ TEST(BadScenes, EachGivesOneLineNamingTheKeyAndTheReason)
              "[[2,0,0],[3,0,0],[4,0,0]]]}"),
        "floor.control_points", "degenerate surface"},
       {"random balls without a floor", "random_balls: {count: 3}", "random_balls", "needs a floor"},
+      // flight: the floor's restitution and the balls' placement
+      {"floor restitution 1.5",
+       scene("{position: [0, 0, 0.1], radius: 0.1}", "{point: [-1, -1, 0], u: [2, 0, 0], v: [0, 0, 0.3]}",
+             "{type: plane, point: [-1, -1, 0], u: [2, 0, 0], v: [0, 2, 0], restitution: 1.5}"),
+       "floor.restitution", "must be in [0, 1] (got 1.5)"},
+      {"floor restitution negative",
+       scene("{position: [0, 0, 0.1], radius: 0.1}", "{point: [-1, -1, 0], u: [2, 0, 0], v: [0, 0, 0.3]}",
+             "{type: plane, point: [-1, -1, 0], u: [2, 0, 0], v: [0, 2, 0], restitution: -0.1}"),
+       "floor.restitution", "must be in [0, 1] (got -0.1)"},
+      {"floor restitution a word",
+       scene("{position: [0, 0, 0.1], radius: 0.1}", "{point: [-1, -1, 0], u: [2, 0, 0], v: [0, 0, 0.3]}",
+             "{type: plane, point: [-1, -1, 0], u: [2, 0, 0], v: [0, 2, 0], restitution: soft}"),
+       "floor.restitution", "expected a number, got soft"},
+      {"placement a word", scene("{position: [0, 0, 0.1], radius: 0.1, placement: x}"), "balls[0].placement",
+       "expected on_floor or as_given, got x"},
+      {"placement a number", scene("{position: [0, 0, 0.1], radius: 0.1, placement: 1}"), "balls[0].placement",
+       "expected on_floor or as_given, got 1"},
+      {"as_given below the floor", scene("{position: [0, 0, 0.05], radius: 0.1, placement: as_given}"),
+       "balls[0].position", "below the floor"},
       // wrong types (integers where reals are expected are fine: see below)
       {"radius a word", scene("{position: [0, 0, 0.1], radius: big}"), "balls[0].radius",
        "expected a number, got big"},
@@ -218,6 +237,16 @@ TEST(BadScenes, EachGivesOneLineNamingTheKeyAndTheReason)
     EXPECT_NE(message.find(row.reason), std::string::npos) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
   }
+}
+
+// The same fields done right: a ball given above the floor, a floor restitution in [0, 1].
+TEST(BadScenes, AsGivenAboveTheFloorAndFloorRestitutionAreGood)
+{
+  EXPECT_EQ(problemOf(scene("{position: [0, 0, 0.6], velocity: [0.5, 0, 1], radius: 0.1, placement: as_given}")), "");
+  EXPECT_EQ(problemOf(scene("{position: [0, 0, 0.1], radius: 0.1, placement: as_given}")), "");
+  EXPECT_EQ(problemOf(scene("{position: [0, 0, 0.1], radius: 0.1}", "{point: [-1, -1, 0], u: [2, 0, 0], v: [0, 0, 0.3]}",
+                            "{type: plane, point: [-1, -1, 0], u: [2, 0, 0], v: [0, 2, 0], restitution: 0}")),
+            "");
 }
 
 TEST(BadScenes, IntegersAreAcceptedWhereRealsAreExpected)

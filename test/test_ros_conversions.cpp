@@ -74,6 +74,52 @@ TEST(ToYaml, KeepsTypesSoTheReaderJudgesThemAlike)
   }
 }
 
+// Flight's fields from the parameter server: its strings come through toYaml quoted, its
+// reals as reals; a scene written to it reads back with the same fields.
+TEST(ToYaml, ReadsFloorRestitutionAndBallPlacement)
+{
+  XmlRpc::XmlRpcValue tree;
+  tree["floor"]["type"] = std::string("plane");
+  tree["floor"]["restitution"] = 0.25;
+  XmlRpc::XmlRpcValue ball;
+  ball["position"][0] = 0.0;
+  ball["position"][1] = 0.0;
+  ball["position"][2] = 0.6;
+  ball["radius"] = 0.1;
+  ball["placement"] = std::string("as_given");
+  tree["balls"][0] = ball;
+  ball["position"][0] = 1.0;
+  ball["placement"] = std::string("on_floor");
+  tree["balls"][1] = ball;
+  const core::Scene scene = yaml::parseScene(bridge::toYaml(tree), "params");
+  ASSERT_TRUE(scene.floor.has_value());
+  EXPECT_EQ(scene.floor->restitution, 0.25);
+  ASSERT_EQ(scene.balls.size(), 2u);
+  EXPECT_EQ(scene.balls[0].placement, core::BallPlacement::kAsGiven);
+  EXPECT_EQ(scene.balls[1].placement, core::BallPlacement::kOnFloor);
+
+  tree["balls"][1]["placement"] = std::string("x");
+  try
+  {
+    yaml::parseScene(bridge::toYaml(tree), "params");
+    FAIL() << "accepted placement x";
+  }
+  catch (const yaml::SceneError& e)
+  {
+    EXPECT_EQ(std::string(e.what()), "params: balls[1].placement: expected on_floor or as_given, got the string \"x\"");
+  }
+
+  // writeSceneParams' path: the written scene, as the parameter server holds it, and back
+  XmlRpc::XmlRpcValue written = bridge::toXmlRpc(yaml::writeScene(scene, NodeSettings()));
+  const core::Scene back = yaml::parseScene(bridge::toYaml(written), "params");
+  ASSERT_TRUE(back.floor.has_value());
+  EXPECT_EQ(back.floor->restitution, 0.25);
+  ASSERT_EQ(back.balls.size(), 2u);
+  EXPECT_EQ(back.balls[0].placement, core::BallPlacement::kAsGiven);
+  EXPECT_EQ(back.balls[1].placement, core::BallPlacement::kOnFloor);
+  EXPECT_EQ(back.balls[0].position, scene.balls[0].position);
+}
+
 TEST(Conversions, BallStateAndTransform)
 {
   core::Ball ball;

@@ -175,6 +175,46 @@ TEST(SceneYaml, ReadsAPlaneFloor)
   expectVec(scene.floor->v, 7, 8, 9);
 }
 
+// Flight's fields: the floor's restitution (either floor type) and each ball's placement.
+TEST(SceneYaml, ReadsFloorRestitutionAndBallPlacement)
+{
+  using ball_collision_sim::core::BallPlacement;
+  const Scene plane = parseScene(R"(
+floor: {type: plane, restitution: 0.5}
+balls:
+  - {position: [0, 0, 0.1], radius: 0.1}
+  - {position: [1, 0, 0.1], radius: 0.1, placement: on_floor}
+  - {position: [0, 1, 0.6], velocity: [0, 0, 2], radius: 0.1, placement: as_given}
+  - {position: [1, 1, 0.6], radius: 0.1, placement: "as_given"}
+)");
+  ASSERT_TRUE(plane.floor.has_value());
+  ASSERT_TRUE(plane.floor->restitution.has_value());
+  EXPECT_EQ(*plane.floor->restitution, 0.5);
+  ASSERT_EQ(plane.balls.size(), 4u);
+  EXPECT_EQ(plane.balls[0].placement, BallPlacement::kOnFloor);
+  EXPECT_EQ(plane.balls[1].placement, BallPlacement::kOnFloor);
+  EXPECT_EQ(plane.balls[2].placement, BallPlacement::kAsGiven);
+  EXPECT_EQ(plane.balls[3].placement, BallPlacement::kAsGiven);
+  expectVec(plane.balls[2].position, 0, 1, 0.6);
+  expectVec(plane.balls[2].velocity, 0, 0, 2);
+
+  const Scene curved = parseScene(R"(
+floor:
+  type: biquadratic
+  restitution: 0
+  control_points:
+    - [[-2, -2, 0], [-2, 0, 0], [-2, 2, 0]]
+    - [[0, -2, 0], [0, 0, 0], [0, 2, 0]]
+    - [[2, -2, 0], [2, 0, 0], [2, 2, 0]]
+)");
+  ASSERT_TRUE(curved.floor.has_value());
+  ASSERT_TRUE(curved.floor->restitution.has_value());
+  EXPECT_EQ(*curved.floor->restitution, 0.0);
+
+  // absent: unset, so that ball-floor impacts take the scene's restitution
+  EXPECT_FALSE(parseScene("floor: {type: plane}").floor->restitution.has_value());
+}
+
 TEST(SceneYaml, AppliesTheDocumentedDefaults)
 {
   const Scene defaults;
@@ -306,13 +346,13 @@ TEST(SceneYaml, EachMistakeGivesOneLineNamingTheKeyAndTheReason)
     // unknown keys
     {"balls:\n  - {position: [0, 0, 0], radius: 1}\n  - {position: [1, 0, 0], radius: 1}\n"
      "  - {position: [2, 0, 0], radius: 1}\n  - {position: [3, 0, 0], radus: 1}\n",
-     "t.yaml: balls[3].radus: unknown key (expected one of: position, velocity, radius, mass, angular_velocity, inertia)"},
+     "t.yaml: balls[3].radus: unknown key (expected one of: position, velocity, radius, mass, angular_velocity, inertia, placement)"},
     {"dtt: 0.1", "t.yaml: dtt: unknown key (expected one of: frame_id, dt, gravity, restitution, floor, friction, walls, "
                  "balls, random_balls, real_time_factor, marker_rate, tf_rate, tf_max_balls, state_rate, "
                  "publish_collisions, start_paused, click_radius, click_mass, status_period, max_balls, "
                  "marker_list_threshold, ball_color, speed_color_max, collision_flashes, publish_clock, frame_prefix)"},
     {"floor: {type: plane, control_points: []}",
-     "t.yaml: floor.control_points: unknown key (expected one of: type, point, u, v)"},
+     "t.yaml: floor.control_points: unknown key (expected one of: type, point, u, v, restitution)"},
     {"random_balls: {count: 1, region: {min: [0, 0], max: [1, 1], mid: [0, 0]}}",
      "t.yaml: random_balls.region.mid: unknown key (expected one of: min, max)"},
     {"dt: 0.1\ndt: 0.2", "t.yaml: dt: duplicate key"},
@@ -339,6 +379,18 @@ TEST(SceneYaml, EachMistakeGivesOneLineNamingTheKeyAndTheReason)
     {"random_balls: {count: 1, region: {min: [0, 0, 0], max: [1, 1]}}",
      "t.yaml: random_balls.region.min: expected a list of 2 numbers [x, y], got a list of 3 items"},
     {"floor: {type: sphere}", "t.yaml: floor.type: expected plane or biquadratic, got sphere"},
+    {"floor: {restitution: high}", "t.yaml: floor.restitution: expected a number, got high"},
+    {"floor: {type: biquadratic, restitution: [0.5], control_points: []}",
+     "t.yaml: floor.restitution: expected a number, got a list"},
+    {"balls:\n  - {position: [0, 0, 0], radius: 1}\n  - {position: [1, 0, 0], radius: 1}\n"
+     "  - {position: [2, 0, 0], radius: 1, placement: x}\n",
+     "t.yaml: balls[2].placement: expected on_floor or as_given, got x"},
+    {"balls: [{position: [0, 0, 0], radius: 1, placement: \"flying\"}]",
+     "t.yaml: balls[0].placement: expected on_floor or as_given, got the string \"flying\""},
+    {"balls: [{position: [0, 0, 0], radius: 1, placement: [as_given]}]",
+     "t.yaml: balls[0].placement: expected on_floor or as_given, got a list"},
+    {"balls: [{position: [0, 0, 0], radius: 1, placement:}]",
+     "t.yaml: balls[0].placement: expected on_floor or as_given, got null"},
     {"floor: {type: biquadratic, control_points: [[], []]}",
      "t.yaml: floor.control_points: expected 3 rows of 3 points [x, y, z], got a list of 2 items"},
     {"floor: {type: biquadratic, control_points: [[[0,0,0],[0,1,0],[0,2,0]], [[1,0,0],[1,1,0]], []]}",
@@ -437,7 +489,7 @@ TEST(SceneYamlFile, ParseErrorsComeBeforeValidation)
 {
   const std::string path = kDataDir + "/bad_unknown_key.yaml";
   EXPECT_EQ(errorOfLoad(loadValidScene, path),
-            path + ": balls[0].radus: unknown key (expected one of: position, velocity, radius, mass, angular_velocity, inertia)");
+            path + ": balls[0].radus: unknown key (expected one of: position, velocity, radius, mass, angular_velocity, inertia, placement)");
   const std::string wrong_type = kDataDir + "/bad_wrong_type.yaml";
   EXPECT_EQ(errorOfLoad(loadValidScene, wrong_type), wrong_type + ": walls[0].u: expected a list of 3 numbers, got 2");
 }
@@ -660,10 +712,56 @@ TEST(SceneWriter, WritesWhatReadsBackToTheSameBits)
   // reals stay reals for YAML 1.1 readers (rosparam): a point, and a signed exponent
   EXPECT_NE(text.find("gravity: [1.0e-07, -3.0, 2.5e+20]\n"), std::string::npos) << text;
   EXPECT_NE(text.find("frame_prefix: \"\"\n"), std::string::npos) << text;
+  EXPECT_EQ(text.find("placement"), std::string::npos) << "on_floor is the default, not written\n" << text;
   const auto back = parseSceneFile(text);
   EXPECT_EQ(back.scene.dt, odd.dt);
   EXPECT_EQ(back.scene.gravity, odd.gravity);
   EXPECT_EQ(back.scene.frame_id, odd.frame_id);
   EXPECT_EQ(back.node.frame_prefix, "");
   EXPECT_FALSE(back.node.publish_clock.has_value());
+}
+
+// Flight's fields are written only where they differ from the default, and read back equal.
+TEST(SceneWriter, WritesFloorRestitutionAndAsGivenPlacement)
+{
+  using ball_collision_sim::core::BallDef;
+  using ball_collision_sim::core::BallPlacement;
+  using ball_collision_sim::yaml::writeScene;
+  for (const FloorDef::Type type : {FloorDef::Type::kPlane, FloorDef::Type::kBiquadratic})
+  {
+    SCOPED_TRACE(type == FloorDef::Type::kPlane ? "plane" : "biquadratic");
+    Scene scene;
+    scene.floor = FloorDef();
+    scene.floor->type = type;
+    scene.floor->restitution = 0.35;
+    BallDef resting;
+    resting.position = Vec3(0.5, 0, 0.1);
+    BallDef thrown;
+    thrown.position = Vec3(-0.5, 0.25, 0.75);
+    thrown.velocity = Vec3(1, 0, 2.5);
+    thrown.placement = BallPlacement::kAsGiven;
+    scene.balls = {resting, thrown};
+    const std::string text = writeScene(scene, ball_collision_sim::NodeSettings());
+    EXPECT_NE(text.find("  restitution: 0.35\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("placement: as_given}"), std::string::npos) << text;
+    EXPECT_EQ(text.find("on_floor"), std::string::npos) << text;
+    const Scene back = parseScene(text, "written");
+    ASSERT_TRUE(back.floor.has_value());
+    EXPECT_EQ(back.floor->type, type);
+    EXPECT_EQ(back.floor->restitution, scene.floor->restitution);
+    ASSERT_EQ(back.balls.size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i)
+    {
+      EXPECT_EQ(back.balls[i].placement, scene.balls[i].placement) << i;
+      EXPECT_EQ(back.balls[i].position, scene.balls[i].position) << i;
+      EXPECT_EQ(back.balls[i].velocity, scene.balls[i].velocity) << i;
+    }
+    EXPECT_EQ(writeScene(back, ball_collision_sim::NodeSettings()), text);
+  }
+  // unset stays unset: no floor restitution is written
+  Scene plain;
+  plain.floor = FloorDef();
+  const std::string text = writeScene(plain, ball_collision_sim::NodeSettings());
+  EXPECT_EQ(text.find("  restitution:"), std::string::npos) << text;
+  EXPECT_FALSE(parseScene(text).floor->restitution.has_value());
 }

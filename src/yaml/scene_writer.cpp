@@ -65,11 +65,15 @@ void writeFloor(std::ostream& out, const core::FloorDef& floor)
   {
     out << "  type: plane\n  point: " << vec(floor.point) << "\n  u: " << vec(floor.u) << "\n  v: " << vec(floor.v)
         << "\n";
-    return;
   }
-  out << "  type: biquadratic\n  control_points:\n";
-  for (const auto& row : floor.control_points)
-    out << "    - [" << vec(row[0]) << ", " << vec(row[1]) << ", " << vec(row[2]) << "]\n";
+  else
+  {
+    out << "  type: biquadratic\n  control_points:\n";
+    for (const auto& row : floor.control_points)
+      out << "    - [" << vec(row[0]) << ", " << vec(row[1]) << ", " << vec(row[2]) << "]\n";
+  }
+  if (floor.restitution)
+    out << "  restitution: " << real(*floor.restitution) << "\n";
 }
 
 void writeRandomBalls(std::ostream& out, const core::RandomBallsDef& random)
@@ -132,6 +136,8 @@ std::string writeScene(const core::Scene& scene, const NodeSettings& node)
       out << ", angular_velocity: " << vec(*ball.angular_velocity);
     if (ball.inertia != core::kSolidInertia)
       out << ", inertia: " << real(ball.inertia);
+    if (ball.placement != core::BallPlacement::kOnFloor)
+      out << ", placement: " << core::placementName(ball.placement);
     out << "}\n";
   }
   if (scene.random_balls)

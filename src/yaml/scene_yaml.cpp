@@ -430,6 +430,15 @@ std::vector<YAML::Node> readList(const YAML::Node* node, const std::string& key)
   return items;
 }
 
+// Either floor type: the restitution of ball-floor impacts (checked to be in [0, 1] with the scene).
+void readFloorRestitution(const MapFields& fields, core::FloorDef& floor)
+{
+  if (const YAML::Node* restitution = fields.find("restitution"))
+  {
+    floor.restitution = readNumber(*restitution, fields.keyOf("restitution"));
+  }
+}
+
 core::FloorDef readFloor(const YAML::Node& node, const std::string& key)
 {
   if (!node.IsMap())
@@ -451,7 +460,8 @@ core::FloorDef readFloor(const YAML::Node& node, const std::string& key)
 
   if (floor.type == core::FloorDef::Type::kPlane)
   {
-    const MapFields fields(node, key, {"type", "point", "u", "v"});
+    const MapFields fields(node, key, {"type", "point", "u", "v", "restitution"});
+    readFloorRestitution(fields, floor);
     if (const YAML::Node* point = fields.find("point"))
     {
       floor.point = readVec3(*point, fields.keyOf("point"));
@@ -467,7 +477,8 @@ core::FloorDef readFloor(const YAML::Node& node, const std::string& key)
     return floor;
   }
 
-  const MapFields fields(node, key, {"type", "control_points"});
+  const MapFields fields(node, key, {"type", "control_points", "restitution"});
+  readFloorRestitution(fields, floor);
   const std::string points_key = fields.keyOf("control_points");
   const YAML::Node& points = fields.require("control_points");
   if (!points.IsSequence() || points.size() != 3)
@@ -521,6 +532,16 @@ double readInertia(const YAML::Node& node, const std::string& key)
   }
 }
 
+/// `on_floor` (put on the floor) or `as_given` (the centre and velocity as written).
+core::BallPlacement readPlacement(const YAML::Node& node, const std::string& key)
+{
+  // Any scalar, quoted or not, as for the floor's type: the parameter server passes strings on quoted.
+  for (const core::BallPlacement placement : {core::BallPlacement::kOnFloor, core::BallPlacement::kAsGiven})
+    if (node.IsScalar() && node.Scalar() == core::placementName(placement))
+      return placement;
+  fail(key, "expected on_floor or as_given, got " + describe(node));
+}
+
 core::FrictionDef readFriction(const YAML::Node& node, const std::string& key)
 {
   const MapFields fields(node, key, {"sliding", "rolling", "spinning", "ball_ball", "wall"});
@@ -536,7 +557,8 @@ core::FrictionDef readFriction(const YAML::Node& node, const std::string& key)
 
 core::BallDef readBall(const YAML::Node& node, const std::string& key)
 {
-  const MapFields fields(node, key, {"position", "velocity", "radius", "mass", "angular_velocity", "inertia"});
+  const MapFields fields(node, key,
+                         {"position", "velocity", "radius", "mass", "angular_velocity", "inertia", "placement"});
   core::BallDef ball;
   ball.position = readVec3(fields.require("position"), fields.keyOf("position"));
   ball.velocity = Vec3::Zero();
@@ -557,6 +579,10 @@ core::BallDef readBall(const YAML::Node& node, const std::string& key)
   if (const YAML::Node* inertia = fields.find("inertia"))
   {
     ball.inertia = readInertia(*inertia, fields.keyOf("inertia"));
+  }
+  if (const YAML::Node* placement = fields.find("placement"))
+  {
+    ball.placement = readPlacement(*placement, fields.keyOf("placement"));
   }
   return ball;
 }
