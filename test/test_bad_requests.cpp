@@ -261,9 +261,9 @@ TEST(BadRequests, AddBall)
       ball("off the floor in x", ballRequest(5, 0.5, 0.1, 0, 0, 0, 0.1, 1), "position", "off the floor"),
       ball("off the floor in y", ballRequest(1.2, -3, 0.1, 0, 0, 0, 0.1, 1), "position", "off the floor"),
       ball("AS_GIVEN below the floor", asGiven(ballRequest(1.2, 0.5, -1, 0, 0, 0, 0.1, 1)), "position",
-           "not resting on the floor"),
-      ball("AS_GIVEN above the floor", asGiven(ballRequest(1.2, 0.5, 3, 0, 0, 0, 0.1, 1)), "position",
-           "not resting on the floor"),
+           "below the floor"),
+      ball("AS_GIVEN sunk into the floor", asGiven(ballRequest(1.2, 0.5, 0.05, 0, 0, 0, 0.1, 1)), "position",
+           "below the floor"),
       ball("placement 2", placement(ballRequest(1.2, 0.5, 0.1, 0, 0, 0, 0.1, 1), 2), "placement",
            "must be 0 (ON_FLOOR) or 1 (AS_GIVEN), got 2"),
       ball("max_balls reached", goodBall(), "max_balls", "already holds 2 balls", 2),
@@ -346,8 +346,10 @@ TEST(BadRequests, SetBallState)
       {"onto ball 2", [](World& w) { return setBallState(w, 1, 0.55, 0.05, 0.1, 0, 0); }, "position", "overlaps ball 2"},
       {"into wall 4", [](World& w) { return setBallState(w, 1, 1.95, 0.5, 0.1, 0, 0); }, "position", "overlaps wall 4"},
       {"off the floor", [](World& w) { return setBallState(w, 2, 2.5, 0.5, 0.1, 0, 0); }, "position", "off the floor"},
-      {"AS_GIVEN above", [](World& w) { return setBallState(w, 1, 1.2, 0.5, 0.5, 0, 0, 1); }, "position",
-       "not resting on the floor"},
+      {"AS_GIVEN below", [](World& w) { return setBallState(w, 1, 1.2, 0.5, 0.05, 0, 0, 1); }, "position",
+       "below the floor"},
+      {"AS_GIVEN off the floor", [](World& w) { return setBallState(w, 1, 2.5, 0.5, 0.5, 0, 0, 1); }, "position",
+       "off the floor"},
       {"placement 9", [](World& w) { return setBallState(w, 1, 1.2, 0.5, 0.1, 0, 0, 9); }, "placement",
        "must be 0 (ON_FLOOR) or 1 (AS_GIVEN), got 9"},
   });
@@ -376,6 +378,41 @@ TEST(BadRequests, GoodSetAndPushAreAccepted)
   ASSERT_TRUE(pushed.success) << pushed.message;
   EXPECT_EQ(world.findBall(2)->velocity, bcs::core::Vec3(0.6, 0.2, 0));
   EXPECT_EQ(world.balls().size(), 2u);
+}
+
+// AS_GIVEN takes the centre and the velocity as given: 0.5 m above the floor the ball
+// flies, and its state says so.
+TEST(BadRequests, AsGivenAboveTheFloorFlies)
+{
+  World world = nodeWorld();
+  bcs::AddBall::Response added;
+  bcs::bridge::answerAddBall(world, 100, asGiven(ballRequest(1.2, 0.5, 0.6, 0.3, 0, 1.5, 0.1, 1)), added);
+  ASSERT_TRUE(added.success) << added.message;
+  ASSERT_EQ(added.id, 3);
+  EXPECT_EQ(world.findBall(3)->position, bcs::core::Vec3(1.2, 0.5, 0.6));
+  EXPECT_EQ(world.findBall(3)->velocity, bcs::core::Vec3(0.3, 0, 1.5));  // the part off the floor kept
+  EXPECT_EQ(bcs::bridge::ballState(world, 3).motion, bcs::BallState::FLYING);
+
+  bcs::SetBallState::Request req;
+  req.id = 2;
+  req.position.x = -1.2;
+  req.position.y = 0.5;
+  req.position.z = 0.625;  // radius 0.125: 0.5 m clear of the floor
+  req.velocity.x = -0.2;
+  req.placement = bcs::SetBallState::Request::AS_GIVEN;
+  bcs::SetBallState::Response set;
+  bcs::bridge::answerSetBallState(world, req, set);
+  ASSERT_TRUE(set.success) << set.message;
+  EXPECT_EQ(world.findBall(2)->position, bcs::core::Vec3(-1.2, 0.5, 0.625));
+  EXPECT_EQ(world.findBall(2)->velocity, bcs::core::Vec3(-0.2, 0, 0));
+  EXPECT_EQ(set.state.motion, bcs::BallState::FLYING);
+  EXPECT_EQ(set.state.pose.position.z, 0.625);
+
+  // resting exactly on the floor and not moving off it, AS_GIVEN is not flying
+  bcs::AddBall::Response resting;
+  bcs::bridge::answerAddBall(world, 100, asGiven(ballRequest(0.5, -0.6, 0.1, 0.3, 0, 0, 0.1, 1)), resting);
+  ASSERT_TRUE(resting.success) << resting.message;
+  EXPECT_NE(bcs::bridge::ballState(world, resting.id).motion, bcs::BallState::FLYING);
 }
 
 TEST(BadRequests, Step)

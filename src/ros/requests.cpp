@@ -21,7 +21,7 @@ std::optional<core::Landing> landingOf(std::uint8_t placement, std::string& erro
   if (placement == AddBall::Request::ON_FLOOR)
     return core::Landing::kUnder;
   if (placement == AddBall::Request::AS_GIVEN)
-    return core::Landing::kExact;
+    return core::Landing::kAsGiven;
   error = "placement: must be 0 (ON_FLOOR) or 1 (AS_GIVEN), got " + std::to_string(placement);
   return std::nullopt;
 }
