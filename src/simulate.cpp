@@ -294,10 +294,12 @@ int run(const SimulateOptions& options)
     return kExitInternalError;
   }
 
-  std::printf("summary: steps=%llu events=%llu wall_s=%.6f energy_start=%.17g energy_end=%.17g balls_lost=%d\n",
-              static_cast<unsigned long long>(world->stats().steps),
-              static_cast<unsigned long long>(world->stats().events), wall_seconds, energy_start,
-              world->energy().total(), static_cast<int>(lost) + world->lostBalls());
+  std::printf(
+      "summary: steps=%llu events=%llu floor_impacts=%llu wall_s=%.6f energy_start=%.17g energy_end=%.17g "
+      "balls_lost=%d\n",
+      static_cast<unsigned long long>(world->stats().steps), static_cast<unsigned long long>(world->stats().events),
+      static_cast<unsigned long long>(world->stats().floor_impacts), wall_seconds, energy_start,
+      world->energy().total(), static_cast<int>(lost) + world->lostBalls());
   if (std::fflush(stdout) != 0)
   {
     return kExitInternalError;

@@ -53,7 +53,7 @@ std::string simulateUsage()
          "                [--sample-every N]\n"
          "\n"
          "Runs a scene as fast as the machine allows and prints a one-line summary on stdout:\n"
-         "  summary: steps=S events=E wall_s=W energy_start=A energy_end=B balls_lost=L\n"
+         "  summary: steps=S events=E floor_impacts=F wall_s=W energy_start=A energy_end=B balls_lost=L\n"
          "\n"
          "  SCENE.yaml          the scene (see config/*.yaml)\n"
          "  --duration SECONDS  simulated time to run; ceil(SECONDS / dt) steps\n"

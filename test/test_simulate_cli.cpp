@@ -274,6 +274,7 @@ TEST_F(SimulateCli, PlotRunDrawsABagAndAgreesOnTheEnergy)
     ASSERT_TRUE(fs::exists(path("plots") + "/" + name)) << name;
     EXPECT_GT(fs::file_size(path("plots") + "/" + name), 5000u) << name;
   }
+  EXPECT_FALSE(fs::exists(path("plots") + "/heights.png")) << "no ball flies in random_gas";
   const double e0 = field(summary, "energy_start"), e1 = field(summary, "energy_end");
   EXPECT_NEAR(field(out, "energy_start"), e0, 1e-12 * std::abs(e0)) << out;
   EXPECT_NEAR(field(out, "energy_end"), e1, 1e-12 * std::abs(e1)) << out;
@@ -429,6 +430,7 @@ struct Summary
 {
   std::uint64_t steps = 0;
   std::uint64_t events = 0;
+  std::uint64_t floor_impacts = 0;
   double wall_s = 0.0;
   double energy_start = 0.0;
   double energy_end = 0.0;
@@ -439,7 +441,8 @@ struct Summary
 Summary parseSummary(const std::string& line)
 {
   static const std::regex pattern(
-      R"(^summary: steps=([0-9]+) events=([0-9]+) wall_s=(\S+) energy_start=(\S+) energy_end=(\S+) balls_lost=([0-9]+)$)");
+      R"(^summary: steps=([0-9]+) events=([0-9]+) floor_impacts=([0-9]+) wall_s=(\S+) energy_start=(\S+) )"
+      R"(energy_end=(\S+) balls_lost=([0-9]+)$)");
   std::smatch match;
   Summary summary;
   EXPECT_TRUE(std::regex_match(line, match, pattern)) << line;
@@ -456,10 +459,11 @@ Summary parseSummary(const std::string& line)
   };
   summary.steps = std::stoull(match[1].str());
   summary.events = std::stoull(match[2].str());
-  summary.wall_s = number(3);
-  summary.energy_start = number(4);
-  summary.energy_end = number(5);
-  summary.balls_lost = std::stoi(match[6].str());
+  summary.floor_impacts = std::stoull(match[3].str());
+  summary.wall_s = number(4);
+  summary.energy_start = number(5);
+  summary.energy_end = number(6);
+  summary.balls_lost = std::stoi(match[7].str());
   return summary;
 }
 
@@ -523,6 +527,7 @@ TEST_F(SimulateCli, GoodSceneWritesTheSummaryAndTheCsv)
 
   const ball_collision_sim::core::Scene scene = ball_collision_sim::yaml::loadValidScene(kGoodScene);
   EXPECT_EQ(summary.steps, 50u);  // 0.5 s / 0.01 s
+  EXPECT_EQ(summary.floor_impacts, 0u);  // every ball on the floor from the start
   EXPECT_GE(summary.wall_s, 0.0);
   EXPECT_EQ(summary.balls_lost, 0);
 
@@ -545,6 +550,32 @@ TEST_F(SimulateCli, GoodSceneWritesTheSummaryAndTheCsv)
   EXPECT_NEAR(summary.energy_end, end, 1e-12 * std::abs(end)) << "csv gives " << end;
   // Restitution 1 on a flat floor keeps the energy.
   EXPECT_NEAR(summary.energy_end, summary.energy_start, 1e-9 * std::abs(summary.energy_start));
+}
+
+// A ball dropped from 0.5 m (placement as_given) lands on the floor: the summary counts it.
+TEST_F(SimulateCli, TheSummaryCountsFloorImpacts)
+{
+  const std::string scene = path("drop.yaml");
+  {
+    std::ofstream out(scene);
+    out << "floor: {type: plane, point: [-1, -1, 0], u: [2, 0, 0], v: [0, 2, 0], restitution: 0.5}\n"
+           "balls:\n  - {position: [0, 0, 0.6], radius: 0.1, placement: as_given}\n";
+  }
+  // it falls 0.5 m in about 0.32 s
+  const RunResult result = run({scene, "--duration", "1", "--bag", path("drop.bag")});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const std::vector<std::string> out = lines(result.out);
+  ASSERT_FALSE(out.empty());
+  const Summary summary = parseSummary(out.back());
+  EXPECT_GE(summary.floor_impacts, 1u) << out.back();
+  EXPECT_EQ(summary.balls_lost, 0);
+  // plot_run draws the heights of a run where a ball flies
+  const std::string command = "/usr/bin/python3 " + std::string(BCS_CONFIG_DIR) + "/../scripts/plot_run " +
+                              shellQuote(path("drop.bag")) + " --out " + shellQuote(path("plots")) + " > " +
+                              shellQuote(path("plot.txt")) + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << readFile(path("plot.txt"));
+  ASSERT_TRUE(fs::exists(path("plots") + "/heights.png")) << readFile(path("plot.txt"));
+  EXPECT_GT(fs::file_size(path("plots") + "/heights.png"), 5000u);
 }
 
 TEST_F(SimulateCli, StepAndSampleCounts)
