@@ -206,12 +206,23 @@ TEST(SetBallState, RefusedChangesNothing)
   EXPECT_TRUE(world.setBallState(1, at + Vec3(0.05, 0, 0), Vec3::Zero()).ok);
 }
 
-// apply_impulse: dv = J / m exactly, the part into the floor goes into it, momentum
-// changes by the impulse along the floor; refused without a ball or a finite impulse.
+// apply_impulse: dv = J / m exactly; on a floor that does not bounce (floor.restitution
+// 0) the part into the floor goes into it, and momentum changes by the impulse along the
+// floor; refused without a ball or a finite impulse. On one that bounces (e = 1), the
+// ball comes back off the floor as fast as it was pressed into it, and flies.
 TEST(ApplyImpulse, ChangesTheVelocityByImpulseOverMass)
 {
   Scene scene = flatScene();
   scene.balls = {ball(-1, 0, 0.3, 0.2, 0.1, 2.5)};
+  {
+    World bouncy(scene);
+    bouncy.step();
+    const Vec3 v0 = bouncy.findBall(1)->velocity;
+    ASSERT_TRUE(bouncy.applyImpulse(1, Vec3(1.0, -0.5, -4.0)).ok);
+    EXPECT_TRUE(bouncy.findBall(1)->flying);
+    EXPECT_NEAR((bouncy.findBall(1)->velocity - (v0 + Vec3(0.4, -0.2, 1.6))).norm(), 0, 1e-15);
+  }
+  scene.floor->restitution = 0.0;
   World world(scene);
   world.step();
   const Vec3 p0 = world.momentum();

@@ -15,12 +15,12 @@ namespace
 {
 StepEvent ballEvent(double x, std::uint32_t i, std::uint32_t j)
 {
-  return StepEvent{x, i, j, 0, 0, false, WallFeature::kFace, false, false, Vec3::Zero()};
+  return StepEvent{x, i, j, 0, 0, false, WallFeature::kFace, false, MotionEnd::kPhase, Vec3::Zero()};
 }
 
 StepEvent wallEvent(double x, std::uint32_t i, std::uint32_t wall)
 {
-  return StepEvent{x, i, wall, 0, 0, true, WallFeature::kFace, false, false, Vec3::UnitX()};
+  return StepEvent{x, i, wall, 0, 0, true, WallFeature::kFace, false, MotionEnd::kPhase, Vec3::UnitX()};
 }
 
 /// Every field of an event that came out of the queue is as it went in.
@@ -34,7 +34,7 @@ void expectSameEvent(const StepEvent& out, const StepEvent& in)
   EXPECT_EQ(out.wall, in.wall);
   EXPECT_EQ(out.feature, in.feature);
   EXPECT_EQ(out.transition, in.transition);
-  EXPECT_EQ(out.cut, in.cut);
+  EXPECT_EQ(out.end, in.end);
   EXPECT_EQ(out.normal, in.normal) << "event " << out.epoch_i;
 }
 
@@ -151,7 +151,7 @@ TEST(EventQueue, EachEventComesBackWithItsOwnNormalAndFields)
     }
     e.epoch_i = static_cast<std::uint16_t>(k);
     e.epoch_j = static_cast<std::uint16_t>(7 * k);  // (below 2^16)
-    e.cut = k % 7 == 0;
+    e.end = k % 7 == 0 ? MotionEnd::kCut : (k % 11 == 0 ? MotionEnd::kLanding : MotionEnd::kPhase);
     sent.push_back(e);
     queue.push(e);
     if (k % 3 == 2)
@@ -185,7 +185,7 @@ TEST(EventQueue, ForgetDropsOneBallsEventsAndKeepsTheRestInOrder)
   {
     const std::uint32_t a = ball(rng);
     if (k % 7 == 0)
-      push(StepEvent{u(rng), a, a, 0, 0, false, WallFeature::kFace, true, false, Vec3::Zero()});
+      push(StepEvent{u(rng), a, a, 0, 0, false, WallFeature::kFace, true, MotionEnd::kPhase, Vec3::Zero()});
     else
       push(k % 3 == 0 ? wallEvent(u(rng), a, 3) : ballEvent(u(rng), a, ball(rng)));
   }

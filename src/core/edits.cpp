@@ -16,14 +16,14 @@
 namespace ball_collision_sim::core
 {
 
-std::string World::place(BallDef& def, Landing landing, int ignore_id, Vec2& foot) const
+std::string World::place(BallDef& def, Landing landing, int ignore_id, Vec2& foot, bool& flying) const
 {
   const std::vector<SceneIssue> issues = validateBall(def, "");
   if (!issues.empty())
     return joinIssues(issues);
-  const std::string why = placeAmongWalls(def, ground_.floor(), walls_, landing, &foot, [&](std::size_t k) {
-    return "wall " + std::to_string(walls_[k].id);
-  });
+  const std::string why = placeAmongWalls(
+      def, ground_.floor(), walls_, landing, &foot, [&](std::size_t k) { return "wall " + std::to_string(walls_[k].id); },
+      &flying);
   if (!why.empty())
     return "position: " + why;
   for (const Ball& other : balls())  // (the first in id order is named)
@@ -40,7 +40,8 @@ AddResult World::addBall(const BallDef& def, Landing landing)
   AddResult result;
   BallDef placed = def;
   Vec2 foot(0.5, 0.5);
-  result.error = place(placed, landing, -1, foot);
+  bool flying = false;
+  result.error = place(placed, landing, -1, foot, flying);
   if (!result.error.empty())
     return result;
   result.ok = true;
@@ -54,9 +55,10 @@ AddResult World::addBall(const BallDef& def, Landing landing)
   if (floor_motion_->keepsFeet())
     feet_.push_back(foot);
   if (friction_)
-    spins_.push_back(makeSpin(placed, foot));
+    spins_.push_back(makeSpin(placed, foot, flying));
   by_id_.push_back(static_cast<std::uint32_t>(balls_.size()));  // (the highest id yet)
   balls_.push_back(makeBall(next_ball_id_, placed));
+  balls_.back().flying = flying;
   result.id = next_ball_id_++;
   forgetOrder();
   return result;
@@ -90,7 +92,8 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
   def.angular_velocity = angular_velocity;
   def.inertia = inertia ? *inertia : this->inertia(k);
   Vec2 foot(0.5, 0.5);
-  result.error = place(def, landing, id, foot);
+  bool flying = false;
+  result.error = place(def, landing, id, foot, flying);
   if (!result.error.empty())
     return result;
   // (what leaned on it where it was wakes, and what it touches where it is, and itself)
@@ -98,10 +101,11 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
   wakeTouching(def.position, def.radius);
   balls_[s].position = def.position;
   balls_[s].velocity = def.velocity;
+  balls_[s].flying = flying;
   balls_[s].asleep = false;
   balls_[s].quiet_steps = 0;  // (the ball the edit moved counts its still steps again)
   if (friction_)
-    spins_[s] = makeSpin(def, foot);
+    spins_[s] = makeSpin(def, foot, flying);
   if (floor_motion_->keepsFeet())
     feet_[s] = foot;
   forgetOrder();
@@ -131,7 +135,21 @@ AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
   result.id = id;
   Ball& ball = balls_[s];
   Vec3 velocity = ball.velocity + impulse / ball.mass;
-  velocity = ground_.along(velocity, ground_.normalUnder(footOf(s)));  // the floor takes the rest
+  bool flying = ball.flying;
+  if (ground_.floor() && !flying)
+  {
+    // Pressed into the floor, the ball comes back off it at the floor's restitution (a
+    // jump shot); lifted enough to stay off it for min_flight_time, it flies; else the
+    // floor takes the part along its normal.
+    const Vec3 n = ground_.normalUnder(footOf(s));
+    const double into = velocity.dot(n);
+    const double away = into < 0 ? -floorRestitution() * into : into;
+    const double g_n = -gravity_.dot(n);
+    flying = away > 0 && !(2 * away < settings_.min_flight_time * g_n);
+    velocity = ground_.along(velocity, n);
+    if (flying)
+      velocity += away * n;
+  }
   if (!(velocity.stableNorm() <= kMaxSpeed))
   {
     result.error = "impulse: would give ball " + std::to_string(id) + " a speed of " +
@@ -149,9 +167,11 @@ AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
       return result;
     }
     spin.angular_velocity = w;
-    spin.kind = frictionUnder(ground_.normalUnder(footOf(s))).kindOf(spin.inertia, ball.radius, velocity, w);
+    spin.kind = flying ? MotionKind::kFlying
+                       : frictionUnder(ground_.normalUnder(footOf(s))).kindOf(spin.inertia, ball.radius, velocity, w);
   }
   ball.velocity = velocity;
+  ball.flying = flying;
   wakeTouching(ball.position, ball.radius);  // (itself, and what it may push)
   ball.quiet_steps = 0;  // (the ball the edit set going counts its still steps again)
   forgetOrder();

@@ -45,8 +45,8 @@ bool EventQueue::later(const Entry& qa, const Entry& qb) const
     const auto i = static_cast<std::uint32_t>((*balls_)[e.i].id);
     const auto j = e.wall ? e.j : static_cast<std::uint32_t>((*balls_)[e.j].id);
     using Key = std::array<std::uint32_t, 3>;
-    if (e.transition)
-      return Key{i, 0, std::numeric_limits<std::uint32_t>::max()};  // after the ball's wall events
+    if (e.transition)  // after the ball's wall events
+      return Key{i, 0, std::numeric_limits<std::uint32_t>::max() - (e.end == MotionEnd::kLanding ? 1 : 0)};
     return e.wall ? Key{i, 0, j} : Key{std::min(i, j), 1, std::max(i, j)};
   };
   return key(a) > key(b);
@@ -57,7 +57,7 @@ void EventQueue::push(const StepEvent& event)
   static_assert(sizeof(Queued) == 20, "a queued event is its fields but the time and the normal");
   static_assert(sizeof(Entry) == 12, "a heap entry is a time and a slot");
   Queued queued{event.i,    event.j,          event.epoch_i, event.epoch_j, event.wall,
-                event.feature, event.transition, event.cut,    0};
+                event.feature, event.transition, event.end,    0};
   if (event.wall)
     queued.normal = place(normals_, free_normals_, event.normal);
   const std::uint32_t slot = place(pool_, free_slots_, queued);
@@ -91,7 +91,7 @@ StepEvent EventQueue::pop()
   if (!heap_.empty())
     __builtin_prefetch(&pool_[heap_.front().slot]);
   const Queued& q = pool_[slot];
-  StepEvent event{x, q.i, q.j, q.epoch_i, q.epoch_j, q.wall, q.feature, q.transition, q.cut, Vec3::Zero()};
+  StepEvent event{x, q.i, q.j, q.epoch_i, q.epoch_j, q.wall, q.feature, q.transition, q.end, Vec3::Zero()};
   if (q.wall)
   {
     event.normal = normals_[q.normal];

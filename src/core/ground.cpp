@@ -127,6 +127,25 @@ Ground::End Ground::end(const Vec3& p, double radius, const Vec2& guess) const
   return {p, foot.normal, foot.uv};
 }
 
+Ground::End Ground::airEnd(const Vec3& p, const Vec2& guess) const
+{
+  if (plane_ || !floor_)
+    return {p, flatNormal(), guess};
+  const FloorFoot foot = floor_->project(p, guess);
+  return {p, foot.normal, foot.uv};
+}
+
+double Ground::heightAbove(const Vec3& p, double radius, Vec2& guess) const
+{
+  if (!floor_)
+    return std::numeric_limits<double>::infinity();
+  if (plane_)
+    return plane_normal_.dot(p) - floor_->planeOffset() - radius;
+  const FloorFoot foot = floor_->project(p, guess);
+  guess = foot.uv;
+  return foot.normal.dot(p - foot.point) - radius;
+}
+
 Ground::End Ground::stillEnd(const Vec3& p, double radius, const Vec2& foot, bool with_normal) const
 {
   if (plane_ || !floor_)

@@ -25,6 +25,7 @@ World::World(const Scene& scene, SceneCheck checked, const StepSettings& setting
     , gravity_(scene.gravity)
     , ground_(scene.floor, scene.gravity, settings)
     , floor_motion_(&FloorMotion::of(ground_))
+    , flight_c_((0.5 * scene.dt * scene.dt) * scene.gravity)
     , path_c_((0.5 * scene.dt * scene.dt) * ground_.pathAcceleration())
     , free_parabolas_(path_c_ != Vec3::Zero())
     , parabolas_(free_parabolas_ || scene.friction.has_value())
@@ -82,7 +83,7 @@ void World::load(PlacedBalls placed)
       BallDef def = k < scene_.balls.size() ? scene_.balls[k] : randomBallDef(scene_, balls_[k]);
       def.position = balls_[k].position;
       def.velocity = balls_[k].velocity;
-      spins_.push_back(makeSpin(def, placed.feet[k]));
+      spins_.push_back(makeSpin(def, placed.feet[k], balls_[k].flying));
     }
   }
   if (floor_motion_->keepsFeet())
@@ -112,9 +113,16 @@ Ball World::makeBall(int id, const BallDef& placed)
   return ball;
 }
 
-BallSpin World::makeSpin(const BallDef& placed, const Vec2& foot) const
+BallSpin World::makeSpin(const BallDef& placed, const Vec2& foot, bool flying) const
 {
   BallSpin spin;
+  if (flying)
+  {
+    spin.angular_velocity = placed.angular_velocity ? *placed.angular_velocity : Vec3::Zero();
+    spin.inertia = placed.inertia;
+    spin.kind = MotionKind::kFlying;
+    return spin;
+  }
   const FrictionLaw law = frictionUnder(ground_.normalAt(placed.position, foot));
   spin.angular_velocity = spinOf(placed, law.normal());
   spin.inertia = placed.inertia;
@@ -236,6 +244,8 @@ Vec3 World::angularVelocity(std::size_t k) const
   if (friction_)
     return spins_[s].angular_velocity;
   const Ball& ball = balls_[s];
+  if (ball.flying)
+    return Vec3::Zero();  // (without friction a ball turns only by rolling)
   const Vec3 normal = ground_.normalUnder(footOf(s));
   return normal.cross(ball.velocity) / ball.radius;
 }
@@ -243,6 +253,8 @@ Vec3 World::angularVelocity(std::size_t k) const
 MotionKind World::motionKind(std::size_t k) const
 {
   const std::size_t s = by_id_.at(k);
+  if (balls_[s].flying)
+    return MotionKind::kFlying;
   if (friction_)
     return spins_[s].kind;
   return balls_[s].velocity == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling;

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
 #include <sstream>
 
 namespace ball_collision_sim::fuzz
@@ -342,6 +343,9 @@ std::string checkStepping(const std::uint8_t* data, std::size_t size)
   const std::vector<core::Wall> walls = world.walls();
   std::size_t count = world.balls().size();
   const Vec3 centre = world.floor()->point(Vec2(0.5, 0.5));
+  // Balls that have flown (a curved floor throws fast ones off its crests) may clear the
+  // box's walls, whose height is finite: they are held to every check but staying in it.
+  std::set<int> flown;
   if (const std::string bad = nonFinite(world); !bad.empty())
     return "at the start: " + bad;
   EnergyScale before = energyOf(world);
@@ -358,6 +362,9 @@ std::string checkStepping(const std::uint8_t* data, std::size_t size)
     for (std::size_t i = 0; i < balls.size(); ++i)
     {
       const core::Ball& a = balls[i];
+      if (a.flying)
+        flown.insert(a.id);
+      const bool may_leave = flown.count(a.id) > 0;
       for (std::size_t j = i + 1; j < balls.size(); ++j)
       {
         const double depth = a.radius + balls[j].radius - (a.position - balls[j].position).norm();
@@ -371,11 +378,11 @@ std::string checkStepping(const std::uint8_t* data, std::size_t size)
         if (depth > kOverlapTolerance)
           return at + "ball " + std::to_string(a.id) + " overlaps wall " + std::to_string(w) + " by " + str(depth) +
                  " m";
-        if (w < c.box_walls && insideDistance(walls[w], centre, a.position) < a.radius - kOverlapTolerance)
+        if (w < c.box_walls && !may_leave && insideDistance(walls[w], centre, a.position) < a.radius - kOverlapTolerance)
           return at + "ball " + std::to_string(a.id) + " is outside wall " + std::to_string(w) + " of the box";
       }
     }
-    if (c.box_walls == 4 && world.lostBalls() != 0)
+    if (c.box_walls == 4 && flown.empty() && world.lostBalls() != 0)
       return at + std::to_string(world.lostBalls()) + " balls left the walled floor";
     const EnergyScale after = energyOf(world);
     const double allowed = kEnergyRelativeTolerance * before.scale + kEnergyAbsoluteTolerance;

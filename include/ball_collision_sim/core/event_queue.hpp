@@ -9,6 +9,16 @@
 
 namespace ball_collision_sim::core
 {
+/// How a ball's motion ends within the step where that is not an impact
+/// (StepEvent::transition): its friction phase ends, its chord reaches the longest a
+/// curved floor allows, or its flight reaches the floor.
+enum class MotionEnd : std::uint8_t
+{
+  kPhase,
+  kCut,
+  kLanding,
+};
+
 /// An impact predicted inside the step; stale once either ball's epoch has moved on (it
 /// has had an event since).
 struct StepEvent
@@ -20,10 +30,9 @@ struct StepEvent
   std::uint16_t epoch_j;
   bool wall;
   WallFeature feature;
-  /// Not an impact: ball i's motion ends (j = i, `wall` false): its friction phase, or
-  /// where `cut`, its chord at the longest a curved floor allows.
+  /// Not an impact: ball i's motion ends (j = i, `wall` false), as `end` says.
   bool transition;
-  bool cut;
+  MotionEnd end;
   Vec3 normal;               ///< ball-wall: unit, from the wall toward the ball
 };
 
@@ -53,7 +62,7 @@ public:
     bool wall;
     WallFeature feature;
     bool transition;
-    bool cut;
+    MotionEnd end;
     std::uint32_t normal;
   };
   /// Drops every queued event of the ball at visiting index `ball` (its transitions too).

@@ -99,6 +99,11 @@ public:
     Vec2 foot;
   };
   End end(const Vec3& p, double radius, const Vec2& guess) const;
+  /// The same for a ball in flight: where it is, the normal and foot point under it.
+  End airEnd(const Vec3& p, const Vec2& guess) const;
+  /// How far a ball of this radius centred at p is above the floor [m] (below: < 0),
+  /// `guess` its foot point's first guess, and then its foot point (curved floors).
+  double heightAbove(const Vec3& p, double radius, Vec2& guess) const;
   /// The same for a ball that has not moved since its foot point was found (asleep):
   /// where it is, with that foot point, and no search for it; on a curved floor the
   /// normal only `with_normal` (else zero: a ball that does not move turns by nothing).

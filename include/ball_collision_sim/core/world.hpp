@@ -329,11 +329,13 @@ private:
   void forgetOrder();
   /// The ball of `placed`, a definition already put on the floor.
   static Ball makeBall(int id, const BallDef& placed);
-  /// The spin record of `placed`, whose foot point is `foot` (worlds with friction).
-  BallSpin makeSpin(const BallDef& placed, const Vec2& foot) const;
+  /// The spin record of `placed`, whose foot point is `foot` (worlds with friction); in
+  /// flight (`flying`) its spin is its own or none.
+  BallSpin makeSpin(const BallDef& placed, const Vec2& foot, bool flying) const;
   /// Why `def` cannot stand in the world (ignoring ball `ignore_id`), or ""; else `def`
-  /// is put on the floor as `landing` says and `foot` gets its foot point (u, v).
-  std::string place(BallDef& def, Landing landing, int ignore_id, Vec2& foot) const;
+  /// is put on the floor as `landing` says, `foot` gets its foot point (u, v) and
+  /// `flying` whether it is in flight there (Landing::kAsGiven).
+  std::string place(BallDef& def, Landing landing, int ignore_id, Vec2& foot, bool& flying) const;
   /// The box the walls span, which a ball without a floor must not leave; empty without walls.
   Ground::Bounds wallBounds() const;
   /// Why the ball in slot s is out of the world (Ground::whyOff()), or "".
@@ -354,8 +356,10 @@ private:
 
   // The stages of a step, in order.
   void predictMotions();
-  /// Ball i's free motion over the next step from its record, and its swept box.
-  void predictMotion(std::size_t i);
+  /// Ball i's free motion over the next step from its record, and its swept box; at the
+  /// step's start (not at the last one's commit, which saw to it) a ball that the floor
+  /// cannot hold on its bend leaves it.
+  void predictMotion(std::size_t i, bool at_step_start = false);
   void buildBroadPhase();
   void findFirstImpacts();
   void resolveEventsInTimeOrder();
@@ -404,6 +408,30 @@ private:
   /// Ball i's motion ends within the step (StepEvent::transition): its friction phase's,
   /// made exact by FrictionLaw::finish(), or its chord at a cut; a new one starts there.
   void resolveMotionEnd(const Event& event);
+  // Flight (src/core/step/flight.cpp).
+  /// Ball i's motion from its start is a flight: the parabola of gravity (flight_c_),
+  /// its spin kept.
+  void startFlight(std::size_t i);
+  /// Ball i's velocity at x in flight [m/s].
+  Vec3 flightVelocity(std::size_t i, double x) const;
+  /// Queues where ball i's flight reaches the floor within the step, if it does there
+  /// over the floor.
+  void queueLanding(std::size_t i);
+  /// Where ball i's flight first reaches the floor after its motion's start, as a part of
+  /// the rest of the step (at most `rest`), or none.
+  std::optional<double> landingIn(std::size_t i, double rest) const;
+  /// Ball i's flight meets the floor (StepEvent::end kLanding): it bounces at the floor's
+  /// restitution, with friction's impulse against the slip of its contact point; a
+  /// bounce too low to fly for StepSettings::min_flight_time puts it on the floor.
+  void resolveLanding(const Event& event);
+  /// A ball on a curved floor at `position` with velocity v leaves it: the floor would
+  /// have to pull it to keep it on its bend (the normal force m (kappa |v|^2 + g_n) below
+  /// zero, kappa the curvature of the centre's path along v).
+  bool leavesFloor(std::size_t i, const Vec3& position, const Vec3& v) const;
+  /// Ball i leaves the floor at x: in flight from there, its kind recorded.
+  void liftOff(std::size_t i, double x);
+  /// The restitution of impacts on the floor: the floor's own, else the scene's.
+  double floorRestitution() const;
   // Resting groups (src/core/step/resting_groups.cpp).
   /// The step's resting contacts at its start: touching pairs and walls that close no
   /// faster than they rest, each group of balls they join solved together.
@@ -642,6 +670,8 @@ private:
   /// The ground's motion type (FloorMotion::of(ground_)); the step asks it whatever
   /// depends on the kind of floor.
   const FloorMotion* floor_motion_ = nullptr;
+  /// The parabola term of flights, g dt^2 / 2 [m].
+  Vec3 flight_c_ = Vec3::Zero();
   /// The parabola term of free balls' motions, a dt^2 / 2 with the ground's path
   /// acceleration a [m]; parabolas_ where it is not zero.
   Vec3 path_c_ = Vec3::Zero();

@@ -65,6 +65,7 @@ World::Committed World::commitBall(std::size_t i, bool settle)
   // (a ball asleep stays where it is, on the foot point it had; the floor's normal there
   // counts only across resting contacts: its spin is kept as it is, SpinPhase::kept())
   const Ground::End end = motions_[i].asleep ? ground_.stillEnd(ball.position, ball.radius, guessOf(i), settle)
+                          : ball.flying      ? ground_.airEnd(positionAt(i, 1.0), guessOf(i))
                                              : ground_.end(positionAt(i, 1.0), ball.radius, guessOf(i));
   if (!feet_.empty())
     feet_[i] = end.foot;
@@ -83,15 +84,19 @@ World::Committed World::commitBall(std::size_t i, bool settle)
     SpinMotion& sm = spin_motions_[i];
     BallSpin& spin = spins_[i];
     // (a rolling ball rolls under the normal where it ends)
-    const Vec3 w = floor_motion_->spinThere(*this, i, end.normal, ball.velocity, spinAt(i, 1.0),
-                                            sm.phase->rollsAtCommit(sm));
+    const Vec3 w = ball.flying ? spinAt(i, 1.0)
+                               : floor_motion_->spinThere(*this, i, end.normal, ball.velocity, spinAt(i, 1.0),
+                                                          sm.phase->rollsAtCommit(sm));
     sm.turn = (0.5 * dt_) * (spin.angular_velocity + w);
     spin.angular_velocity = w;
-    sm.kind = sm.phase->kindAtEnd(*this, i, sm, end.normal, ball.velocity, w);
+    sm.kind = ball.flying ? MotionKind::kFlying : sm.phase->kindAtEnd(*this, i, sm, end.normal, ball.velocity, w);
     recordKind(i, motions_[i].x0);  // (a kind the step's events did not report)
     spin.kind = sm.kind;
   }
   ball.position = end.centre;
+  // (where the floor cannot hold it on its bend at the step's end, it flies from there)
+  if (!ball.flying && !grouped(i) && !motions_[i].frozen && leavesFloor(i, ball.position, ball.velocity))
+    liftOff(i, 1.0);
   return {moved, end.normal};
 }
 
@@ -124,6 +129,8 @@ void World::roll(std::size_t i, const Vec3& normal, const Vec3& d)
     turn(i, spin_motions_[i].turn);  // by its own spin
     return;
   }
+  if (balls_[i].flying)
+    return;  // (without friction a ball turns only by rolling)
   // rolling without slip, by the move along the floor (step::rolled())
   Ball& ball = balls_[i];
   ball.orientation = rolled(ball.orientation, normal, d, ball.radius);

@@ -31,6 +31,9 @@ void World::findFirstImpacts()
       queueTransition(i);
   for (std::size_t i = 0; i < chord_ends_.size(); ++i)
     queueCut(i);
+  for (std::size_t i = 0; i < balls_.size(); ++i)
+    if (balls_[i].flying)
+      queueLanding(i);
 }
 
 void World::detect(std::size_t i)
@@ -41,6 +44,8 @@ void World::detect(std::size_t i)
     queueTransition(i);
   if (!chord_ends_.empty())
     queueCut(i);
+  if (balls_[i].flying)
+    queueLanding(i);
 }
 
 void World::detectWalls(std::size_t i)
@@ -56,11 +61,11 @@ void World::detectWalls(std::size_t i)
     const Wall& wall = walls_[w];
     const Ball& ball = balls_[i];
     const double rest = 1 - m.x0, slop = settings_.closing_slop;
-    const auto hit = parabolas_ ? sweepWall(wall, ball.position, m.b, parabolaOf(i), ball.radius, rest, slop)
+    const auto hit = parabolas_ || m.accelerates ? sweepWall(wall, ball.position, m.b, parabolaOf(i), ball.radius, rest, slop)
                                 : sweepWall(wall, ball.position, m.b, ball.radius, rest, slop);
     if (hit)
       queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0, true,
-                        hit->feature, false, false, hit->normal});
+                        hit->feature, false, MotionEnd::kPhase, hit->normal});
   }
 }
 
@@ -77,7 +82,7 @@ void World::detectBall(std::size_t i, std::size_t j)
   const double xs = std::max(ma.x0, mb.x0);
   const double reach = balls_[a].radius + balls_[b].radius;
   std::optional<double> t;
-  if (!parabolas_)
+  if (!parabolas_ && !ma.accelerates && !mb.accelerates)
   {
     const Vec3 d = (balls_[a].position + (xs - ma.x0) * ma.b) - (balls_[b].position + (xs - mb.x0) * mb.b);
     t = sphereSweep(d, ma.b - mb.b, reach, 1 - xs, settings_.closing_slop);
@@ -92,6 +97,6 @@ void World::detectBall(std::size_t i, std::size_t j)
   }
   if (t)
     queue_.push(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), ma.epoch, mb.epoch, false,
-                      WallFeature::kFace, false, false, Vec3::Zero()});
+                      WallFeature::kFace, false, MotionEnd::kPhase, Vec3::Zero()});
 }
 }  // namespace ball_collision_sim::core

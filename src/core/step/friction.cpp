@@ -16,6 +16,8 @@ using namespace step;
 
 const Vec3& World::pathTerm(std::size_t i) const
 {
+  if (balls_[i].flying)
+    return flight_c_;
   return friction_ ? spin_motions_[i].c : path_c_;
 }
 
@@ -136,7 +138,7 @@ void World::queueTransition(std::size_t i)
   if (!sm.phase->ownsMotion() || motions_[i].frozen || !(sm.x_end <= 1))
     return;
   const auto k = static_cast<std::uint32_t>(i);
-  queue_.push(Event{sm.x_end, k, k, motions_[i].epoch, motions_[i].epoch, false, WallFeature::kFace, true, false,
+  queue_.push(Event{sm.x_end, k, k, motions_[i].epoch, motions_[i].epoch, false, WallFeature::kFace, true, MotionEnd::kPhase,
                      Vec3::Zero()});
 }
 

@@ -19,7 +19,7 @@ Vec3 World::positionAt(std::size_t i, double x) const
 {
   const Motion& m = motions_[i];
   const Vec3 p = startPosition(i) + (x - m.x0) * m.b;
-  if (!parabolas_ || !motions_[i].accelerates)
+  if (!motions_[i].accelerates)
     return p;
   const double s = x - m.x0;
   return p + (s * s) * pathTerm(i);
@@ -28,12 +28,12 @@ Vec3 World::positionAt(std::size_t i, double x) const
 Vec3 World::rateAt(std::size_t i, double x) const
 {
   const Motion& m = motions_[i];
-  return parabolas_ && motions_[i].accelerates ? Vec3(m.b + (2 * (x - m.x0)) * pathTerm(i)) : m.b;
+  return motions_[i].accelerates ? Vec3(m.b + (2 * (x - m.x0)) * pathTerm(i)) : m.b;
 }
 
 Vec3 World::parabolaOf(std::size_t i) const
 {
-  return parabolas_ && motions_[i].accelerates ? pathTerm(i) : Vec3::Zero();
+  return motions_[i].accelerates ? pathTerm(i) : Vec3::Zero();
 }
 
 Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
@@ -43,6 +43,8 @@ Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
 
 Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
+  if (balls_[i].flying)
+    return flightVelocity(i, x);  // (off the floor)
   if (!group_motion_.empty() && group_motion_[i])
     return ground_.along(groupVelocityAt(i, x), normal);  // (its group's time step)
   if (friction_)
@@ -117,6 +119,21 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
       keepSpin(i);
     return;
   }
+  if (!balls_[i].flying && !grouped(i) && leavesFloor(i, position, startVelocity(i)))
+  {
+    // The floor cannot hold it on its bend: it flies from the floor (a chord's point can
+    // lie off it), its speed what its energy gives there.
+    liftOff(i, x);
+    const Vec3 q = onFloor(i, position);
+    const double speed2 = std::max(0.0, startVelocity(i).squaredNorm() + 2 * gravity_.dot(q - position));
+    startVelocity(i) = ground_.withSpeedSquared(startVelocity(i), speed2);
+    startPosition(i) = q;
+  }
+  if (balls_[i].flying)
+  {
+    startFlight(i);
+    return;
+  }
   if (friction_)
   {
     if (!startFriction(i, x, true, impact))  // the phase its velocity and spin give it
@@ -150,7 +167,7 @@ void World::queueCut(std::size_t i)
     return;
   const auto k = static_cast<std::uint32_t>(i);
   const std::uint16_t epoch = motions_[i].epoch;
-  queue_.push(Event{x, k, k, epoch, epoch, false, WallFeature::kFace, true, true, Vec3::Zero()});
+  queue_.push(Event{x, k, k, epoch, epoch, false, WallFeature::kFace, true, MotionEnd::kCut, Vec3::Zero()});
 }
 
 void World::resolveMotionEnd(const Event& event)
@@ -165,7 +182,7 @@ void World::resolveMotionEnd(const Event& event)
   {
     SpinMotion& sm = spin_motions_[i];
     Vec3 w = spinAtEvent(i, event.x, normal, v);
-    if (!event.cut)
+    if (event.end == MotionEnd::kPhase)
     {
       // (under the normal where it is now: its velocity there lies along that floor)
       const FrictionLaw law = frictionUnder(normal);

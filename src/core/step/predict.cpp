@@ -22,10 +22,10 @@ void World::predictMotions()
   floor_uv_.resize(feet_.empty() ? 0 : balls_.size());  // where balls keep foot points
   chord_ends_.assign(feet_.empty() ? 0 : balls_.size(), 1.0);
   for (std::size_t i = 0; i < balls_.size(); ++i)
-    predictMotion(i);
+    predictMotion(i, true);
 }
 
-void World::predictMotion(std::size_t i)
+void World::predictMotion(std::size_t i, bool at_step_start)
 {
   const Ball& ball = balls_[i];
   Motion& m = motions_[i];
@@ -44,6 +44,23 @@ void World::predictMotion(std::size_t i)
       keepSpin(i);
     }
     grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(ball.position, ball.position, ball.radius));
+    return;
+  }
+  if (at_step_start && !ball.flying && leavesFloor(i, ball.position, ball.velocity))
+    balls_[i].flying = true;
+  if (ball.flying)
+  {
+    if (friction_)
+    {
+      SpinMotion& sm = spin_motions_[i];
+      sm.w0 = spins_[i].angular_velocity;
+      sm.reported = spins_[i].kind;
+      sm.kind = MotionKind::kFlying;
+      recordKind(i, 0.0);  // (where it left the floor just now)
+      spins_[i].kind = MotionKind::kFlying;
+    }
+    startFlight(i);
+    grid_.setBox(static_cast<std::uint32_t>(i), currentBox(i));
     return;
   }
   if (friction_)
@@ -76,7 +93,7 @@ Aabb World::currentBox(std::size_t i) const
 {
   const Motion& m = motions_[i];
   const double rest = 1 - m.x0;
-  if (!parabolas_ || !motions_[i].accelerates)
+  if (!motions_[i].accelerates)
     return sweptBox(startPosition(i), startPosition(i) + (chordEnd(i) - m.x0) * m.b, balls_[i].radius);
   // the parabola lies within (rest^2 / 4) |c| of its chord, along each axis
   Aabb box = sweptBox(startPosition(i), positionAt(i, 1.0), balls_[i].radius);

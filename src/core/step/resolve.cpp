@@ -34,7 +34,9 @@ void World::resolveEventsInTimeOrder()
       ++stats_.stale_events;  // a ball involved has had an event since this was found
       continue;
     }
-    if (event.transition)
+    if (event.transition && event.end == MotionEnd::kLanding)
+      resolveLanding(event);
+    else if (event.transition)
       resolveMotionEnd(event);
     else if (event.wall)
       resolveBallWall(event);
@@ -53,9 +55,10 @@ void World::resolveBallWall(const Event& event)
   Vec3 v = onFloorVelocity(i, event.x, p, floor_normal);
 
   const Vec3 n = -event.normal;  // from the ball toward the wall
-  const Vec3 dir = wallPush(n, floor_normal);
+  // (a ball in flight is pushed along the normal itself; it rests on nothing)
+  const Vec3 dir = ball.flying ? n : wallPush(n, floor_normal);
   const double closing = v.dot(dir);
-  const bool resting = closing <= restingSpeed(floor_normal, wall.restitution, p, ball.radius);
+  const bool resting = !ball.flying && closing <= restingSpeed(floor_normal, wall.restitution, p, ball.radius);
   if (resting)
   {
     // a resting contact: a constraint of the ball's group from now on
@@ -104,11 +107,12 @@ void World::resolveBallBall(const Event& event)
   n = dist > 0 ? Vec3(n / dist) : Vec3(Vec3::UnitX());
   const double rest_speed = pairRestingSpeed(na, pa, a.radius, nb, pb, b.radius);
   wakeOnImpact(i, j, n.dot(va - vb), rest_speed);
-  // Each ball is pushed along the normal's part tangent to the floor under it.
-  const Vec3 ta = ground_.along(n, na);
-  const Vec3 tb = ground_.along(n, nb);
+  // Each ball on the floor is pushed along the normal's part tangent to the floor under
+  // it; one in flight along the normal itself, and it rests on nothing.
+  const Vec3 ta = a.flying ? n : ground_.along(n, na);
+  const Vec3 tb = b.flying ? n : ground_.along(n, nb);
   const double closing = va.dot(ta) - vb.dot(tb);
-  const bool resting = closing <= rest_speed;
+  const bool resting = !a.flying && !b.flying && closing <= rest_speed;
   if (resting)
   {
     // a resting contact: the two balls' groups become one, with it as a constraint

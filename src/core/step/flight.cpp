@@ -1,0 +1,220 @@
+// Flight: a ball off the floor moves on the parabola of gravity, its spin kept, until it
+// meets the floor (an event at the exact time: a quadratic's root over a plane, a
+// bracketed root of its height over a curved floor), a wall or a ball. At the floor it
+// bounces at the floor's restitution, friction's impulse against the slip of its contact
+// point turning its spin; a bounce too low to fly puts it on the floor. A ball leaves the
+// floor where an edit or a landing sends it away from it fast enough, or where a curved
+// floor would have to pull it to keep it on its bend.
+// Reads and writes motions_, spin_motions_, the start positions and velocities, the
+// balls' flying flags; writes the queue, events_, transitions_ and stats_.
+#include "floor_motion.hpp"
+
+#include "../bracketed_root.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ball_collision_sim::core
+{
+using namespace step;
+
+double World::floorRestitution() const
+{
+  return scene_.floor && scene_.floor->restitution ? *scene_.floor->restitution : scene_.restitution;
+}
+
+void World::startFlight(std::size_t i)
+{
+  Motion& m = motions_[i];
+  m.b = dt_ * startVelocity(i);
+  m.accelerates = true;  // (pathTerm(): flight_c_)
+  if (!chord_ends_.empty())
+    chord_ends_[i] = 1.0;
+  if (friction_)
+  {
+    keepSpin(i);
+    spin_motions_[i].kind = MotionKind::kFlying;
+  }
+}
+
+Vec3 World::flightVelocity(std::size_t i, double x) const
+{
+  return startVelocity(i) + ((x - motions_[i].x0) * dt_) * gravity_;
+}
+
+void World::liftOff(std::size_t i, double x)
+{
+  balls_[i].flying = true;
+  if (!friction_)
+    return;
+  spin_motions_[i].kind = MotionKind::kFlying;
+  recordKind(i, x);
+  spins_[i].kind = MotionKind::kFlying;
+}
+
+bool World::leavesFloor(std::size_t i, const Vec3& position, const Vec3& v) const
+{
+  if (!ground_.bends())
+    return false;  // (a plane holds whatever moves along it)
+  const Floor& floor = *ground_.floor();
+  const FloorFoot foot = floor.project(position, guessOf(i));
+  const Vec3& n = foot.normal;
+  const Vec3 t = v - v.dot(n) * n;
+  const double speed2 = t.squaredNorm();
+  if (!(speed2 > 0))
+    return false;
+  // The floor's normal curvature along t, kappa_s = <n, S''> / |t|^2 with t = a S_u + b S_v
+  // (negative where it bends away from its normal, as over a crest); the centre, r off it,
+  // moves on a path of curvature kappa_s / (1 - r kappa_s).
+  Vec3 s, su, sv, suu, suv, svv;
+  floor.derivatives(foot.uv, s, su, sv, suu, suv, svv);
+  const double e = su.dot(su), f = su.dot(sv), g = sv.dot(sv);
+  const double det = e * g - f * f;
+  if (!(det > 0))
+    return false;
+  const double tu = su.dot(t), tv = sv.dot(t);
+  const double a = (g * tu - f * tv) / det, b = (e * tv - f * tu) / det;
+  const double kappa_s = n.dot(a * a * suu + 2 * a * b * suv + b * b * svv) / speed2;
+  const double r = balls_[i].radius;
+  const double bend = 1 - r * kappa_s;
+  if (!(bend > 0))
+    return false;  // (a hollow tighter than the ball: it rests on its rim)
+  const double kappa = kappa_s / bend;
+  // the normal force per unit mass, kappa |v|^2 + g_n, below zero
+  return kappa * v.squaredNorm() - gravity_.dot(n) < 0;
+}
+
+std::optional<double> World::landingIn(std::size_t i, double rest) const
+{
+  const Motion& m = motions_[i];
+  const Ball& ball = balls_[i];
+  const Vec3& p0 = startPosition(i);
+  const Vec3& c = flight_c_;
+  const double tolerance = roundoffAt(p0, ball.radius, settings_);
+  if (!ground_.bends())
+  {
+    // Over a plane, the height is the quadratic h(s) = h0 + B s + A s^2 in s = x - x0: its
+    // root where it falls.
+    const Vec3& n = ground_.floor()->planeNormal();
+    const double h0 = n.dot(p0) - ground_.floor()->planeOffset() - ball.radius;
+    const double B = n.dot(m.b), A = n.dot(c);
+    if (!(h0 > tolerance) && B <= 0)
+      return 0.0;  // (on or below the floor, and not leaving it)
+    double s;
+    if (A < 0)
+    {
+      const double disc = B * B - 4 * A * h0;
+      if (!(disc >= 0))
+        return 0.0;  // (below the floor all the way: at once)
+      // the larger root, where h falls (stable form)
+      const double q = -0.5 * (B + std::copysign(std::sqrt(disc), B));
+      s = std::max(q / A, q != 0 ? h0 / q : 0.0);
+    }
+    else if (B < 0)
+      s = -h0 / B;  // (no pull into the floor: a line)
+    else
+      return std::nullopt;
+    if (!(s <= rest))
+      return std::nullopt;
+    return std::max(s, 0.0);
+  }
+  // Over a curved floor, the height sampled along the flight: the first sample more than
+  // round-off below the floor closes a bracket, whose root is then found to neighbouring
+  // doubles. (A flight that dips below and out again between two samples, a graze on a
+  // bump narrower than a sixteenth of the step's flight, is not seen.)
+  Vec2 guess = guessOf(i);
+  const auto height = [&](double s) {
+    const Vec3 p = p0 + s * m.b + (s * s) * c;
+    return ground_.heightAbove(p, ball.radius, guess);
+  };
+  const double h0 = height(0.0);
+  if (!(h0 > -tolerance) && m.b.dot(ground_.floor()->project(p0, guessOf(i)).normal) <= 0)
+    return 0.0;
+  constexpr int kSamples = 16;
+  double lo = 0.0, h_lo = std::max(h0, 0.0);
+  for (int k = 1; k <= kSamples; ++k)
+  {
+    const double s = rest * k / kSamples;
+    const double h = height(s);
+    if (h < -tolerance)
+    {
+      return bracketedRoot(height, [](double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }, lo, s, h_lo, h);
+    }
+    if (h > 0)
+    {
+      lo = s;
+      h_lo = h;
+    }
+  }
+  return std::nullopt;
+}
+
+void World::queueLanding(std::size_t i)
+{
+  if (!balls_[i].flying || motions_[i].frozen || !ground_.floor())
+    return;
+  const Motion& m = motions_[i];
+  const std::optional<double> s = landingIn(i, 1 - m.x0);
+  if (!s)
+    return;
+  // (where it lands off the floor's patch, it does not: it falls past the edge)
+  const Vec3 p = positionAt(i, m.x0 + *s);
+  if (ground_.bends() ? !ground_.floor()->project(p, guessOf(i)).inside
+                      : !Floor::inside(ground_.floor()->planeParameters(p)))
+    return;
+  const auto k = static_cast<std::uint32_t>(i);
+  queue_.push(Event{std::min(m.x0 + *s, 1.0), k, k, m.epoch, m.epoch, false, WallFeature::kFace, true,
+                    MotionEnd::kLanding, Vec3::Zero()});
+}
+
+void World::resolveLanding(const Event& event)
+{
+  const std::size_t i = event.i;
+  const double x = event.x;
+  Ball& ball = balls_[i];
+  const double r = ball.radius;
+  // where it meets the floor, put on it, and the normal there
+  const Ground::End at = ground_.airEnd(positionAt(i, x), guessOf(i));
+  guessOf(i) = at.foot;
+  const Vec3 n = at.normal;
+  const Vec3 p = ground_.land(at.centre, r, at.foot);
+  Vec3 v = flightVelocity(i, x);
+  const double closing = std::max(0.0, -v.dot(n));
+  const double e = floorRestitution();
+  const double normal_impulse = (1 + e) * ball.mass * closing;
+  v += ((1 + e) * closing) * n;  // v_n -> -e v_n
+  if (friction_)
+  {
+    // Friction's impulse at the contact point against its slip u = v + r n x w, at most
+    // mu_s times the normal impulse: it stops the slip where that is enough (an impulse J
+    // along the floor changes u by J (1 + 1/k) / m).
+    SpinMotion& sm = spin_motions_[i];
+    Vec3 w = spinAt(i, x);
+    const double k = spins_[i].inertia;
+    Vec3 u = v + r * n.cross(w);
+    u -= u.dot(n) * n;
+    const double slip = u.norm();
+    if (slip > 0)
+    {
+      const double stop = slip * ball.mass * k / (1 + k);
+      const Vec3 j = -(std::min(scene_.friction->sliding * normal_impulse, stop) / slip) * u;
+      v += j / ball.mass;
+      w -= n.cross(j) / (k * ball.mass * r);
+    }
+    sm.w0 = w;
+  }
+  const double away = v.dot(n);
+  const double g_n = -gravity_.dot(n);
+  const bool lands = !(away > 0) || 2 * away < settings_.min_flight_time * g_n;
+  if (lands)
+  {
+    v -= away * n;  // (on the floor: what is left along its normal is the floor's)
+    ball.flying = false;
+  }
+  ++stats_.floor_impacts;
+  recordEvent(CollisionEvent::Kind::kBallFloor, ball.id, 0, p - r * n, -n, normal_impulse, closing, lands, event);
+  startMotion(i, x, p, v, true);
+  countEvent(i);
+  detect(i);
+}
+}  // namespace ball_collision_sim::core

@@ -1,0 +1,370 @@
+// Balls off the floor against the closed forms of projectile motion: a drop bouncing at
+// e = 0.8 (impact times, apexes e^(2k) h, rest at t1 (1 + e) / (1 - e)); elastic bounces
+// for 20 s keeping their energy and period; a launch landing at its range and sliding on;
+// a landing with friction's grip leaving 1 / (1 + k) of the speed, and one where slip
+// limits it to mu (1 + e) v_n; two balls meeting in the air at the time their paths say;
+// a ball hopping a low wall and one hitting it; a jump shot off the floor's restitution;
+// balls placed as given, in flight or refused below the floor; and a ball over a crest
+// leaving the floor where its bend asks more than gravity gives.
+#include "fixtures.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace ball_collision_sim::core;
+using namespace ball_collision_sim::test;
+
+namespace
+{
+constexpr double kG = 9.81;
+
+/// A level floor [-L, L]^2, frictionless, at restitution e on the floor.
+Scene level(double e, double L = 10)
+{
+  Scene scene = flatScene(-L, L, -L, L);
+  scene.floor->restitution = e;
+  return scene;
+}
+
+/// A ball as given: centre (x, y, z), velocity (vx, 0, vz).
+BallDef given(double x, double z, double vx, double vz, double radius = 0.1)
+{
+  BallDef b = ball(x, 0, vx, 0, radius);
+  b.position.z() = z;
+  b.velocity.z() = vz;
+  b.placement = BallPlacement::kAsGiven;
+  return b;
+}
+
+/// Steps to time t; returns the floor impacts met on the way.
+std::vector<CollisionEvent> runUntil(World& world, double t, CollisionEvent::Kind kind = CollisionEvent::Kind::kBallFloor)
+{
+  std::vector<CollisionEvent> out;
+  while (world.time() < t - 1e-9)
+  {
+    world.step();
+    for (const CollisionEvent& e : world.lastEvents())
+      if (e.kind == kind)
+        out.push_back(e);
+  }
+  return out;
+}
+
+/// A crest z = -x^2 / 4 over [-L/2, L/2] in x, level in y: the biquadratic with control
+/// heights (h, -h, h) along x, h = -L^2 / 16.
+FloorDef crest(double L)
+{
+  FloorDef f;
+  f.type = FloorDef::Type::kBiquadratic;
+  const double c[3] = {-L / 2, 0, L / 2};
+  const double h = -L * L / 16;
+  const double z[3] = {h, -h, h};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      f.control_points[i][j] = Vec3(c[i], c[j], z[i]);
+  return f;
+}
+}  // namespace
+
+// Dropped from 1 m above the floor at e = 0.8: impacts at t1 = sqrt(2 h / g), then each
+// 2 e^k t1 later; apexes e^(2k) h; at rest on the floor from t1 (1 + e) / (1 - e) on.
+TEST(Flight, DropBouncesAtTheClosedFormTimesAndComesToRest)
+{
+  const double e = 0.8, h = 1.0, r = 0.1;
+  Scene scene = level(e);
+  scene.balls.push_back(given(0, r + h, 0, 0, r));
+  World world(scene);
+  ASSERT_TRUE(world.balls()[0].flying);
+  EXPECT_EQ(world.motionKind(0), MotionKind::kFlying);
+  const double t1 = std::sqrt(2 * h / kG);
+  const double rest = t1 * (1 + e) / (1 - e);
+  // the apex of the first bounce, halfway through its flight
+  double apex = 0;
+  std::vector<CollisionEvent> impacts;
+  while (world.time() < t1 + 2 * e * t1 - 1e-9)
+  {
+    world.step();
+    for (const CollisionEvent& ev : world.lastEvents())
+      impacts.push_back(ev);
+    if (world.time() > t1)
+      apex = std::max(apex, world.balls()[0].position.z() - r);
+  }
+  const std::vector<CollisionEvent> later = runUntil(world, rest + 0.05);
+  impacts.insert(impacts.end(), later.begin(), later.end());
+  ASSERT_GE(impacts.size(), 10u);
+  double expected = t1;
+  for (std::size_t k = 0; k < 10; ++k)
+  {
+    EXPECT_EQ(impacts[k].kind, CollisionEvent::Kind::kBallFloor);
+    EXPECT_NEAR(impacts[k].time, expected, 1e-12 * (1 + k)) << "impact " << k;
+    EXPECT_NEAR(impacts[k].approach_speed, kG * t1 * std::pow(e, k), 1e-11) << "impact " << k;
+    EXPECT_FALSE(impacts[k].resting);
+    expected += 2 * std::pow(e, k + 1) * t1;
+  }
+  // (sampled at the steps: within g dt^2 / 8 of the apex)
+  EXPECT_NEAR(apex, e * e * h, kG * scene.dt * scene.dt / 8 + 1e-12);
+  EXPECT_LE(apex, e * e * h + 1e-12);
+  // the last landing rests, at most min_flight_time / (1 - e) before the series' limit
+  EXPECT_TRUE(impacts.back().resting);
+  EXPECT_NEAR(impacts.back().time, rest, 1e-6 / (1 - e) + 1e-9);
+  EXPECT_LE(impacts.back().time, rest + 1e-12);
+  const Ball& b = world.balls()[0];
+  EXPECT_FALSE(b.flying);
+  EXPECT_EQ(b.position.z(), r);
+  EXPECT_EQ(b.velocity, Vec3::Zero());
+  EXPECT_EQ(world.stats().floor_impacts, impacts.size());
+}
+
+// At e = 1 the ball bounces for good: every impact 2 t1 after the last, its energy the
+// same to round-off over 20 s (about 2000 steps and 22 bounces).
+TEST(Flight, ElasticBouncesKeepTheirEnergyAndPeriod)
+{
+  const double h = 1.0, r = 0.1;
+  Scene scene = level(1.0);
+  scene.balls.push_back(given(0, r + h, 0, 0, r));
+  World world(scene);
+  const double e0 = world.energy().total();
+  const double t1 = std::sqrt(2 * h / kG);
+  double worst = 0;
+  std::vector<CollisionEvent> impacts;
+  while (world.time() < 20 - 1e-9)
+  {
+    world.step();
+    for (const CollisionEvent& ev : world.lastEvents())
+      impacts.push_back(ev);
+    worst = std::max(worst, std::abs(world.energy().total() - e0));
+    ASSERT_GE(world.balls()[0].position.z(), r - 1e-12) << "below the floor at " << world.time();
+  }
+  EXPECT_LT(worst, 1e-12 * std::abs(e0) + 1e-12);
+  ASSERT_EQ(impacts.size(), static_cast<std::size_t>(std::floor((20 - t1) / (2 * t1))) + 1);
+  for (std::size_t k = 0; k < impacts.size(); ++k)
+  {
+    EXPECT_NEAR(impacts[k].time, t1 * (1 + 2.0 * k), 1e-11) << "impact " << k;
+    EXPECT_NEAR(impacts[k].approach_speed, kG * t1, 1e-11) << "impact " << k;
+  }
+}
+
+// Launched at (vx, vz) from the floor at e = 0: it lands 2 vz / g later at x = vx t, then
+// slides on at vx; nothing along the floor changes.
+TEST(Flight, LaunchLandsAtItsRangeAndSlidesOn)
+{
+  const double r = 0.1, vx = 2.0, vz = 3.0;
+  Scene scene = level(0.0);
+  scene.balls.push_back(given(-5, r, vx, vz, r));
+  World world(scene);
+  ASSERT_TRUE(world.balls()[0].flying);
+  const std::vector<CollisionEvent> impacts = runUntil(world, 1.0);
+  ASSERT_EQ(impacts.size(), 1u);
+  const double t = 2 * vz / kG;
+  EXPECT_NEAR(impacts[0].time, t, 1e-13);
+  EXPECT_NEAR(impacts[0].point.x(), -5 + vx * t, 1e-12);
+  EXPECT_NEAR(impacts[0].approach_speed, vz, 1e-12);
+  EXPECT_NEAR(impacts[0].impulse, vz * 1.0, 1e-12);  // m (1 + e) v_n, m = 1
+  EXPECT_TRUE(impacts[0].resting);
+  const Ball& b = world.balls()[0];
+  EXPECT_FALSE(b.flying);
+  EXPECT_EQ(b.position.z(), r);
+  EXPECT_NEAR(b.position.x(), -5 + vx * world.time(), 1e-12);
+  EXPECT_NEAR(b.velocity.x(), vx, 1e-13);
+  EXPECT_EQ(b.velocity.z(), 0.0);
+  EXPECT_EQ(world.motionKind(0), MotionKind::kRolling);  // (without friction: moving on the floor)
+}
+
+// Landing without spin at vx on a floor that grips (mu large, e = 0): friction stops the
+// contact point's slip at once, leaving vx / (1 + k) (5/7 for a solid ball) and rolling.
+// With mu small the slip goes on: the impulse mu (1 + e) m v_n takes vx down by
+// mu (1 + e) v_n and gives the spin 5 that over 2 r.
+TEST(Flight, LandingWithFrictionGripsOrSlips)
+{
+  const double r = 0.1, vx = 2.0, vz = 1.5;
+  for (const double mu : {1.0, 0.05})
+  {
+    Scene scene = level(0.0);
+    FrictionDef f;
+    f.sliding = mu;
+    f.rolling = 0.0;
+    scene.friction = f;
+    BallDef b = given(-5, r, vx, vz, r);
+    b.angular_velocity = Vec3::Zero();
+    scene.balls.push_back(b);
+    World world(scene);
+    const double t = 2 * vz / kG;
+    std::vector<MotionTransition> seen;
+    while (world.time() < t - 1e-9)
+    {
+      world.step();
+      seen.insert(seen.end(), world.lastTransitions().begin(), world.lastTransitions().end());
+    }
+    ASSERT_EQ(world.stats().floor_impacts, 1u) << "mu " << mu;
+    ASSERT_FALSE(seen.empty());
+    EXPECT_EQ(seen.back().from, MotionKind::kFlying);
+    EXPECT_NEAR(seen.back().time, t, 1e-13);
+    if (mu == 1.0)
+    {
+      EXPECT_EQ(seen.back().to, MotionKind::kRolling);
+      EXPECT_NEAR(world.balls()[0].velocity.x(), vx / 1.4, 1e-12);
+      EXPECT_EQ(world.motionKind(0), MotionKind::kRolling);
+    }
+    else
+    {
+      EXPECT_EQ(seen.back().to, MotionKind::kSliding);
+      // then sliding friction mu g for the rest of the step since landing
+      const double since = world.time() - t;
+      EXPECT_NEAR(world.balls()[0].velocity.x(), vx - mu * vz - mu * kG * since, 1e-12);
+      EXPECT_NEAR(world.angularVelocity(0).y(), 2.5 * mu * vz / r + 2.5 * mu * kG * since / r, 1e-10);
+    }
+  }
+}
+
+// Two balls launched toward each other, mirror images, meet in the air when their
+// centres are 2 r apart: t = (d - r) / v; elastic, they swap their x velocities and land
+// back where they started at 2 vz / g.
+TEST(Flight, TwoBallsMeetInTheAir)
+{
+  const double r = 0.1, d = 1.0, v = 2.0, vz = 4.0;
+  Scene scene = level(1.0);
+  scene.balls.push_back(given(-d, r, v, vz, r));
+  scene.balls.push_back(given(d, r, -v, vz, r));
+  World world(scene);
+  const std::vector<CollisionEvent> hits = runUntil(world, 0.5, CollisionEvent::Kind::kBallBall);
+  ASSERT_EQ(hits.size(), 1u);
+  const double tc = (d - r) / v;
+  EXPECT_NEAR(hits[0].time, tc, 1e-13);
+  EXPECT_NEAR(hits[0].point.z(), r + vz * tc - 0.5 * kG * tc * tc, 1e-12);
+  EXPECT_NEAR(hits[0].normal.x(), 1.0, 1e-12);
+  EXPECT_NEAR(hits[0].approach_speed, 2 * v, 1e-12);
+  World w2(scene);
+  const double T = 2 * vz / kG;
+  const std::vector<CollisionEvent> landings = runUntil(w2, T + 0.005);
+  ASSERT_EQ(landings.size(), 2u);
+  for (const CollisionEvent& l : landings)
+  {
+    EXPECT_NEAR(l.time, T, 1e-12);
+    // out at v until tc, back at v after: -d + v tc - v (T - tc) for the left one
+    const double x = -d + 2 * v * tc - v * T;
+    EXPECT_NEAR(l.point.x(), l.ball == w2.balls()[0].id ? x : -x, 1e-11);
+  }
+  EXPECT_NEAR(w2.momentum().x(), 0.0, 1e-13);
+}
+
+// A low wall 1 m ahead, 0.15 m high: a ball launched high enough clears it (no wall
+// event, it lands beyond); one launched low hits it and comes back.
+TEST(Flight, HopsALowWallOrHitsIt)
+{
+  const double r = 0.1;
+  for (const double vz : {3.0, 0.5})
+  {
+    Scene scene = level(0.0);
+    scene.walls.push_back({Vec3(1, -2, 0), Vec3(0, 4, 0), Vec3(0, 0, 0.15), {}});
+    scene.balls.push_back(given(0, r, 2.0, vz, r));
+    World world(scene);
+    const std::vector<CollisionEvent> wall = runUntil(world, 1.5, CollisionEvent::Kind::kBallWall);
+    const double x = world.balls()[0].position.x();
+    if (vz == 3.0)
+    {
+      EXPECT_TRUE(wall.empty());
+      EXPECT_GT(x, 1 + r);
+      EXPECT_NEAR(x, 2.0 * world.time(), 1e-12);  // (nothing along x touched it)
+    }
+    else
+    {
+      ASSERT_FALSE(wall.empty());
+      EXPECT_LT(x, 1 - r + 1e-12);
+      EXPECT_LT(world.balls()[0].velocity.x(), 0.0);
+    }
+  }
+}
+
+// A cue striking down into the ball: the floor gives back e_floor of what it is pressed
+// in with, and the ball jumps: v_z = e |J_z| / m, in flight for 2 v_z / g, landing at
+// x = (J_x / m) 2 v_z / g.
+TEST(Flight, JumpShotOffTheFloorsRestitution)
+{
+  const double r = 0.1, e = 0.5;
+  Scene scene = level(e);
+  scene.balls.push_back(ball(0, 0, 0, 0, r));
+  World world(scene);
+  ASSERT_FALSE(world.balls()[0].flying);
+  const AddResult hit = world.applyImpulse(world.balls()[0].id, Vec3(2.0, 0, -2.0));
+  ASSERT_TRUE(hit.ok) << hit.error;
+  ASSERT_TRUE(world.balls()[0].flying);
+  EXPECT_EQ(world.balls()[0].velocity, Vec3(2.0, 0, 1.0));
+  // lifted straight up: flies; sideways only: stays on the floor
+  const std::vector<CollisionEvent> impacts = runUntil(world, 2 * 1.0 / kG + 0.005);
+  ASSERT_GE(impacts.size(), 1u);
+  EXPECT_NEAR(impacts[0].time, 2 * 1.0 / kG, 1e-13);
+  EXPECT_NEAR(impacts[0].point.x(), 2.0 * 2 / kG, 1e-12);
+
+  World flat(scene);
+  ASSERT_TRUE(flat.applyImpulse(flat.balls()[0].id, Vec3(1.0, 0, 0)).ok);
+  EXPECT_FALSE(flat.balls()[0].flying);
+  ASSERT_TRUE(flat.applyImpulse(flat.balls()[0].id, Vec3(0, 0, 1e-9)).ok);
+  EXPECT_FALSE(flat.balls()[0].flying) << "a flight shorter than min_flight_time stays on the floor";
+  EXPECT_EQ(flat.balls()[0].velocity.z(), 0.0);
+}
+
+// Placed as given: above the floor it flies from where it is; below it is refused and
+// nothing changes; on it, moving along it, it is on the floor.
+TEST(Flight, PlacedAsGiven)
+{
+  const double r = 0.1;
+  Scene scene = level(1.0);
+  World world(scene);
+  BallDef up = given(0, 0.6, 0, 3.0, r);
+  const AddResult a = world.addBall(up, Landing::kAsGiven);
+  ASSERT_TRUE(a.ok) << a.error;
+  EXPECT_TRUE(world.findBall(a.id)->flying);
+  EXPECT_EQ(world.findBall(a.id)->position, Vec3(0, 0, 0.6));
+  EXPECT_EQ(world.findBall(a.id)->velocity, Vec3(0, 0, 3.0));
+  const AddResult below = world.addBall(given(1, 0.05, 0, 0, r), Landing::kAsGiven);
+  EXPECT_FALSE(below.ok);
+  EXPECT_NE(below.error.find("below the floor"), std::string::npos) << below.error;
+  EXPECT_EQ(world.balls().size(), 1u);
+  const AddResult on = world.addBall(given(2, r, 1.0, 0, r), Landing::kAsGiven);
+  ASSERT_TRUE(on.ok) << on.error;
+  EXPECT_FALSE(world.findBall(on.id)->flying);
+  // the flying one rises to 0.6 + 9 / (2 g) and lands at 0.6 - r + ... : its first impact
+  // when 0.5 + 3 t - g t^2 / 2 = 0
+  const double t = (3 + std::sqrt(9 + 2 * kG * 0.5)) / kG;
+  const std::vector<CollisionEvent> impacts = runUntil(world, t + 0.01);
+  ASSERT_EQ(impacts.size(), 1u);
+  EXPECT_NEAR(impacts[0].time, t, 1e-13);
+}
+
+// Over the crest z = -x^2 / 4 (curvature 1/2 at its top) a ball of radius 0.1 at 5 m/s
+// asks 25 (0.5 / 1.05) = 11.9 m/s^2 of its bend, more than g: it leaves the floor at once
+// and flies on the parabola of its start; at 2 m/s (3.8 m/s^2) it stays on the floor.
+TEST(Flight, LeavesACrestWhereItsBendAsksMoreThanGravity)
+{
+  const double r = 0.1;
+  for (const double v : {5.0, 2.0})
+  {
+    Scene scene;
+    scene.floor = crest(8);
+    BallDef b = ball(0, 0, v, 0, r);
+    b.position = Vec3(0, 0, 0);  // (put on the floor under it)
+    scene.balls.push_back(b);
+    World world(scene);
+    const Vec3 p0 = world.balls()[0].position;
+    ASSERT_NEAR(p0.z(), r, 1e-12);
+    for (int k = 0; k < 35; ++k)
+      world.step();
+    const Ball& out = world.balls()[0];
+    const double t = world.time();
+    if (v == 5.0)
+    {
+      ASSERT_TRUE(out.flying);
+      EXPECT_NEAR(out.position.x(), v * t, 1e-12);
+      EXPECT_NEAR(out.position.z(), r - 0.5 * kG * t * t, 1e-12);
+      // 13 cm and more above where the floor would have held it
+      EXPECT_GT(out.position.z() - (-out.position.x() * out.position.x() / 4 + r), 0.12);
+    }
+    else
+    {
+      EXPECT_FALSE(out.flying);
+      EXPECT_EQ(world.stats().floor_impacts, 0u);
+    }
+  }
+}
