@@ -11,6 +11,7 @@
 #include <ball_collision_sim/CollisionEvent.h>
 #include <ball_collision_sim/RemoveObject.h>
 #include <ball_collision_sim/Step.h>
+#include <ball_collision_sim/Strike.h>
 #include <geometry_msgs/PointStamped.h>
 #include <gtest/gtest.h>
 #include <rosbag/bag.h>
@@ -231,6 +232,38 @@ TEST(Node, HeadOnCollisionAtTheAnalyticTime)
   EXPECT_EQ(events[0].header.frame_id, "world");
   // 1 kg at 1.5 m/s meets 3 kg at -0.5 m/s: the impulse is 2 m1 m2 / (m1 + m2) * 2 m/s
   EXPECT_NEAR(events[0].impulse, 2 * 3.0 / 4.0 * 2.0, 1e-12);
+}
+
+// A jump shot through the service: struck down into the floor (the scene's restitution,
+// 1, is the floor's), the ball comes off it at 1 m/s, flies (FLYING in its state and on
+// ball_states) and lands 2 v / g later, a BALL_FLOOR event at that time.
+TEST(Node, StrikeDownIntoTheFloorJumps)
+{
+  fresh();
+  Inbox<bcs::CollisionEvent> collisions("/ball_sim/collisions");
+  waitConnected(collisions);
+  bcs::Strike srv;
+  srv.request.id = 1;
+  srv.request.impulse.z = -1.0;  // 1 kg
+  const auto struck = call("/ball_sim/strike", srv).response;
+  ASSERT_TRUE(struck.success) << struck.message;
+  EXPECT_EQ(struck.state.motion, bcs::BallState::FLYING);
+  EXPECT_NEAR(struck.state.twist.linear.z, 1.0, 1e-15);
+  const bcs::BallStateArray mid = statesAfter(10);
+  ASSERT_EQ(mid.balls.size(), 2u);
+  EXPECT_EQ(mid.balls[0].motion, bcs::BallState::FLYING);
+  EXPECT_NEAR(mid.balls[0].pose.position.z, 0.125 + 0.1 - 0.5 * 9.81 * 0.01, 1e-12);
+  step(20);
+  ASSERT_TRUE(collisions.waitFor([](const auto& all) {
+    return std::any_of(all.begin(), all.end(), [](const auto& e) { return e.kind == bcs::CollisionEvent::BALL_FLOOR; });
+  }));
+  const auto events = collisions.take();
+  const auto landing = std::find_if(events.begin(), events.end(),
+                                    [](const auto& e) { return e.kind == bcs::CollisionEvent::BALL_FLOOR; });
+  EXPECT_EQ(landing->ball, 1);
+  EXPECT_NEAR(landing->header.stamp.toSec(), 2 * 1.0 / 9.81, 1e-9);
+  EXPECT_NEAR(landing->approach_speed, 1.0, 1e-12);
+  EXPECT_NEAR(landing->point.z, 0.0, 1e-12);
 }
 
 TEST(Node, AddedBallHasATfFrameWhereThePhysicsPutsIt)

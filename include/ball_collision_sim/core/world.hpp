@@ -279,12 +279,15 @@ public:
   AddResult setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing = Landing::kUnder,
                          const std::optional<Vec3>& angular_velocity = std::nullopt,
                          const std::optional<double>& inertia = std::nullopt);
-  /// Adds impulse / mass to ball `id`'s velocity [impulse: N s]; on a floor, the part of
-  /// the change along the floor's normal goes into the floor. Refused, nothing changed,
+  /// Adds impulse / mass to ball `id`'s velocity [impulse: N s]. On a floor, a push into it
+  /// comes back off it at floorRestitution(); the ball flies where what it then has along
+  /// the floor's normal keeps it off the floor for StepSettings::min_flight_time, else the
+  /// floor takes that part. Refused, nothing changed,
   /// when no ball has the id or the impulse is not finite or gives a speed past kMaxSpeed.
   AddResult applyImpulse(int id, const Vec3& impulse);
   /// A cue's strike: impulse J [N s] at `offset` [m] from the ball's centre (|offset| at
-  /// most its radius): dv = J / m (less its part into the floor), dw = offset x J / (k m r^2)
+  /// most its radius): dv = J / m (its part along the floor's normal as applyImpulse()
+  /// says: a jump shot), dw = offset x J / (k m r^2)
   /// where the world has friction. Refused, nothing changed, as applyImpulse().
   AddResult strike(int id, const Vec3& impulse, const Vec3& offset);
   /// Adds a wall unless it is degenerate or cuts through a ball.
