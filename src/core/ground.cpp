@@ -29,6 +29,16 @@ Ground::Ground(const std::optional<FloorDef>& floor, const Vec3& gravity, const 
     longest_chord_ = settings.chord_turn / floor_->maxCurvature();
     sag_chord_squared_ = 8 * settings.chord_sag / floor_->maxCurvature();
   }
+  if (floor_)
+  {
+    // (a plane's lowest point is a corner, which the grid holds)
+    constexpr int kCells = 64;
+    const int cells = plane_ ? 1 : kCells;
+    lowest_ = std::numeric_limits<double>::infinity();
+    for (int a = 0; a <= cells; ++a)
+      for (int b = 0; b <= cells; ++b)
+        lowest_ = std::min(lowest_, up_.dot(floor_->point(Vec2(double(a) / cells, double(b) / cells))));
+  }
 }
 
 Vec3 Ground::land(const Vec3& q, double radius, const Vec2& guess) const
@@ -144,6 +154,17 @@ double Ground::heightAbove(const Vec3& p, double radius, Vec2& guess) const
   const FloorFoot foot = floor_->project(p, guess);
   guess = foot.uv;
   return foot.normal.dot(p - foot.point) - radius;
+}
+
+std::string Ground::whyFallen(const Vec3& centre, double radius, const Bounds& walls) const
+{
+  if (!floor_)
+    return whyOff(centre, radius, Vec2(0.5, 0.5), walls);
+  const double below = lowest_ - radius - up_.dot(centre);
+  if (!(below > 0))
+    return "";
+  return "left the floor (fell past its edge: its centre is " + formatNumber(below + radius) +
+         " m below the floor's lowest point)";
 }
 
 Ground::End Ground::stillEnd(const Vec3& p, double radius, const Vec2& foot, bool with_normal) const

@@ -3,35 +3,10 @@
 // takes them out of balls_, feet_ and spins_.
 #include "ball_collision_sim/core/world.hpp"
 
-#include <algorithm>
-#include <limits>
 #include <utility>
 
 namespace ball_collision_sim::core
 {
-namespace
-{
-/// Whether the line through p along `up` meets the box, grown by `margin`.
-bool overBox(const Vec3& p, const Vec3& up, const Ground::Bounds& box, double margin)
-{
-  double t0 = -std::numeric_limits<double>::infinity(), t1 = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < 3; ++a)
-  {
-    const double lo = box.lo[a] - margin - p[a], hi = box.hi[a] + margin - p[a];
-    if (up[a] == 0)
-    {
-      if (lo > 0 || hi < 0)
-        return false;
-      continue;
-    }
-    const double ta = lo / up[a], tb = hi / up[a];
-    t0 = std::max(t0, std::min(ta, tb));
-    t1 = std::min(t1, std::max(ta, tb));
-  }
-  return t0 <= t1;
-}
-}  // namespace
-
 Ground::Bounds World::wallBounds() const
 {
   Ground::Bounds bounds;
@@ -47,11 +22,10 @@ Ground::Bounds World::wallBounds() const
 std::string World::whyLost(std::size_t s, const Ground::Bounds& bounds) const
 {
   const Ball& ball = balls_[s];
-  // (a ball in flight over the walls' box, or in it, is in the world whatever lies under
-  // it: near a wall the floor's nearest point to it can lie past the floor's edge, and it
-  // comes down into the box again)
-  if (ball.flying && bounds.any && overBox(ball.position, ground_.up(), bounds, ball.radius))
-    return "";
+  // (a ball in flight is in the world whatever lies under it, until it has fallen past the
+  // floor's edge: near a wall the floor's nearest point to it can lie past that edge)
+  if (ball.flying)
+    return ground_.whyFallen(ball.position, ball.radius, bounds);
   return ground_.whyOff(ball.position, ball.radius, footOf(s), bounds);
 }
 

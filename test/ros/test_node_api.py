@@ -149,14 +149,22 @@ class NodeApi(unittest.TestCase):
 
     def test_apply_impulse_adds_impulse_over_mass(self):
         fresh()
-        # ball 2 has 3 kg: J = (0.9, 0.6, -5) N s gives dv = (0.3, 0.2, 0) (the floor takes z)
-        r = nh.call(NS + "apply_impulse", ApplyImpulse, id=2, impulse=vec(0.9, 0.6, -5.0))
+        # ball 2 has 3 kg: J = (0.9, 0.6, 0) N s gives dv = (0.3, 0.2, 0), along the floor
+        r = nh.call(NS + "apply_impulse", ApplyImpulse, id=2, impulse=vec(0.9, 0.6, 0.0))
         self.assertTrue(r.success, r.message)
         v = get().balls[1].twist.linear
         self.assertAlmostEqual(v.x, -0.5 + 0.3, places=15)
         self.assertAlmostEqual(v.y, 0.2, places=15)
         self.assertEqual(v.z, 0.0)
         self.assertEqual(r.state.twist.linear, v)
+        self.assertEqual(r.state.motion, BallState.ROLLING)
+        # pressed into the floor at 5 / 3 m/s, it comes back off it at the floor's
+        # restitution (the scene's, 1) and flies
+        r = nh.call(NS + "apply_impulse", ApplyImpulse, id=2, impulse=vec(0.0, 0.0, -5.0))
+        self.assertTrue(r.success, r.message)
+        self.assertAlmostEqual(r.state.twist.linear.z, 5.0 / 3.0, places=15)
+        self.assertEqual(r.state.motion, BallState.FLYING)
+        self.assertEqual(get().balls[1].motion, BallState.FLYING)
 
     def test_settings_change_live_and_are_written_back(self):
         fresh()

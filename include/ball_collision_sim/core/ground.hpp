@@ -122,6 +122,10 @@ public:
   /// curved floor) is off the floor; without one, it is beyond `walls`, the box the walls
   /// span (nothing, where there are none).
   std::string whyOff(const Vec3& centre, double radius, const Vec2& kept, const Bounds& walls) const;
+  /// The same for a ball in flight: with a floor, its centre is more than its radius below
+  /// the floor's lowest point (it fell past the edge, and nothing brings it back); without
+  /// one, as whyOff().
+  std::string whyFallen(const Vec3& centre, double radius, const Bounds& walls) const;
   /// Whether a ball can leave at all: there is a floor, or walls to bound it.
   bool bounded(const Bounds& walls) const { return floor_.has_value() || walls.any; }
 
@@ -136,5 +140,8 @@ private:
   bool straight_ = true;
   double longest_chord_ = std::numeric_limits<double>::infinity();
   double sag_chord_squared_ = std::numeric_limits<double>::infinity();  ///< 8 chord_sag / k [m]
+  /// The floor's lowest point's height along up_ [m] (a curved floor's lowest of a 65 x 65
+  /// grid of its points, corners and edges included).
+  double lowest_ = 0.0;
 };
 }  // namespace ball_collision_sim::core

@@ -431,6 +431,8 @@ private:
   /// have to pull it to keep it on its bend (the normal force m (kappa |v|^2 + g_n) below
   /// zero, kappa the curvature of the centre's path along v).
   bool leavesFloor(std::size_t i, const Vec3& position, const Vec3& v) const;
+  /// The same where its foot point uv and the normal n there are known.
+  bool leavesFloorAt(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const;
   /// Ball i leaves the floor at x: in flight from there, its kind recorded.
   void liftOff(std::size_t i, double x);
   /// The restitution of impacts on the floor: the floor's own, else the scene's.
@@ -675,6 +677,9 @@ private:
   const FloorMotion* floor_motion_ = nullptr;
   /// The parabola term of flights, g dt^2 / 2 [m].
   Vec3 flight_c_ = Vec3::Zero();
+  /// Balls whose predicted motion for the step is a flight (their landings are looked
+  /// for at its start only where there are some).
+  std::uint32_t flights_ = 0;
   /// The parabola term of free balls' motions, a dt^2 / 2 with the ground's path
   /// acceleration a [m]; parabolas_ where it is not zero.
   Vec3 path_c_ = Vec3::Zero();

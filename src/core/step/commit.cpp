@@ -20,6 +20,8 @@ void World::commitToFloor(bool predict_next)
   // Without resting contacts every ball is finished in one pass; with them, velocities
   // are settled across the contacts first.
   const bool settle = !links_.empty();
+  if (predict_next)
+    flights_ = 0;  // (counted again as the next step's motions are predicted)
   stats_.resting_contacts += links_.size();
   std::uint64_t asleep = 0;
   if (settle)
@@ -95,7 +97,7 @@ World::Committed World::commitBall(std::size_t i, bool settle)
   }
   ball.position = end.centre;
   // (where the floor cannot hold it on its bend at the step's end, it flies from there)
-  if (!ball.flying && !grouped(i) && !motions_[i].frozen && leavesFloor(i, ball.position, ball.velocity))
+  if (!ball.flying && !grouped(i) && !motions_[i].frozen && leavesFloorAt(i, end.foot, end.normal, ball.velocity))
     liftOff(i, 1.0);
   return {moved, end.normal};
 }

@@ -31,7 +31,7 @@ void World::findFirstImpacts()
       queueTransition(i);
   for (std::size_t i = 0; i < chord_ends_.size(); ++i)
     queueCut(i);
-  for (std::size_t i = 0; i < balls_.size(); ++i)
+  for (std::size_t i = 0; i < balls_.size() && flights_ > 0; ++i)
     if (balls_[i].flying)
       queueLanding(i);
 }

@@ -54,20 +54,29 @@ void World::liftOff(std::size_t i, double x)
 
 bool World::leavesFloor(std::size_t i, const Vec3& position, const Vec3& v) const
 {
-  if (!ground_.bends())
+  if (!ground_.bends() || !(v.squaredNorm() > 0))
     return false;  // (a plane holds whatever moves along it)
+  const FloorFoot foot = ground_.floor()->project(position, guessOf(i));
+  return leavesFloorAt(i, foot.uv, foot.normal, v);
+}
+
+bool World::leavesFloorAt(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const
+{
+  if (!ground_.bends())
+    return false;
   const Floor& floor = *ground_.floor();
-  const FloorFoot foot = floor.project(position, guessOf(i));
-  const Vec3& n = foot.normal;
   const Vec3 t = v - v.dot(n) * n;
   const double speed2 = t.squaredNorm();
-  if (!(speed2 > 0))
+  // (the centre's path bends at most as much as the floor over a crest: where even the
+  // floor's largest curvature, twice the largest its grid of samples found, asks less
+  // than gravity gives along n, the ball stays, without the floor's derivatives)
+  if (!(speed2 > 0) || 2 * floor.maxCurvature() * v.squaredNorm() <= -gravity_.dot(n))
     return false;
   // The floor's normal curvature along t, kappa_s = <n, S''> / |t|^2 with t = a S_u + b S_v
   // (negative where it bends away from its normal, as over a crest); the centre, r off it,
   // moves on a path of curvature kappa_s / (1 - r kappa_s).
   Vec3 s, su, sv, suu, suv, svv;
-  floor.derivatives(foot.uv, s, su, sv, suu, suv, svv);
+  floor.derivatives(uv, s, su, sv, suu, suv, svv);
   const double e = su.dot(su), f = su.dot(sv), g = sv.dot(sv);
   const double det = e * g - f * f;
   if (!(det > 0))
@@ -98,8 +107,10 @@ std::optional<double> World::landingIn(std::size_t i, double rest) const
     const Vec3& n = ground_.floor()->planeNormal();
     const double h0 = n.dot(p0) - ground_.floor()->planeOffset() - ball.radius;
     const double B = n.dot(m.b), A = n.dot(c);
+    if (h0 < -tolerance)
+      return std::nullopt;  // (under the floor: fallen past its edge, it meets it no more)
     if (!(h0 > tolerance) && B <= 0)
-      return 0.0;  // (on or below the floor, and not leaving it)
+      return 0.0;  // (on the floor, to round-off, and not leaving it)
     double s;
     if (A < 0)
     {
@@ -128,8 +139,8 @@ std::optional<double> World::landingIn(std::size_t i, double rest) const
     return ground_.heightAbove(p, ball.radius, guess);
   };
   const double h0 = height(0.0);
-  if (!(h0 > -tolerance) && m.b.dot(ground_.floor()->project(p0, guessOf(i)).normal) <= 0)
-    return 0.0;
+  if (h0 < -tolerance)
+    return std::nullopt;  // (under the floor: fallen past its edge, it meets it no more)
   constexpr int kSamples = 16;
   double lo = 0.0, h_lo = std::max(h0, 0.0);
   for (int k = 1; k <= kSamples; ++k)

@@ -21,6 +21,7 @@ void World::predictMotions()
   spin_motions_.resize(friction_ ? balls_.size() : 0);
   floor_uv_.resize(feet_.empty() ? 0 : balls_.size());  // where balls keep foot points
   chord_ends_.assign(feet_.empty() ? 0 : balls_.size(), 1.0);
+  flights_ = 0;
   for (std::size_t i = 0; i < balls_.size(); ++i)
     predictMotion(i, true);
 }
@@ -60,6 +61,7 @@ void World::predictMotion(std::size_t i, bool at_step_start)
       spins_[i].kind = MotionKind::kFlying;
     }
     startFlight(i);
+    ++flights_;
     grid_.setBox(static_cast<std::uint32_t>(i), currentBox(i));
     return;
   }
