@@ -34,10 +34,14 @@ Ground::Ground(const std::optional<FloorDef>& floor, const Vec3& gravity, const 
     // (a plane's lowest point is a corner, which the grid holds)
     constexpr int kCells = 64;
     const int cells = plane_ ? 1 : kCells;
-    lowest_ = std::numeric_limits<double>::infinity();
+    lowest_ = least_normal_gravity_ = std::numeric_limits<double>::infinity();
     for (int a = 0; a <= cells; ++a)
       for (int b = 0; b <= cells; ++b)
-        lowest_ = std::min(lowest_, up_.dot(floor_->point(Vec2(double(a) / cells, double(b) / cells))));
+      {
+        const Vec2 uv(double(a) / cells, double(b) / cells);
+        lowest_ = std::min(lowest_, up_.dot(floor_->point(uv)));
+        least_normal_gravity_ = std::min(least_normal_gravity_, -gravity.dot(floor_->normal(uv)));
+      }
   }
 }
 

@@ -143,5 +143,13 @@ private:
   /// The floor's lowest point's height along up_ [m] (a curved floor's lowest of a 65 x 65
   /// grid of its points, corners and edges included).
   double lowest_ = 0.0;
+  /// The least of gravity's part into the floor, -g.n, over the same grid [m/s^2].
+  double least_normal_gravity_ = 0.0;
+
+public:
+  /// The floor's lowest point's height along up() [m].
+  double lowest() const { return lowest_; }
+  /// The least of gravity's part into the floor, -g.n, over its grid of points [m/s^2].
+  double leastNormalGravity() const { return least_normal_gravity_; }
 };
 }  // namespace ball_collision_sim::core

@@ -56,6 +56,10 @@ bool World::leavesFloor(std::size_t i, const Vec3& position, const Vec3& v) cons
 {
   if (!ground_.bends() || !(v.squaredNorm() > 0))
     return false;  // (a plane holds whatever moves along it)
+  // (as leavesFloorAt(), with the least of gravity's part into the floor over its grid,
+  // halved, before the foot point is looked for)
+  if (2 * ground_.floor()->maxCurvature() * v.squaredNorm() <= 0.5 * ground_.leastNormalGravity())
+    return false;
   const FloorFoot foot = ground_.floor()->project(position, guessOf(i));
   return leavesFloorAt(i, foot.uv, foot.normal, v);
 }
