@@ -9,6 +9,7 @@
 #include <ball_collision_sim/AddWall.h>
 #include <ball_collision_sim/BallStateArray.h>
 #include <ball_collision_sim/CollisionEvent.h>
+#include <ball_collision_sim/MotionTransition.h>
 #include <ball_collision_sim/RemoveObject.h>
 #include <ball_collision_sim/Step.h>
 #include <ball_collision_sim/Strike.h>
@@ -241,7 +242,9 @@ TEST(Node, StrikeDownIntoTheFloorJumps)
 {
   fresh();
   Inbox<bcs::CollisionEvent> collisions("/ball_sim/collisions");
+  Inbox<bcs::MotionTransition> transitions("/ball_sim/motion_transitions");
   waitConnected(collisions);
+  waitConnected(transitions);
   bcs::Strike srv;
   srv.request.id = 1;
   srv.request.impulse.z = -1.0;  // 1 kg
@@ -249,6 +252,14 @@ TEST(Node, StrikeDownIntoTheFloorJumps)
   ASSERT_TRUE(struck.success) << struck.message;
   EXPECT_EQ(struck.state.motion, bcs::BallState::FLYING);
   EXPECT_NEAR(struck.state.twist.linear.z, 1.0, 1e-15);
+  // the strike's own change of kind, at once: rolling (without friction, moving) to flying
+  ASSERT_TRUE(transitions.waitFor([](const auto& all) { return !all.empty(); }));
+  const auto took_off = transitions.take();
+  ASSERT_EQ(took_off.size(), 1u);
+  EXPECT_EQ(took_off[0].ball, 1);
+  EXPECT_EQ(took_off[0].before, bcs::BallState::ROLLING);
+  EXPECT_EQ(took_off[0].after, bcs::BallState::FLYING);
+  EXPECT_EQ(took_off[0].header.stamp.toSec(), 0.0);
   const bcs::BallStateArray mid = statesAfter(10);
   ASSERT_EQ(mid.balls.size(), 2u);
   EXPECT_EQ(mid.balls[0].motion, bcs::BallState::FLYING);

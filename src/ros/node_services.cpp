@@ -74,19 +74,46 @@ bool SimulatorNode::onSetBallState(SetBallState::Request& req, SetBallState::Res
 bool SimulatorNode::onApplyImpulse(ApplyImpulse::Request& req, ApplyImpulse::Response& res)
 {
   const Lock guard = lock();
+  const core::MotionKind before = kindOf(req.id);
   answerApplyImpulse(world_, req, res);
   if (res.success)
+  {
+    publishPushTransition(req.id, before);
     publishEdit();
+  }
   return true;
 }
 
 bool SimulatorNode::onStrike(Strike::Request& req, Strike::Response& res)
 {
   const Lock guard = lock();
+  const core::MotionKind before = kindOf(req.id);
   answerStrike(world_, req, res);
   if (res.success)
+  {
+    publishPushTransition(req.id, before);
     publishEdit();
+  }
   return true;
+}
+
+core::MotionKind SimulatorNode::kindOf(int id) const
+{
+  const std::size_t k = world_.indexOf(id);
+  return k < world_.balls().size() ? world_.motionKind(k) : core::MotionKind::kStationary;
+}
+
+void SimulatorNode::publishPushTransition(int id, core::MotionKind before)
+{
+  const core::MotionKind after = kindOf(id);
+  if (after == before)
+    return;
+  core::MotionTransition transition;
+  transition.time = world_.time();
+  transition.ball = id;
+  transition.from = before;
+  transition.to = after;
+  transitions_pub_.publish(toMsg(transition, frame_id_));
 }
 
 bool SimulatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)

@@ -75,6 +75,11 @@ private:
   void publishPresent();
   /// After an edit of the balls: their states, tf and markers now.
   void publishEdit();
+  /// After a push or strike of ball `id`: its change of motion kind from `before`, if any,
+  /// on motion_transitions at the world's time.
+  void publishPushTransition(int id, core::MotionKind before);
+  /// The motion kind of ball `id`, or kStationary without one.
+  core::MotionKind kindOf(int id) const;
   void publishStatic();
   void publishBalls(const ros::Time& stamp);
   /// tf of every ball, but none twice at one stamp (tf2 drops a repeated stamp with a
