@@ -11,12 +11,14 @@ namespace ball_collision_sim::core
 {
 /// How a ball's motion ends within the step where that is not an impact
 /// (StepEvent::transition): its friction phase ends, its chord reaches the longest a
-/// curved floor allows, or its flight reaches the floor.
+/// curved floor allows, its flight reaches the floor, or the floor's bend stops holding
+/// it (it takes off).
 enum class MotionEnd : std::uint8_t
 {
   kPhase,
   kCut,
   kLanding,
+  kTakeOff,
 };
 
 /// An impact predicted inside the step; stale once either ball's epoch has moved on (it

@@ -433,6 +433,15 @@ private:
   bool leavesFloor(std::size_t i, const Vec3& position, const Vec3& v) const;
   /// The same where its foot point uv and the normal n there are known.
   bool leavesFloorAt(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const;
+  /// The normal force per unit mass the floor gives ball i with foot point uv, normal n
+  /// there and velocity v, kappa |v|^2 + g_n [m/s^2]: below zero it would have to pull.
+  double floorPush(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const;
+  /// Queues the exact time at which ball i's motion on a curved floor reaches where the
+  /// floor's push on it falls to zero, if that is within the motion.
+  void queueTakeOff(std::size_t i);
+  /// Ball i takes off (StepEvent::end kTakeOff): it flies from where it is on the floor,
+  /// with its velocity there.
+  void resolveTakeOff(const Event& event);
   /// Ball i leaves the floor at x: in flight from there, its kind recorded.
   void liftOff(std::size_t i, double x);
   /// The restitution of impacts on the floor: the floor's own, else the scene's.

@@ -30,7 +30,10 @@ void World::findFirstImpacts()
     for (std::size_t i = 0; i < motions_.size(); ++i)
       queueTransition(i);
   for (std::size_t i = 0; i < chord_ends_.size(); ++i)
+  {
     queueCut(i);
+    queueTakeOff(i);
+  }
   for (std::size_t i = 0; i < balls_.size() && flights_ > 0; ++i)
     if (balls_[i].flying)
       queueLanding(i);
@@ -43,7 +46,10 @@ void World::detect(std::size_t i)
   if (friction_)
     queueTransition(i);
   if (!chord_ends_.empty())
+  {
     queueCut(i);
+    queueTakeOff(i);
+  }
   if (balls_[i].flying)
     queueLanding(i);
 }

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace ball_collision_sim::core
 {
@@ -68,33 +69,88 @@ bool World::leavesFloorAt(std::size_t i, const Vec2& uv, const Vec3& n, const Ve
 {
   if (!ground_.bends())
     return false;
-  const Floor& floor = *ground_.floor();
-  const Vec3 t = v - v.dot(n) * n;
-  const double speed2 = t.squaredNorm();
   // (the centre's path bends at most as much as the floor over a crest: where even the
   // floor's largest curvature, twice the largest its grid of samples found, asks less
   // than gravity gives along n, the ball stays, without the floor's derivatives)
-  if (!(speed2 > 0) || 2 * floor.maxCurvature() * v.squaredNorm() <= -gravity_.dot(n))
+  if (!(v.squaredNorm() > 0) || 2 * ground_.floor()->maxCurvature() * v.squaredNorm() <= -gravity_.dot(n))
     return false;
+  return floorPush(i, uv, n, v) < 0;
+}
+
+double World::floorPush(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const
+{
+  const double g_n = -gravity_.dot(n);
+  const Vec3 t = v - v.dot(n) * n;
+  const double speed2 = t.squaredNorm();
+  if (!ground_.bends() || !(speed2 > 0))
+    return g_n;
   // The floor's normal curvature along t, kappa_s = <n, S''> / |t|^2 with t = a S_u + b S_v
   // (negative where it bends away from its normal, as over a crest); the centre, r off it,
   // moves on a path of curvature kappa_s / (1 - r kappa_s).
+  const Floor& floor = *ground_.floor();
   Vec3 s, su, sv, suu, suv, svv;
   floor.derivatives(uv, s, su, sv, suu, suv, svv);
   const double e = su.dot(su), f = su.dot(sv), g = sv.dot(sv);
   const double det = e * g - f * f;
   if (!(det > 0))
-    return false;
+    return g_n;
   const double tu = su.dot(t), tv = sv.dot(t);
   const double a = (g * tu - f * tv) / det, b = (e * tv - f * tu) / det;
   const double kappa_s = n.dot(a * a * suu + 2 * a * b * suv + b * b * svv) / speed2;
-  const double r = balls_[i].radius;
-  const double bend = 1 - r * kappa_s;
+  const double bend = 1 - balls_[i].radius * kappa_s;
   if (!(bend > 0))
-    return false;  // (a hollow tighter than the ball: it rests on its rim)
-  const double kappa = kappa_s / bend;
-  // the normal force per unit mass, kappa |v|^2 + g_n, below zero
-  return kappa * v.squaredNorm() - gravity_.dot(n) < 0;
+    return std::numeric_limits<double>::max();  // (a hollow tighter than the ball: it rests on its rim)
+  return kappa_s / bend * v.squaredNorm() + g_n;
+}
+
+void World::queueTakeOff(std::size_t i)
+{
+  const Motion& m = motions_[i];
+  if (!ground_.bends() || balls_[i].flying || m.frozen || grouped(i))
+    return;
+  const double end = chordEnd(i);
+  if (!(end > m.x0))
+    return;
+  // (the fastest it can go within the motion, its start speed and all gravity can add,
+  // checked as leavesFloor() does before the floor is looked at)
+  const double fastest = startVelocity(i).norm() + (end - m.x0) * dt_ * gravity_.norm();
+  if (2 * ground_.floor()->maxCurvature() * fastest * fastest <= 0.5 * ground_.leastNormalGravity())
+    return;
+  // The floor's push where the motion is at x, on the floor under it, with the velocity
+  // it has there: where it falls below zero within the motion, found to neighbouring
+  // doubles, the ball takes off.
+  const Floor& floor = *ground_.floor();
+  const double r = balls_[i].radius;
+  const auto push = [&](double x) {
+    const FloorFoot foot = floor.project(positionAt(i, x), guessOf(i));
+    return floorPush(i, foot.uv, foot.normal, onFloorVelocity(i, x, floor.ballCentre(foot, r), foot.normal));
+  };
+  const double at_end = push(end);
+  if (!(at_end < 0))
+    return;
+  const double at_start = push(m.x0);
+  if (!(at_start >= 0))
+    return;  // (it leaves where the motion starts: startMotion() lifts it off there)
+  const double x = bracketedRoot(push, [](double f) { return f >= 0 ? 1 : -1; }, m.x0, end, at_start, at_end);
+  const auto k = static_cast<std::uint32_t>(i);
+  queue_.push(Event{x, k, k, m.epoch, m.epoch, false, WallFeature::kFace, true, MotionEnd::kTakeOff, Vec3::Zero()});
+}
+
+void World::resolveTakeOff(const Event& event)
+{
+  const std::size_t i = event.i;
+  const double x = event.x;
+  // from where it is, on the floor, with the velocity and spin it has there
+  const FloorFoot foot = ground_.floor()->project(positionAt(i, x), guessOf(i));
+  guessOf(i) = foot.uv;
+  const Vec3 p = ground_.floor()->ballCentre(foot, balls_[i].radius);
+  const Vec3 v = onFloorVelocity(i, x, p, foot.normal);
+  if (friction_)
+    spin_motions_[i].w0 = spinAtEvent(i, x, foot.normal, v);
+  liftOff(i, x);
+  startMotion(i, x, p, v, false);
+  countEvent(i);
+  detect(i);
 }
 
 std::optional<double> World::landingIn(std::size_t i, double rest) const

@@ -36,6 +36,8 @@ void World::resolveEventsInTimeOrder()
     }
     if (event.transition && event.end == MotionEnd::kLanding)
       resolveLanding(event);
+    else if (event.transition && event.end == MotionEnd::kTakeOff)
+      resolveTakeOff(event);
     else if (event.transition)
       resolveMotionEnd(event);
     else if (event.wall)
