@@ -32,8 +32,7 @@ Ground::Ground(const std::optional<FloorDef>& floor, const Vec3& gravity, const 
   if (floor_)
   {
     // (a plane's lowest point is a corner, which the grid holds)
-    constexpr int kCells = 64;
-    const int cells = plane_ ? 1 : kCells;
+    const int cells = plane_ ? 1 : settings.floor_grid_cells;
     lowest_ = least_normal_gravity_ = std::numeric_limits<double>::infinity();
     for (int a = 0; a <= cells; ++a)
       for (int b = 0; b <= cells; ++b)

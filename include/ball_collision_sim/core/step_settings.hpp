@@ -171,6 +171,24 @@ struct StepSettings
   /// for the round-off of a velocity along the floor's normal after an impact or an
   /// edit.
   double min_flight_time = 1e-6;
+  /// A flight over a curved floor is looked at in this many samples of its height over
+  /// the rest of the step; the first more than round-off below the floor closes the
+  /// landing's bracket, refined to neighbouring doubles. A graze on a bump narrower than
+  /// the step's flight over this many is not seen (16: 2.5 cm at 4 m/s and dt = 0.01 s,
+  /// where the nine-point floor's bumps span the patch) [samples].
+  int landing_samples = 16;
+  /// Take-off is looked for only where this many times the floor's largest curvature
+  /// sampled on a grid, times |v|^2, reaches what gravity gives along the floor's normal
+  /// (its least over the ground's grid, floor_grid_cells, over this again): the
+  /// curvature and the normal between the grids' points differ from theirs, and 2 takes
+  /// a biquadratic's changes between neighbouring points with room [ratio].
+  double take_off_margin = 2.0;
+
+  // ---- the ground ---------------------------------------------------------------------
+  /// The curved floor's lowest point and least normal gravity are taken on a grid of
+  /// this many cells a side (a ball in flight below the lowest less its radius has fallen
+  /// past the edge and is lost; take_off_margin covers what lies between points) [cells].
+  int floor_grid_cells = 64;
 
   // ---- memory order -------------------------------------------------------------------
   /// The balls' records are put in the grid's cell order (the step's visiting order)

@@ -58,8 +58,9 @@ bool World::leavesFloor(std::size_t i, const Vec3& position, const Vec3& v) cons
   if (!ground_.bends() || !(v.squaredNorm() > 0))
     return false;  // (a plane holds whatever moves along it)
   // (as leavesFloorAt(), with the least of gravity's part into the floor over its grid,
-  // halved, before the foot point is looked for)
-  if (2 * ground_.floor()->maxCurvature() * v.squaredNorm() <= 0.5 * ground_.leastNormalGravity())
+  // over the margin again, before the foot point is looked for)
+  const double margin = settings_.take_off_margin;
+  if (margin * ground_.floor()->maxCurvature() * v.squaredNorm() <= ground_.leastNormalGravity() / margin)
     return false;
   const FloorFoot foot = ground_.floor()->project(position, guessOf(i));
   return leavesFloorAt(i, foot.uv, foot.normal, v);
@@ -70,9 +71,10 @@ bool World::leavesFloorAt(std::size_t i, const Vec2& uv, const Vec3& n, const Ve
   if (!ground_.bends())
     return false;
   // (the centre's path bends at most as much as the floor over a crest: where even the
-  // floor's largest curvature, twice the largest its grid of samples found, asks less
+  // floor's largest curvature, take_off_margin times the largest its grid found, asks less
   // than gravity gives along n, the ball stays, without the floor's derivatives)
-  if (!(v.squaredNorm() > 0) || 2 * ground_.floor()->maxCurvature() * v.squaredNorm() <= -gravity_.dot(n))
+  if (!(v.squaredNorm() > 0) ||
+      settings_.take_off_margin * ground_.floor()->maxCurvature() * v.squaredNorm() <= -gravity_.dot(n))
     return false;
   return floorPush(i, uv, n, v) < 0;
 }
@@ -114,7 +116,8 @@ void World::queueTakeOff(std::size_t i)
   // (the fastest it can go within the motion, its start speed and all gravity can add,
   // checked as leavesFloor() does before the floor is looked at)
   const double fastest = startVelocity(i).norm() + (end - m.x0) * dt_ * gravity_.norm();
-  if (2 * ground_.floor()->maxCurvature() * fastest * fastest <= 0.5 * ground_.leastNormalGravity())
+  const double margin = settings_.take_off_margin;
+  if (margin * ground_.floor()->maxCurvature() * fastest * fastest <= ground_.leastNormalGravity() / margin)
     return;
   // The floor's push where the motion is at x, on the floor under it, with the velocity
   // it has there: where it falls below zero within the motion, found to neighbouring
@@ -192,7 +195,7 @@ std::optional<double> World::landingIn(std::size_t i, double rest) const
   // Over a curved floor, the height sampled along the flight: the first sample more than
   // round-off below the floor closes a bracket, whose root is then found to neighbouring
   // doubles. (A flight that dips below and out again between two samples, a graze on a
-  // bump narrower than a sixteenth of the step's flight, is not seen.)
+  // bump narrower than the step's flight over StepSettings::landing_samples, is not seen.)
   Vec2 guess = guessOf(i);
   const auto height = [&](double s) {
     const Vec3 p = p0 + s * m.b + (s * s) * c;
@@ -201,11 +204,11 @@ std::optional<double> World::landingIn(std::size_t i, double rest) const
   const double h0 = height(0.0);
   if (h0 < -tolerance)
     return std::nullopt;  // (under the floor: fallen past its edge, it meets it no more)
-  constexpr int kSamples = 16;
+  const int samples = settings_.landing_samples;
   double lo = 0.0, h_lo = std::max(h0, 0.0);
-  for (int k = 1; k <= kSamples; ++k)
+  for (int k = 1; k <= samples; ++k)
   {
-    const double s = rest * k / kSamples;
+    const double s = rest * k / samples;
     const double h = height(s);
     if (h < -tolerance)
     {

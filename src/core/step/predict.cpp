@@ -56,10 +56,8 @@ void World::predictMotion(std::size_t i, bool at_step_start)
       SpinMotion& sm = spin_motions_[i];
       sm.w0 = spins_[i].angular_velocity;
       sm.reported = spins_[i].kind;
-      sm.kind = MotionKind::kFlying;
-      recordKind(i, 0.0);  // (where it left the floor just now)
-      spins_[i].kind = MotionKind::kFlying;
     }
+    liftOff(i, 0.0);  // (its kind recorded where it left the floor just now)
     startFlight(i);
     ++flights_;
     grid_.setBox(static_cast<std::uint32_t>(i), currentBox(i));
