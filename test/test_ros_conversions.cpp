@@ -91,12 +91,16 @@ TEST(ToYaml, ReadsFloorRestitutionAndBallPlacement)
   ball["position"][0] = 1.0;
   ball["placement"] = std::string("on_floor");
   tree["balls"][1] = ball;
+  // the floor's restitution 0.25, the first ball as given, the second on the floor
+  const auto expectFlight = [](const core::Scene& s) {
+    ASSERT_TRUE(s.floor.has_value());
+    EXPECT_EQ(s.floor->restitution, 0.25);
+    ASSERT_EQ(s.balls.size(), 2u);
+    EXPECT_EQ(s.balls[0].placement, core::BallPlacement::kAsGiven);
+    EXPECT_EQ(s.balls[1].placement, core::BallPlacement::kOnFloor);
+  };
   const core::Scene scene = yaml::parseScene(bridge::toYaml(tree), "params");
-  ASSERT_TRUE(scene.floor.has_value());
-  EXPECT_EQ(scene.floor->restitution, 0.25);
-  ASSERT_EQ(scene.balls.size(), 2u);
-  EXPECT_EQ(scene.balls[0].placement, core::BallPlacement::kAsGiven);
-  EXPECT_EQ(scene.balls[1].placement, core::BallPlacement::kOnFloor);
+  expectFlight(scene);
 
   tree["balls"][1]["placement"] = std::string("x");
   try
@@ -112,11 +116,8 @@ TEST(ToYaml, ReadsFloorRestitutionAndBallPlacement)
   // writeSceneParams' path: the written scene, as the parameter server holds it, and back
   XmlRpc::XmlRpcValue written = bridge::toXmlRpc(yaml::writeScene(scene, NodeSettings()));
   const core::Scene back = yaml::parseScene(bridge::toYaml(written), "params");
-  ASSERT_TRUE(back.floor.has_value());
-  EXPECT_EQ(back.floor->restitution, 0.25);
+  expectFlight(back);
   ASSERT_EQ(back.balls.size(), 2u);
-  EXPECT_EQ(back.balls[0].placement, core::BallPlacement::kAsGiven);
-  EXPECT_EQ(back.balls[1].placement, core::BallPlacement::kOnFloor);
   EXPECT_EQ(back.balls[0].position, scene.balls[0].position);
 }
 
