@@ -177,139 +177,157 @@ private:
   std::unique_ptr<std::FILE, FileCloser> file_;
 };
 
-int run(const SimulateOptions& options)
+/// What a run reads and writes, made by prepareRun().
+struct Run
 {
   ball_collision_sim::yaml::SceneFile file;
+  std::unique_ptr<World> world;
+  std::uint64_t steps = 0;
+  CsvWriter csv;
+  std::unique_ptr<ball_collision_sim::bridge::RunBag> bag;
+};
+
+/// The number of steps the duration asks for, in `steps`; the error text when it is too
+/// many.
+std::string stepsOf(const SimulateOptions& options, double dt, std::uint64_t& steps)
+{
+  // The small epsilon keeps a duration that is a whole number of steps from taking an
+  // extra one when the division rounds up: 0.07 / 0.01 is 7.000000000000001 in doubles.
+  const double exact_steps = options.duration / dt;
+  if (!(exact_steps <= kMaxSteps))
+  {
+    char message[160];
+    std::snprintf(message, sizeof(message), "--duration: %g s at dt = %g s is more than %g steps", options.duration,
+                  dt, kMaxSteps);
+    return message;
+  }
+  steps = static_cast<std::uint64_t>(std::max(0.0, std::ceil(exact_steps - 1e-9)));
+  return {};
+}
+
+/// Loads the scene, builds its world and opens the outputs: 0, or the exit status of
+/// what was refused (reported).
+int prepareRun(const SimulateOptions& options, Run& run)
+{
   try
   {
-    file = ball_collision_sim::yaml::loadValidSceneFile(options.scene_path);
+    run.file = ball_collision_sim::yaml::loadValidSceneFile(options.scene_path);
   }
   catch (const ball_collision_sim::yaml::SceneError& e)
   {
     return reportBadInput(e.what());
   }
-
   // validate() has passed, so this throws only if the core finds something validate()
   // missed; that is still the scene's fault, reported the same way.
-  std::unique_ptr<World> world;
   try
   {
-    world = std::make_unique<World>(file.scene, std::move(file.checked));
+    run.world = std::make_unique<World>(run.file.scene, std::move(run.file.checked));
   }
   catch (const std::invalid_argument& e)
   {
     return reportBadInput(options.scene_path + ": " + e.what());
   }
-
-  // The small epsilon keeps a duration that is a whole number of steps from taking an
-  // extra one when the division rounds up: 0.07 / 0.01 is 7.000000000000001 in doubles.
-  const double exact_steps = options.duration / world->dt();
-  if (!(exact_steps <= kMaxSteps))
-  {
-    char message[160];
-    std::snprintf(message, sizeof(message), "--duration: %g s at dt = %g s is more than %g steps", options.duration,
-                  world->dt(), kMaxSteps);
-    return reportBadCommandLine(message);
-  }
-  const auto steps = static_cast<std::uint64_t>(std::max(0.0, std::ceil(exact_steps - 1e-9)));
-
-  CsvWriter csv;
+  const std::string too_long = stepsOf(options, run.world->dt(), run.steps);
+  if (!too_long.empty())
+    return reportBadCommandLine(too_long);
   if (!options.csv_path.empty())
   {
-    const std::string error = csv.open(options.csv_path, world->friction().has_value());
+    const std::string error = run.csv.open(options.csv_path, run.world->friction().has_value());
     if (!error.empty())
-    {
       return reportBadInput("--csv: " + error);
-    }
   }
-
-  std::unique_ptr<ball_collision_sim::bridge::RunBag> bag;
   if (!options.bag_path.empty())
   {
     try
     {
-      bag = std::make_unique<ball_collision_sim::bridge::RunBag>(
-          options.bag_path, *world, file.node, ball_collision_sim::yaml::writeScene(file.scene, file.node),
-          options.marker_rate);
+      run.bag = std::make_unique<ball_collision_sim::bridge::RunBag>(
+          options.bag_path, *run.world, run.file.node,
+          ball_collision_sim::yaml::writeScene(run.file.scene, run.file.node), options.marker_rate);
     }
     catch (const rosbag::BagException& e)
     {
       return reportBadInput("--bag: " + options.bag_path + ": cannot write the bag (" + e.what() + ")");
     }
   }
-
   // Only the bag reads each step's list of collisions; the summary counts them anyway.
-  world->recordEvents(bag != nullptr);
+  run.world->recordEvents(run.bag != nullptr);
+  return 0;
+}
 
-  const double energy_start = world->energy().total();
-  if (csv.isOpen())
+/// One step and its outputs; returns how many balls left the world in it (reported once
+/// and taken out, as the node does).
+std::size_t stepOnce(const SimulateOptions& options, Run& run, std::uint64_t step, Progress& progress)
+{
+  World& world = *run.world;
+  world.step();
+  const std::vector<ball_collision_sim::core::LostBall> gone = world.removeLostBalls();
+  for (const ball_collision_sim::core::LostBall& ball : gone)
   {
-    csv.writeSample(*world);
+    progress.finish();
+    std::fprintf(stderr, "simulate: t = %.17g s: ball %d %s at (%g, %g, %g) m; removed from the world\n",
+                 world.time(), ball.ball.id, ball.reason.c_str(), ball.ball.position.x(), ball.ball.position.y(),
+                 ball.ball.position.z());
   }
-  // Ctrl-C ends the loop, and the outputs are closed as if the run had been that long.
-  std::signal(SIGINT, onInterrupt);
-  Progress progress(steps, world->dt());
-  const auto wall_start = std::chrono::steady_clock::now();
-  const auto wallSeconds = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  };
-  std::uint64_t lost = 0;
-  for (std::uint64_t step = 1; step <= steps && !g_interrupted; ++step)
-  {
-    world->step();
-    // A ball that left the world is reported once and taken out, as the node does.
-    const std::vector<ball_collision_sim::core::LostBall> gone = world->removeLostBalls();
-    for (const ball_collision_sim::core::LostBall& ball : gone)
-    {
-      progress.finish();
-      std::fprintf(stderr, "simulate: t = %.17g s: ball %d %s at (%g, %g, %g) m; removed from the world\n",
-                   world->time(), ball.ball.id, ball.reason.c_str(), ball.ball.position.x(), ball.ball.position.y(),
-                   ball.ball.position.z());
-    }
-    lost += gone.size();
-    if (bag && !gone.empty())
-    {
-      bag->lost(*world, gone);
-    }
-    if (csv.isOpen() && step % options.sample_every == 0)
-    {
-      csv.writeSample(*world);
-    }
-    if (bag)
-    {
-      bag->afterStep(*world);
-    }
-    progress.update(step, wallSeconds());
-  }
-  progress.finish();
-  const std::string csv_error = csv.close();
-  const double wall_seconds = wallSeconds();
-  if (bag)
-  {
-    bag->close();
-  }
+  if (run.bag && !gone.empty())
+    run.bag->lost(world, gone);
+  if (run.csv.isOpen() && step % options.sample_every == 0)
+    run.csv.writeSample(world);
+  if (run.bag)
+    run.bag->afterStep(world);
+  return gone.size();
+}
+
+/// Closes the outputs and prints the summary: the run's exit status.
+int finishRun(Run& run, double energy_start, std::uint64_t lost, double wall_seconds, const std::string& csv_error)
+{
+  const World& world = *run.world;
+  if (run.bag)
+    run.bag->close();
   if (!csv_error.empty())
   {
     std::fprintf(stderr, "simulate: error: %s\n", csv_error.c_str());
     return kExitInternalError;
   }
-
   std::printf(
       "summary: steps=%llu events=%llu floor_impacts=%llu wall_s=%.6f energy_start=%.17g energy_end=%.17g "
       "balls_lost=%d\n",
-      static_cast<unsigned long long>(world->stats().steps), static_cast<unsigned long long>(world->stats().events),
-      static_cast<unsigned long long>(world->stats().floor_impacts), wall_seconds, energy_start,
-      world->energy().total(), static_cast<int>(lost) + world->lostBalls());
+      static_cast<unsigned long long>(world.stats().steps), static_cast<unsigned long long>(world.stats().events),
+      static_cast<unsigned long long>(world.stats().floor_impacts), wall_seconds, energy_start,
+      world.energy().total(), static_cast<int>(lost) + world.lostBalls());
   if (std::fflush(stdout) != 0)
-  {
     return kExitInternalError;
-  }
   if (g_interrupted)
   {
-    std::fprintf(stderr, "simulate: interrupted at t = %.17g s; outputs hold the run so far\n", world->time());
+    std::fprintf(stderr, "simulate: interrupted at t = %.17g s; outputs hold the run so far\n", world.time());
     return kExitInterrupted;
   }
   return 0;
+}
+
+int run(const SimulateOptions& options)
+{
+  Run run;
+  if (const int refused = prepareRun(options, run))
+    return refused;
+  const double energy_start = run.world->energy().total();
+  if (run.csv.isOpen())
+    run.csv.writeSample(*run.world);
+  // Ctrl-C ends the loop, and the outputs are closed as if the run had been that long.
+  std::signal(SIGINT, onInterrupt);
+  Progress progress(run.steps, run.world->dt());
+  const auto wall_start = std::chrono::steady_clock::now();
+  const auto wallSeconds = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  };
+  std::uint64_t lost = 0;
+  for (std::uint64_t step = 1; step <= run.steps && !g_interrupted; ++step)
+  {
+    lost += stepOnce(options, run, step, progress);
+    progress.update(step, wallSeconds());
+  }
+  progress.finish();
+  const std::string csv_error = run.csv.close();
+  return finishRun(run, energy_start, lost, wallSeconds(), csv_error);
 }
 }  // namespace
 

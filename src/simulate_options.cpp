@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <optional>
+#include <utility>
 
 namespace ball_collision_sim::tools
 {
@@ -69,35 +70,117 @@ std::string simulateUsage()
          "130 stopped by Ctrl-C (the outputs hold the run so far).\n";
 }
 
+namespace
+{
+/// Which options have been given, so that one given twice is refused.
+struct Given
+{
+  bool duration = false;
+  bool sample_every = false;
+  bool marker_rate = false;
+};
+
+// A positional argument: the scene ("-" alone or "-1" would be one too).
+bool isPositional(const std::string& arg, bool options_ended)
+{
+  return options_ended || arg.size() < 2 || arg[0] != '-' ||
+         (arg[1] != '-' && !std::isalpha(static_cast<unsigned char>(arg[1])));
+}
+
+bool isKnownFlag(const std::string& flag)
+{
+  return flag == "--duration" || flag == "--bag" || flag == "--csv" || flag == "--sample-every" ||
+         flag == "--marker-rate";
+}
+
+// Each option's value into `options`: the error, or empty.
+std::string takeDuration(const std::string& value, SimulateOptions& options, Given& given)
+{
+  if (std::exchange(given.duration, true))
+    return "--duration: given twice";
+  const std::optional<double> seconds = parseNumber(value);
+  if (!seconds || !std::isfinite(*seconds))
+    return "--duration: expected a number of seconds, got " + quoted(value);
+  if (*seconds < 0.0)
+    return "--duration: must be >= 0, got " + value;
+  options.duration = *seconds;
+  return {};
+}
+
+std::string takeMarkerRate(const std::string& value, SimulateOptions& options, Given& given)
+{
+  if (std::exchange(given.marker_rate, true))
+    return "--marker-rate: given twice";
+  const std::optional<double> rate = parseNumber(value);
+  if (!rate || !std::isfinite(*rate) || *rate < 0.0)
+    return "--marker-rate: expected a rate >= 0 in Hz, got " + quoted(value);
+  options.marker_rate = *rate;
+  return {};
+}
+
+std::string takeSampleEvery(const std::string& value, SimulateOptions& options, Given& given)
+{
+  if (std::exchange(given.sample_every, true))
+    return "--sample-every: given twice";
+  const std::optional<std::uint64_t> n = parseCount(value);
+  if (!n || *n == 0)
+    return "--sample-every: expected an integer >= 1, got " + quoted(value);
+  options.sample_every = *n;
+  return {};
+}
+
+std::string takePath(const std::string& flag, const std::string& value, SimulateOptions& options)
+{
+  std::string& path = flag == "--bag" ? options.bag_path : options.csv_path;
+  if (!path.empty())
+    return flag + ": given twice";
+  if (value.empty())
+    return flag + ": missing file name";
+  path = value;
+  return {};
+}
+
+std::string takeOption(const std::string& flag, const std::string& value, SimulateOptions& options, Given& given)
+{
+  if (flag == "--duration")
+    return takeDuration(value, options, given);
+  if (flag == "--marker-rate")
+    return takeMarkerRate(value, options, given);
+  if (flag == "--sample-every")
+    return takeSampleEvery(value, options, given);
+  return takePath(flag, value, options);
+}
+
+// --help wins, so that "simulate --durtion 3 --help" still shows the usage.
+bool asksForHelp(const std::vector<std::string>& args)
+{
+  for (const std::string& arg : args)
+  {
+    if (arg == "--")
+      return false;
+    if (isHelp(arg))
+      return true;
+  }
+  return false;
+}
+}  // namespace
+
 ParsedOptions parseSimulateOptions(const std::vector<std::string>& args)
 {
   ParsedOptions parsed;
   SimulateOptions& options = parsed.options;
-
-  // --help wins, so that "simulate --durtion 3 --help" still shows the usage.
-  for (const std::string& arg : args)
+  if (asksForHelp(args))
   {
-    if (arg == "--")
-    {
-      break;
-    }
-    if (isHelp(arg))
-    {
-      options.help = true;
-      return parsed;
-    }
+    options.help = true;
+    return parsed;
   }
-
-  bool have_duration = false;
-  bool have_sample_every = false;
-  bool have_marker_rate = false;
+  Given given;
   bool options_ended = false;
   for (std::size_t i = 0; i < args.size(); ++i)
   {
     const std::string& arg = args[i];
-    if (options_ended || arg.size() < 2 || arg[0] != '-' || (arg[1] != '-' && !std::isalpha(static_cast<unsigned char>(arg[1]))))
+    if (isPositional(arg, options_ended))
     {
-      // A positional argument: the scene ("-" alone or "-1" would be one too).
       if (!options.scene_path.empty())
       {
         parsed.error = "unexpected argument " + quoted(arg) + " (only one scene file is taken)";
@@ -111,111 +194,34 @@ ParsedOptions parseSimulateOptions(const std::vector<std::string>& args)
       options_ended = true;
       continue;
     }
-
-    std::string flag = arg;
-    std::optional<std::string> value;
-    const std::size_t equals = arg.find('=');
-    if (arg.rfind("--", 0) == 0 && equals != std::string::npos)
-    {
-      flag = arg.substr(0, equals);
-      value = arg.substr(equals + 1);
-    }
-    if (flag != "--duration" && flag != "--bag" && flag != "--csv" && flag != "--sample-every" &&
-        flag != "--marker-rate")
+    // "--flag=value", or "--flag value"
+    const std::size_t equals = arg.rfind("--", 0) == 0 ? arg.find('=') : std::string::npos;
+    const std::string flag = arg.substr(0, equals);
+    if (!isKnownFlag(flag))
     {
       parsed.error = "unknown option " + quoted(flag);
       return parsed;
     }
-    if (!value)
+    std::string value;
+    if (equals != std::string::npos)
+      value = arg.substr(equals + 1);
+    else if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0)
     {
-      // "--duration -1" must reach the number check, so only a long option or the end
-      // of the line counts as a missing value.
-      if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0)
-      {
-        parsed.error = flag + ": missing value";
-        return parsed;
-      }
-      value = args[++i];
-    }
-
-    if (flag == "--duration")
-    {
-      if (have_duration)
-      {
-        parsed.error = "--duration: given twice";
-        return parsed;
-      }
-      have_duration = true;
-      const std::optional<double> seconds = parseNumber(*value);
-      if (!seconds || !std::isfinite(*seconds))
-      {
-        parsed.error = "--duration: expected a number of seconds, got " + quoted(*value);
-        return parsed;
-      }
-      if (*seconds < 0.0)
-      {
-        parsed.error = "--duration: must be >= 0, got " + *value;
-        return parsed;
-      }
-      options.duration = *seconds;
-    }
-    else if (flag == "--marker-rate")
-    {
-      if (have_marker_rate)
-      {
-        parsed.error = "--marker-rate: given twice";
-        return parsed;
-      }
-      have_marker_rate = true;
-      const std::optional<double> rate = parseNumber(*value);
-      if (!rate || !std::isfinite(*rate) || *rate < 0.0)
-      {
-        parsed.error = "--marker-rate: expected a rate >= 0 in Hz, got " + quoted(*value);
-        return parsed;
-      }
-      options.marker_rate = *rate;
-    }
-    else if (flag == "--sample-every")
-    {
-      if (have_sample_every)
-      {
-        parsed.error = "--sample-every: given twice";
-        return parsed;
-      }
-      have_sample_every = true;
-      const std::optional<std::uint64_t> n = parseCount(*value);
-      if (!n || *n == 0)
-      {
-        parsed.error = "--sample-every: expected an integer >= 1, got " + quoted(*value);
-        return parsed;
-      }
-      options.sample_every = *n;
+      // ("--duration -1" must reach the number check, so only a long option or the end
+      // of the line counts as a missing value)
+      parsed.error = flag + ": missing value";
+      return parsed;
     }
     else
-    {
-      std::string& path = flag == "--bag" ? options.bag_path : options.csv_path;
-      if (!path.empty())
-      {
-        parsed.error = flag + ": given twice";
-        return parsed;
-      }
-      if (value->empty())
-      {
-        parsed.error = flag + ": missing file name";
-        return parsed;
-      }
-      path = *value;
-    }
+      value = args[++i];
+    parsed.error = takeOption(flag, value, options, given);
+    if (!parsed.error.empty())
+      return parsed;
   }
-
   if (options.scene_path.empty())
-  {
     parsed.error = "missing the scene file (SCENE.yaml)";
-  }
-  else if (!have_duration)
-  {
+  else if (!given.duration)
     parsed.error = "missing --duration SECONDS";
-  }
   return parsed;
 }
 }  // namespace ball_collision_sim::tools

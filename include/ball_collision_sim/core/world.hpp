@@ -423,6 +423,10 @@ private:
   /// Where ball i's flight first reaches the floor after its motion's start, as a part of
   /// the rest of the step (at most `rest`), or none.
   std::optional<double> landingIn(std::size_t i, double rest) const;
+  /// ... over a plane: the root of a quadratic.
+  std::optional<double> landingOverPlane(std::size_t i, double rest) const;
+  /// ... over a curved floor: a bracket from samples of the height, refined.
+  std::optional<double> landingOverCurve(std::size_t i, double rest) const;
   /// Ball i's flight meets the floor (StepEvent::end kLanding): it bounces at the floor's
   /// restitution, with friction's impulse against the slip of its contact point; a
   /// bounce too low to fly for StepSettings::min_flight_time puts it on the floor.

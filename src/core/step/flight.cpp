@@ -158,47 +158,54 @@ void World::resolveTakeOff(const Event& event)
 
 std::optional<double> World::landingIn(std::size_t i, double rest) const
 {
-  const Motion& m = motions_[i];
+  return ground_.bends() ? landingOverCurve(i, rest) : landingOverPlane(i, rest);
+}
+
+std::optional<double> World::landingOverPlane(std::size_t i, double rest) const
+{
+  // The height is the quadratic h(s) = h0 + B s + A s^2 in s = x - x0: its root where it
+  // falls.
   const Ball& ball = balls_[i];
   const Vec3& p0 = startPosition(i);
-  const Vec3& c = flight_c_;
   const double tolerance = roundoffAt(p0, ball.radius, settings_);
-  if (!ground_.bends())
+  const Vec3& n = ground_.floor()->planeNormal();
+  const double h0 = n.dot(p0) - ground_.floor()->planeOffset() - ball.radius;
+  const double B = n.dot(motions_[i].b), A = n.dot(flight_c_);
+  if (h0 < -tolerance)
+    return std::nullopt;  // (under the floor: fallen past its edge, it meets it no more)
+  if (!(h0 > tolerance) && B <= 0)
+    return 0.0;  // (on the floor, to round-off, and not leaving it)
+  double s;
+  if (A < 0)
   {
-    // Over a plane, the height is the quadratic h(s) = h0 + B s + A s^2 in s = x - x0: its
-    // root where it falls.
-    const Vec3& n = ground_.floor()->planeNormal();
-    const double h0 = n.dot(p0) - ground_.floor()->planeOffset() - ball.radius;
-    const double B = n.dot(m.b), A = n.dot(c);
-    if (h0 < -tolerance)
-      return std::nullopt;  // (under the floor: fallen past its edge, it meets it no more)
-    if (!(h0 > tolerance) && B <= 0)
-      return 0.0;  // (on the floor, to round-off, and not leaving it)
-    double s;
-    if (A < 0)
-    {
-      const double disc = B * B - 4 * A * h0;
-      if (!(disc >= 0))
-        return 0.0;  // (below the floor all the way: at once)
-      // the larger root, where h falls (stable form)
-      const double q = -0.5 * (B + std::copysign(std::sqrt(disc), B));
-      s = std::max(q / A, q != 0 ? h0 / q : 0.0);
-    }
-    else if (B < 0)
-      s = -h0 / B;  // (no pull into the floor: a line)
-    else
-      return std::nullopt;
-    if (!(s <= rest))
-      return std::nullopt;
-    return std::max(s, 0.0);
+    const double disc = B * B - 4 * A * h0;
+    if (!(disc >= 0))
+      return 0.0;  // (below the floor all the way: at once)
+    // the larger root, where h falls (stable form)
+    const double q = -0.5 * (B + std::copysign(std::sqrt(disc), B));
+    s = std::max(q / A, q != 0 ? h0 / q : 0.0);
   }
-  // Over a curved floor, the height sampled along the flight: the first sample more than
-  // round-off below the floor closes a bracket, whose root is then found to neighbouring
-  // doubles. (A flight that dips below and out again between two samples, a graze on a
-  // bump narrower than the step's flight over StepSettings::landing_samples, is not seen.)
+  else if (B < 0)
+    s = -h0 / B;  // (no pull into the floor: a line)
+  else
+    return std::nullopt;
+  if (!(s <= rest))
+    return std::nullopt;
+  return std::max(s, 0.0);
+}
+
+std::optional<double> World::landingOverCurve(std::size_t i, double rest) const
+{
+  // The height sampled along the flight: the first sample more than round-off below the
+  // floor closes a bracket, whose root is then found to neighbouring doubles. (A flight
+  // that dips below and out again between two samples, a graze on a bump narrower than
+  // the step's flight over StepSettings::landing_samples, is not seen.)
+  const Ball& ball = balls_[i];
+  const Vec3& p0 = startPosition(i);
+  const double tolerance = roundoffAt(p0, ball.radius, settings_);
   Vec2 guess = guessOf(i);
   const auto height = [&](double s) {
-    const Vec3 p = p0 + s * m.b + (s * s) * c;
+    const Vec3 p = p0 + s * motions_[i].b + (s * s) * flight_c_;
     return ground_.heightAbove(p, ball.radius, guess);
   };
   const double h0 = height(0.0);
@@ -211,9 +218,7 @@ std::optional<double> World::landingIn(std::size_t i, double rest) const
     const double s = rest * k / samples;
     const double h = height(s);
     if (h < -tolerance)
-    {
       return bracketedRoot(height, [](double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }, lo, s, h_lo, h);
-    }
     if (h > 0)
     {
       lo = s;
