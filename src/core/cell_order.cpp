@@ -4,11 +4,11 @@
 // its place in id order).
 #include "permutation.hpp"
 
-#include "ball_collision_sim/core/world.hpp"
+#include "step/step_context.hpp"
 
 namespace ball_collision_sim::core
 {
-void World::sortById()
+void StepContext::sortById()
 {
   bool sorted = true;
   for (std::size_t k = 0; k < by_id_.size() && sorted; ++k)
@@ -19,7 +19,7 @@ void World::sortById()
   permute(from);
 }
 
-void World::permute(std::vector<std::uint32_t>& from)
+void StepContext::permute(std::vector<std::uint32_t>& from)
 {
   // Where each slot's record goes, for by_id_: slot from[k] -> slot k (the inverse of
   // `from`, turned in place and back, so that no second list is needed).
@@ -30,7 +30,7 @@ void World::permute(std::vector<std::uint32_t>& from)
   // In place, cycle by cycle (each ball's foot point and spin with it, where kept)
   struct Records
   {
-    World& w;
+    StepContext& w;
     Ball ball;
     Vec2 foot;
     BallSpin spin;

@@ -2,7 +2,7 @@
 // walls. Each checks its input first and changes nothing when it refuses. Reads and
 // writes balls_, spins_, feet_, walls_; an edit forgets the step's visiting order and
 // wakes the sleeping balls it touches (a wall's, all: what held them may have changed).
-#include "ball_collision_sim/core/world.hpp"
+#include "step/step_context.hpp"
 
 #include "step/floor_motion.hpp"
 
@@ -16,7 +16,7 @@
 namespace ball_collision_sim::core
 {
 
-std::string World::place(BallDef& def, Landing landing, int ignore_id, Vec2& foot, bool& flying) const
+std::string StepContext::place(BallDef& def, Landing landing, int ignore_id, Vec2& foot, bool& flying) const
 {
   const std::vector<SceneIssue> issues = validateBall(def, "");
   if (!issues.empty())
@@ -35,7 +35,7 @@ std::string World::place(BallDef& def, Landing landing, int ignore_id, Vec2& foo
   return "";
 }
 
-AddResult World::addBall(const BallDef& def, Landing landing)
+AddResult StepContext::addBall(const BallDef& def, Landing landing)
 {
   AddResult result;
   BallDef placed = def;
@@ -75,7 +75,7 @@ AddResult refused(int id, std::string error)
 }
 }  // namespace
 
-AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing,
+AddResult StepContext::setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing,
                                const std::optional<Vec3>& angular_velocity, const std::optional<double>& inertia)
 {
   const std::size_t k = indexOf(id);
@@ -113,12 +113,12 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
   return result;
 }
 
-AddResult World::applyImpulse(int id, const Vec3& impulse)
+AddResult StepContext::applyImpulse(int id, const Vec3& impulse)
 {
   return strike(id, impulse, Vec3::Zero());
 }
 
-AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
+AddResult StepContext::strike(int id, const Vec3& impulse, const Vec3& offset)
 {
   const std::size_t s = slotOf(id);
   if (s == balls_.size())
@@ -179,7 +179,7 @@ AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
   return result;
 }
 
-AddResult World::addWall(const WallDef& def)
+AddResult StepContext::addWall(const WallDef& def)
 {
   AddResult result;
   result.error = joinIssues(validateWall(def, ""));
@@ -203,7 +203,7 @@ AddResult World::addWall(const WallDef& def)
   return result;
 }
 
-bool World::removeBall(int id)
+bool StepContext::removeBall(int id)
 {
   if (slotOf(id) == balls_.size())
     return false;
@@ -220,7 +220,7 @@ bool World::removeBall(int id)
   return true;
 }
 
-bool World::removeWall(int id)
+bool StepContext::removeWall(int id)
 {
   const auto it = std::find_if(walls_.begin(), walls_.end(), [&](const Wall& w) { return w.id == id; });
   if (it == walls_.end())

@@ -1,13 +1,13 @@
 // Balls that left the world (the ground says what that is: off the floor, or without a
 // floor outside the box the walls span). Reads balls_, feet_, walls_; removeLostBalls()
 // takes them out of balls_, feet_ and spins_.
-#include "ball_collision_sim/core/world.hpp"
+#include "step/step_context.hpp"
 
 #include <utility>
 
 namespace ball_collision_sim::core
 {
-Ground::Bounds World::wallBounds() const
+Ground::Bounds StepContext::wallBounds() const
 {
   Ground::Bounds bounds;
   for (const Wall& wall : walls_)
@@ -19,7 +19,7 @@ Ground::Bounds World::wallBounds() const
   return bounds;
 }
 
-std::string World::whyLost(std::size_t s, const Ground::Bounds& bounds) const
+std::string StepContext::whyLost(std::size_t s, const Ground::Bounds& bounds) const
 {
   const Ball& ball = balls_[s];
   // (a ball in flight is in the world whatever lies under it, until it has fallen past the
@@ -29,7 +29,7 @@ std::string World::whyLost(std::size_t s, const Ground::Bounds& bounds) const
   return ground_.whyOff(ball.position, ball.radius, footOf(s), bounds);
 }
 
-int World::lostBalls() const
+int StepContext::lostBalls() const
 {
   const Ground::Bounds bounds = wallBounds();
   int lost = 0;
@@ -38,7 +38,7 @@ int World::lostBalls() const
   return lost;
 }
 
-std::vector<LostBall> World::removeLostBalls()
+std::vector<LostBall> StepContext::removeLostBalls()
 {
   std::vector<LostBall> lost;
   const Ground::Bounds bounds = wallBounds();

@@ -1,268 +1,71 @@
-// The world's lifecycle, the step as its named stages (each in src/core/step/) and
-// the queries; the edits between steps are in edits.cpp.
+// The public World: its state and the step live in a StepContext
+// (src/core/step/step_context.hpp); every call goes there.
 #include "ball_collision_sim/core/world.hpp"
 
-#include "step/contact_group.hpp"
-#include "step/floor_motion.hpp"
-
-#include "ball_collision_sim/core/state_hash.hpp"
-
-#include <algorithm>
-#include <cmath>
-#include <stdexcept>
+#include "step/step_context.hpp"
 
 namespace ball_collision_sim::core
 {
-
-World::World(const Scene& scene, const StepSettings& settings) : World(scene, check(scene), settings)
+World::World(const Scene& scene, const StepSettings& settings) : c_(std::make_unique<StepContext>(scene, settings))
 {
 }
 
 World::World(const Scene& scene, SceneCheck checked, const StepSettings& settings)
-    : scene_(scene)
-    , settings_(settings)
-    , dt_(scene.dt)
-    , gravity_(scene.gravity)
-    , ground_(scene.floor, scene.gravity, settings)
-    , floor_motion_(&FloorMotion::of(ground_))
-    , flight_c_((0.5 * scene.dt * scene.dt) * scene.gravity)
-    , path_c_((0.5 * scene.dt * scene.dt) * ground_.pathAcceleration())
-    , free_parabolas_(path_c_ != Vec3::Zero())
-    , parabolas_(free_parabolas_ || scene.friction.has_value())
+    : c_(std::make_unique<StepContext>(scene, std::move(checked), settings))
 {
-  if (!checked.issues.empty())
-    throw std::invalid_argument(joinIssues(checked.issues));
-  // (the plane's laws; on a curved floor each ball's are found under its normal)
-  if (scene.friction)
-    friction_.emplace(*scene.friction, ground_.flatNormal(),
-                      scene.gravity, ground_.pathAcceleration(), settings_.slip_tolerance,
-                      settings_.resting_speed_floor);
-  // (a ball's event count is kept in 12 bits, up to one past the cap)
-  if (settings_.max_events_per_ball_step > kMaxEventCap)
-    throw std::invalid_argument("max_events_per_ball_step: must be at most " + std::to_string(kMaxEventCap));
-  // (a chord of no length would be cut again and again where it starts)
-  if (!(settings_.chord_turn > 0))
-    throw std::invalid_argument("chord_turn: must be > 0");
-  if (!(settings_.chord_sag > 0))
-    throw std::invalid_argument("chord_sag: must be > 0");
-  sleep_steps_ = static_cast<std::uint16_t>(std::clamp(std::ceil(settings_.sleep_time / dt_), 1.0, 65535.0));
-  load(std::move(checked.balls));
 }
 
-World::World(const World&) = default;
-World& World::operator=(const World&) = default;
+World::World(const World& other) : c_(std::make_unique<StepContext>(*other.c_)) {}
+
+World& World::operator=(const World& other)
+{
+  if (this != &other)
+    c_ = std::make_unique<StepContext>(*other.c_);
+  return *this;
+}
+
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 World::~World() = default;
 
-void World::load(PlacedBalls placed)
+void World::step() { c_->step(); }
+void World::reset() { c_->reset(); }
+double World::time() const { return c_->time(); }
+double World::dt() const { return c_->dt(); }
+const Vec3& World::gravity() const { return c_->gravity(); }
+const Scene& World::scene() const { return c_->scene(); }
+const StepSettings& World::stepSettings() const { return c_->stepSettings(); }
+BallList World::balls() const { return c_->balls(); }
+const std::vector<Wall>& World::walls() const { return c_->walls(); }
+const std::optional<Floor>& World::floor() const { return c_->floor(); }
+const std::vector<CollisionEvent>& World::lastEvents() const { return c_->lastEvents(); }
+void World::recordEvents(bool record) { c_->recordEvents(record); }
+bool World::recordsEvents() const { return c_->recordsEvents(); }
+const WorldStats& World::stats() const { return c_->stats(); }
+const std::optional<FrictionDef>& World::friction() const { return c_->friction(); }
+const std::vector<MotionTransition>& World::lastTransitions() const { return c_->lastTransitions(); }
+Energy World::energy() const { return c_->energy(); }
+Vec3 World::momentum() const { return c_->momentum(); }
+int World::lostBalls() const { return c_->lostBalls(); }
+std::vector<LostBall> World::removeLostBalls() { return c_->removeLostBalls(); }
+std::uint64_t World::stateHash() const { return c_->stateHash(); }
+const Ball* World::findBall(int id) const { return c_->findBall(id); }
+std::size_t World::indexOf(int id) const { return c_->indexOf(id); }
+Vec3 World::angularVelocity(std::size_t k) const { return c_->angularVelocity(k); }
+MotionKind World::motionKind(std::size_t k) const { return c_->motionKind(k); }
+double World::inertia(std::size_t k) const { return c_->inertia(k); }
+
+AddResult World::addBall(const BallDef& def, Landing landing) { return c_->addBall(def, landing); }
+
+AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing,
+                              const std::optional<Vec3>& angular_velocity, const std::optional<double>& inertia)
 {
-  walls_.clear();
-  next_wall_id_ = kFirstId;
-  for (const WallDef& def : scene_.walls)
-    walls_.emplace_back(next_wall_id_++, def, scene_.restitution);
-  balls_.clear();
-  by_id_.clear();
-  feet_.clear();
-  spins_.clear();
-  next_ball_id_ = kFirstId;
-  // (the records taken over as they are, not copied: loading holds one list of them)
-  balls_ = std::move(placed.balls);
-  by_id_.resize(balls_.size());
-  for (std::size_t k = 0; k < balls_.size(); ++k)
-  {
-    by_id_[k] = static_cast<std::uint32_t>(k);
-    balls_[k].id = next_ball_id_++;
-  }
-  if (friction_)
-  {
-    spins_.reserve(balls_.size());
-    for (std::size_t k = 0; k < balls_.size(); ++k)
-    {
-      // (its definition: the scene's own ball, or a random one's, where the record has it now)
-      BallDef def = k < scene_.balls.size() ? scene_.balls[k] : randomBallDef(scene_, balls_[k]);
-      def.position = balls_[k].position;
-      def.velocity = balls_[k].velocity;
-      spins_.push_back(makeSpin(def, placed.feet[k], balls_[k].flying));
-    }
-  }
-  if (floor_motion_->keepsFeet())
-    feet_ = std::move(placed.feet);
-  stats_ = WorldStats{};
-  events_.clear();
-  transitions_.clear();
-  forgetOrder();
+  return c_->setBallState(id, position, velocity, landing, angular_velocity, inertia);
 }
 
-void World::reset()
-{
-  load(placeBalls(scene_));
-}
-
-void World::forgetOrder()
-{
-  sortById();
-  order_age_ = 0;
-  motions_ready_ = false;
-}
-
-Ball World::makeBall(int id, const BallDef& placed)
-{
-  Ball ball = ballRecord(placed);
-  ball.id = id;
-  return ball;
-}
-
-BallSpin World::makeSpin(const BallDef& placed, const Vec2& foot, bool flying) const
-{
-  BallSpin spin;
-  if (flying)
-  {
-    spin.angular_velocity = placed.angular_velocity ? *placed.angular_velocity : Vec3::Zero();
-    spin.inertia = placed.inertia;
-    spin.kind = MotionKind::kFlying;
-    return spin;
-  }
-  const FrictionLaw law = frictionUnder(ground_.normalAt(placed.position, foot));
-  spin.angular_velocity = spinOf(placed, law.normal());
-  spin.inertia = placed.inertia;
-  spin.kind = law.kindOf(placed.inertia, placed.radius, placed.velocity, spin.angular_velocity);
-  return spin;
-}
-
-// ---- the step ------------------------------------------------------------------------
-
-void World::step()
-{
-  events_.clear();
-  transitions_.clear();
-  // (each commit takes back what it kept of where balls started; a step cut short, or
-  // balls added or removed since, leave that to do here)
-  if (!step_starts_.empty() || step_start_of_.size() != balls_.size())
-    step_start_of_.assign(balls_.size(), kNoStepStart);
-  step_starts_.clear();
-  predictMotions();            // each ball's free motion over the step, on the floor, and its swept box
-  buildBroadPhase();           // the swept boxes into a uniform grid
-  formRestingGroups();         // resting contacts as constraints, each group's motions solved
-  findFirstImpacts();          // exact times of impact of nearby pairs and walls
-  resolveEventsInTimeOrder();  // earliest first; re-detect only the balls involved
-  // The next step visits the balls in this step's cell order, so that neighbours in
-  // space are neighbours in memory too; not after every step, as balls move less than a
-  // cell in one: while the order stays, the commit predicts the next step's motions, with
-  // each ball's record at hand.
-  const bool reorder = grid_.inCellOrder() && (order_age_ == 0 || order_age_ >= settings_.reorder_steps);
-  commitToFloor(!reorder);     // every ball to the step's end, back on the floor
-  if (reorder)
-  {
-    std::vector<std::uint32_t> from;
-    grid_.takeCellOrder(from);  // the slots in the grid's cell order
-    permute(from);
-  }
-  order_age_ = reorder ? 1 : order_age_ + 1;
-  motions_ready_ = !reorder;
-  ++stats_.steps;
-}
-
-// ---- queries -------------------------------------------------------------------------
-
-Energy World::energy() const
-{
-  // (summed in id order: the same sums whatever order the records are in)
-  Energy e;
-  for (const std::uint32_t s : by_id_)
-  {
-    const Ball& ball = balls_[s];
-    e.kinetic += 0.5 * ball.mass * ball.velocity.squaredNorm();
-    e.potential -= ball.mass * gravity_.dot(ball.position);
-  }
-  if (!spins_.empty())
-    for (const std::uint32_t s : by_id_)
-    {
-      const Ball& ball = balls_[s];
-      e.rotational +=
-          0.5 * spins_[s].inertia * ball.mass * ball.radius * ball.radius * spins_[s].angular_velocity.squaredNorm();
-    }
-  return e;
-}
-
-Vec3 World::momentum() const
-{
-  Vec3 p = Vec3::Zero();
-  for (const std::uint32_t s : by_id_)
-    p += balls_[s].mass * balls_[s].velocity;
-  return p;
-}
-
-std::uint64_t World::stateHash() const
-{
-  Fnv1a h;
-  h.add(stats_.steps);
-  h.add(balls_.size());
-  for (const std::uint32_t s : by_id_)
-  {
-    const Ball& ball = balls_[s];
-    h.add(ball.id);
-    h.add(ball.radius);
-    h.add(ball.mass);
-    h.add(ball.position.data(), 3 * sizeof(double));
-    h.add(ball.velocity.data(), 3 * sizeof(double));
-    h.add(ball.orientation.coeffs().data(), 4 * sizeof(double));
-  }
-  for (std::size_t k = 0; k < spins_.size(); ++k)
-  {
-    const BallSpin& spin = spins_[by_id_[k]];
-    h.add(spin.angular_velocity.data(), 3 * sizeof(double));
-    h.add(spin.inertia);
-    h.add(spin.kind);
-  }
-  return h.value();
-}
-
-std::size_t World::indexOf(int id) const
-{
-  // by_id_ lists the records in id order.
-  const auto it = std::lower_bound(by_id_.begin(), by_id_.end(), id,
-                                   [this](std::uint32_t s, int v) { return balls_[s].id < v; });
-  return it != by_id_.end() && balls_[*it].id == id ? static_cast<std::size_t>(it - by_id_.begin()) : by_id_.size();
-}
-
-std::size_t World::slotOf(int id) const
-{
-  const std::size_t k = indexOf(id);
-  return k < by_id_.size() ? by_id_[k] : balls_.size();
-}
-
-const Ball* World::findBall(int id) const
-{
-  const std::size_t s = slotOf(id);
-  return s < balls_.size() ? &balls_[s] : nullptr;
-}
-
-Vec3 World::angularVelocity(std::size_t k) const
-{
-  const std::size_t s = by_id_.at(k);
-  if (friction_)
-    return spins_[s].angular_velocity;
-  const Ball& ball = balls_[s];
-  if (ball.flying)
-    return Vec3::Zero();  // (without friction a ball turns only by rolling)
-  const Vec3 normal = ground_.normalUnder(footOf(s));
-  return normal.cross(ball.velocity) / ball.radius;
-}
-
-MotionKind World::motionKind(std::size_t k) const
-{
-  const std::size_t s = by_id_.at(k);
-  if (balls_[s].flying)
-    return MotionKind::kFlying;
-  if (friction_)
-    return spins_[s].kind;
-  return balls_[s].velocity == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling;
-}
-
-double World::inertia(std::size_t k) const
-{
-  const std::size_t s = by_id_.at(k);
-  return friction_ ? spins_[s].inertia : kSolidInertia;
-}
+AddResult World::applyImpulse(int id, const Vec3& impulse) { return c_->applyImpulse(id, impulse); }
+AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset) { return c_->strike(id, impulse, offset); }
+AddResult World::addWall(const WallDef& def) { return c_->addWall(def); }
+bool World::removeBall(int id) { return c_->removeBall(id); }
+bool World::removeWall(int id) { return c_->removeWall(id); }
 }  // namespace ball_collision_sim::core

@@ -1,4 +1,4 @@
-// Motion on a curved floor (World::ChordMotion): every motion is a chord between points
+// Motion on a curved floor (StepState::ChordMotion): every motion is a chord between points
 // of the floor, cut where it is longer than the floor allows, put back on the floor after
 // every correction and kept within the ball's energy; friction laws are taken under the
 // normal where the ball is, and a moving phase is a chord under its pull.
@@ -15,7 +15,7 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-void World::ChordMotion::predict(World& w, std::size_t i, const Vec3& v) const
+void StepState::ChordMotion::predict(StepContext& w, std::size_t i, const Vec3& v) const
 {
   // a chord across the path, no longer than the floor allows, kept within the energy
   Motion& m = w.motions_[i];
@@ -25,7 +25,7 @@ void World::ChordMotion::predict(World& w, std::size_t i, const Vec3& v) const
   keepEnergy(w, i);
 }
 
-void World::ChordMotion::start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const
+void StepState::ChordMotion::start(StepContext& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const
 {
   Motion& m = w.motions_[i];
   const double rest = 1 - x;
@@ -34,12 +34,12 @@ void World::ChordMotion::start(World& w, std::size_t i, double x, const Vec3& po
   keepEnergy(w, i);
 }
 
-void World::ChordMotion::keepEnergy(World& w, std::size_t i)
+void StepState::ChordMotion::keepEnergy(StepContext& w, std::size_t i)
 {
   const double rest = w.chordEnd(i) - w.motions_[i].x0;
   if (w.motions_[i].frozen || !(rest > 0))
     return;
-  const EnergyCheck energy{&w, i, rest};
+  const StepContext::EnergyCheck energy{&w, i, rest};
   // (the chord's own end is what counts: one cut short of where its energy runs out
   // ends off the floor)
   const double full = energy.chordSpeedSquared(w.motions_[i].b);
@@ -48,7 +48,7 @@ void World::ChordMotion::keepEnergy(World& w, std::size_t i)
   shorten(w, i, energy, energy.speedSquared(0.0), full);
 }
 
-void World::ChordMotion::shorten(World& w, std::size_t i, const EnergyCheck& energy, double start, double full)
+void StepState::ChordMotion::shorten(StepContext& w, std::size_t i, const StepContext::EnergyCheck& energy, double start, double full)
 {
   // The chord ends higher than the ball's energy reaches (a turning point, or a ball in
   // a pile whose constraints turned its motion uphill): it stops where the energy runs
@@ -73,14 +73,14 @@ void World::ChordMotion::shorten(World& w, std::size_t i, const EnergyCheck& ene
   slideDownhill(w, energy, start);
 }
 
-double World::ChordMotion::energyRunsOut(const World& w, const EnergyCheck& energy, double start, double full)
+double StepState::ChordMotion::energyRunsOut(const StepContext& w, const StepContext::EnergyCheck& energy, double start, double full)
 {
   // the root of the speed on [0, 1], where it is still >= 0
   return bracketedRoot([&](double s) { return energy.speedSquared(s); }, [](double v) { return v >= 0 ? 1 : -1; },
                        0.0, 1.0, start, full, w.settings_.energy_root_iterations, w.settings_.energy_root_width);
 }
 
-void World::ChordMotion::slideDownhill(World& w, const EnergyCheck& energy, double start)
+void StepState::ChordMotion::slideDownhill(StepContext& w, const StepContext::EnergyCheck& energy, double start)
 {
   const std::size_t i = energy.i;
   const double rest = energy.rest;
@@ -88,7 +88,7 @@ void World::ChordMotion::slideDownhill(World& w, const EnergyCheck& energy, doub
   // A motion that starts at an impact inside the step starts on the chord, below or
   // above the floor; where the floor above it is higher than the energy reaches, the
   // ball slides downhill from there instead, as far as it takes to be low enough.
-  // Where it finds no way, its energy has run out where it is: it stops (World::stop()).
+  // Where it finds no way, its energy has run out where it is: it stops (StepContext::stop()).
   const Vec3& p0 = w.startPosition(i);
   const Vec3 foot = w.onFloor(i, p0);
   const Vec3 downhill = tangentPart(w.gravity_, w.floorNormalAt(i, foot));
@@ -131,13 +131,13 @@ void World::ChordMotion::slideDownhill(World& w, const EnergyCheck& energy, doub
   m.b = found;
 }
 
-FrictionLaw World::ChordMotion::lawUnder(const World& w, const Vec3& n) const
+FrictionLaw StepState::ChordMotion::lawUnder(const StepContext& w, const Vec3& n) const
 {
   return FrictionLaw(*w.scene_.friction, n, w.gravity_, tangentPart(w.gravity_, n), w.settings_.slip_tolerance,
                      w.settings_.resting_speed_floor);
 }
 
-void World::ChordMotion::rollOn(World& w, std::size_t i, const FrictionLaw& law) const
+void StepState::ChordMotion::rollOn(StepContext& w, std::size_t i, const FrictionLaw& law) const
 {
   // (the normal turned under it since its phase began: the discrete path's turn, not a
   // slip; its spin about the normal is carried over, so |w| and the energy stay)
@@ -145,12 +145,12 @@ void World::ChordMotion::rollOn(World& w, std::size_t i, const FrictionLaw& law)
   sm.w0 = law.rollingSpin(w.balls_[i].radius, w.startVelocity(i), sm.w0, sm.w0.dot(sm.normal));
 }
 
-bool World::ChordMotion::drivenMotion(World&, std::size_t, const FrictionLaw&) const
+bool StepState::ChordMotion::drivenMotion(StepContext&, std::size_t, const FrictionLaw&) const
 {
   return true;  // a chord under its pull
 }
 
-bool World::ChordMotion::stillMotion(World& w, std::size_t i, const FrictionLaw&) const
+bool StepState::ChordMotion::stillMotion(StepContext& w, std::size_t i, const FrictionLaw&) const
 {
   // It stays where it is, with no speed (a chord's point below the floor, where a
   // phase ended mid-step, is not lifted onto it for nothing).
@@ -159,7 +159,7 @@ bool World::ChordMotion::stillMotion(World& w, std::size_t i, const FrictionLaw&
   return false;
 }
 
-Vec3 World::ChordMotion::phaseVelocity(const World& w, std::size_t i, double x, const Vec3& position,
+Vec3 StepState::ChordMotion::phaseVelocity(const StepContext& w, std::size_t i, double x, const Vec3& position,
                                        const Vec3& normal) const
 {
   const SpinMotion& sm = w.spin_motions_[i];
@@ -168,7 +168,7 @@ Vec3 World::ChordMotion::phaseVelocity(const World& w, std::size_t i, double x, 
                                     w.speedSquaredAt(i, x, position));
 }
 
-double World::ChordMotion::speedSquaredAt(const World& w, std::size_t i, double x, const Vec3& p) const
+double StepState::ChordMotion::speedSquaredAt(const StepContext& w, std::size_t i, double x, const Vec3& p) const
 {
   const Motion& m = w.motions_[i];
   const Vec3& v0 = w.startVelocity(i);
@@ -191,7 +191,7 @@ double World::ChordMotion::speedSquaredAt(const World& w, std::size_t i, double 
   return v0.squaredNorm() + 2 * w.gravity_.dot(moved) - spin_change - 2 * loss;
 }
 
-Vec3 World::ChordMotion::spinThere(const World& w, std::size_t i, const Vec3& normal, const Vec3& v,
+Vec3 StepState::ChordMotion::spinThere(const StepContext& w, std::size_t i, const Vec3& normal, const Vec3& v,
                                    const Vec3& spin, bool rolling) const
 {
   // (a rolling ball rolls with the velocity its energy gives it there, under the normal

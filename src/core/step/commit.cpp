@@ -15,7 +15,7 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-void World::commitToFloor(bool predict_next)
+void StepContext::commitToFloor(bool predict_next)
 {
   // Without resting contacts every ball is finished in one pass; with them, velocities
   // are settled across the contacts first.
@@ -61,7 +61,7 @@ void World::commitToFloor(bool predict_next)
       predictMotion(i);
 }
 
-World::Committed World::commitBall(std::size_t i, bool settle)
+StepContext::Committed StepContext::commitBall(std::size_t i, bool settle)
 {
   Ball& ball = balls_[i];
   // (a ball asleep stays where it is, on the foot point it had; the floor's normal there
@@ -102,7 +102,7 @@ World::Committed World::commitBall(std::size_t i, bool settle)
   return {moved, end.normal};
 }
 
-void World::settleRestingVelocities()
+void StepContext::settleRestingVelocities()
 {
   // Resting contacts keep no closing speed into the step that follows.
   ContactGroup& group = endGroup();
@@ -124,7 +124,7 @@ void World::settleRestingVelocities()
   }
 }
 
-void World::roll(std::size_t i, const Vec3& normal, const Vec3& d)
+void StepContext::roll(std::size_t i, const Vec3& normal, const Vec3& d)
 {
   if (friction_)
   {

@@ -8,7 +8,7 @@
 
 namespace ball_collision_sim::core
 {
-struct World::ContactGroup
+struct StepState::ContactGroup
 {
   std::vector<Vec3> u;
   std::vector<double> inv_mass;

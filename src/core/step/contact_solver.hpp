@@ -3,7 +3,7 @@
 // loop). Each contact's impulse is at least zero (it pushes, never pulls) and is the
 // least that leaves it no closing; a wall is a contact with a body that does not move.
 // It works on any vector per body: velocities [m/s], or a step's motions [m per unit of
-// the step]. Reads and writes only what it is given; knows nothing of the World.
+// the step]. Reads and writes only what it is given; knows nothing of the StepContext.
 #pragma once
 
 #include "ball_collision_sim/core/types.hpp"

@@ -15,7 +15,7 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-void World::wakeGroup(std::size_t first)
+void StepContext::wakeGroup(std::size_t first)
 {
   std::vector<std::size_t> todo{first};
   while (!todo.empty())
@@ -38,7 +38,7 @@ void World::wakeGroup(std::size_t first)
   }
 }
 
-bool World::wallBetween(const Ball& a, const Ball& b) const
+bool StepContext::wallBetween(const Ball& a, const Ball& b) const
 {
   // Balls that touch one another meet where their centres' line crosses; balls on the
   // two sides of a wall meet the wall there instead.
@@ -47,7 +47,7 @@ bool World::wallBetween(const Ball& a, const Ball& b) const
   return std::any_of(walls_.begin(), walls_.end(), [&](const Wall& wall) { return wall.distance(middle) < near; });
 }
 
-void World::wakeAll()
+void StepContext::wakeAll()
 {
   // (a ball awake keeps its count of still steps: the edit did not move it, and a step
   // that it moves in starts the count again)
@@ -60,7 +60,7 @@ void World::wakeAll()
   motions_ready_ = false;  // (a prediction made while they slept)
 }
 
-void World::wakeTouching(const Vec3& position, double radius)
+void StepContext::wakeTouching(const Vec3& position, double radius)
 {
   for (Ball& ball : balls_)
     if (ball.asleep && (ball.position - position).norm() <= ball.radius + radius + settings_.touch_slack)
@@ -72,7 +72,7 @@ void World::wakeTouching(const Vec3& position, double radius)
   motions_ready_ = false;
 }
 
-void World::sleepStillGroups()
+void StepContext::sleepStillGroups()
 {
   // Groups: balls joined by the step's resting contacts that touch at its end (endGroup()'s
   // rows), by union-find over the visiting order (its smallest index stands for a group;
@@ -127,7 +127,7 @@ void World::sleepStillGroups()
   stats_.sleeping_balls = asleep;
 }
 
-void World::stop(std::size_t i)
+void StepContext::stop(std::size_t i)
 {
   ++stats_.stopped_balls;
   motions_[i].b = startVelocity(i) = Vec3::Zero();
@@ -137,17 +137,17 @@ void World::stop(std::size_t i)
     constrainSpin(i);
 }
 
-double World::EnergyCheck::speedSquaredWith(const Vec3& b) const
+double StepContext::EnergyCheck::speedSquaredWith(const Vec3& b) const
 {
   return world->speedSquaredAt(i, world->chordEnd(i), world->onFloor(i, world->startPosition(i) + rest * b));
 }
 
-double World::EnergyCheck::speedSquared(double s) const
+double StepContext::EnergyCheck::speedSquared(double s) const
 {
   return speedSquaredWith(s * world->motions_[i].b);
 }
 
-double World::EnergyCheck::chordSpeedSquared(const Vec3& b) const
+double StepContext::EnergyCheck::chordSpeedSquared(const Vec3& b) const
 {
   // (a chord's: its end is off the floor)
   if (world->friction_)

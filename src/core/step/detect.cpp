@@ -12,7 +12,7 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-void World::buildBroadPhase()
+void StepContext::buildBroadPhase()
 {
   queue_.start(&balls_);
   grid_.build();  // on the swept boxes of the predicted motions
@@ -22,7 +22,7 @@ void World::buildBroadPhase()
   grid_.markObstacles(wall_boxes_);
 }
 
-void World::findFirstImpacts()
+void StepContext::findFirstImpacts()
 {
   grid_.forEachNearObstacle([&](std::uint32_t i) { detectWalls(i); });
   grid_.forEachPair([&](std::uint32_t i, std::uint32_t j) { detectBall(i, j); });
@@ -39,7 +39,7 @@ void World::findFirstImpacts()
       queueLanding(i);
 }
 
-void World::detect(std::size_t i)
+void StepContext::detect(std::size_t i)
 {
   detectWalls(i);
   grid_.query(static_cast<std::uint32_t>(i), [&](std::uint32_t j) { detectBall(i, j); });
@@ -54,7 +54,7 @@ void World::detect(std::size_t i)
     queueLanding(i);
 }
 
-void World::detectWalls(std::size_t i)
+void StepContext::detectWalls(std::size_t i)
 {
   const Motion& m = motions_[i];
   if (motions_[i].frozen || !grid_.nearObstacle(static_cast<std::uint32_t>(i)))
@@ -75,7 +75,7 @@ void World::detectWalls(std::size_t i)
   }
 }
 
-void World::detectBall(std::size_t i, std::size_t j)
+void StepContext::detectBall(std::size_t i, std::size_t j)
 {
   // Always in index order, so that the same pair gives the same bits whoever asks.
   const std::size_t a = std::min(i, j), b = std::max(i, j);

@@ -1,4 +1,4 @@
-// Motion on a plane or without a floor (World::ExactMotion): a free ball's path is exact
+// Motion on a plane or without a floor (StepState::ExactMotion): a free ball's path is exact
 // (a parabola under gravity's part along the plane, a line where it has none); a ball
 // under its contacts moves on its chord in the plane, whose energy is linear along it.
 // Reads and writes motions_ and the start velocities of friction phases.
@@ -8,7 +8,7 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-const World::FloorMotion& World::FloorMotion::of(const Ground& ground)
+const StepState::FloorMotion& StepState::FloorMotion::of(const Ground& ground)
 {
   static const ExactMotion exact;
   static const ChordMotion chord;
@@ -17,7 +17,7 @@ const World::FloorMotion& World::FloorMotion::of(const Ground& ground)
   return exact;
 }
 
-void World::ExactMotion::predict(World& w, std::size_t i, const Vec3& v) const
+void StepState::ExactMotion::predict(StepContext& w, std::size_t i, const Vec3& v) const
 {
   Motion& m = w.motions_[i];
   if (w.free_parabolas_)
@@ -29,7 +29,7 @@ void World::ExactMotion::predict(World& w, std::size_t i, const Vec3& v) const
   m.b = w.predictedEnd(i, w.startPosition(i), v, w.dt_) - w.startPosition(i);
 }
 
-void World::ExactMotion::start(World& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const
+void StepState::ExactMotion::start(StepContext& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const
 {
   Motion& m = w.motions_[i];
   if (w.free_parabolas_)
@@ -44,17 +44,17 @@ void World::ExactMotion::start(World& w, std::size_t i, double x, const Vec3& po
   m.b = rest > 0 ? Vec3((w.predictedEnd(i, position, v0, rest * w.dt_) - position) / rest) : Vec3(w.dt_ * v0);
 }
 
-FrictionLaw World::ExactMotion::lawUnder(const World& w, const Vec3&) const
+FrictionLaw StepState::ExactMotion::lawUnder(const StepContext& w, const Vec3&) const
 {
   return *w.friction_;  // the plane's (or no floor's) own
 }
 
-bool World::ExactMotion::stillMotion(World& w, std::size_t i, const FrictionLaw& law) const
+bool StepState::ExactMotion::stillMotion(StepContext& w, std::size_t i, const FrictionLaw& law) const
 {
   return drivenMotion(w, i, law);  // (its phase's parabola, of no acceleration along the floor)
 }
 
-bool World::ExactMotion::drivenMotion(World& w, std::size_t i, const FrictionLaw& law) const
+bool StepState::ExactMotion::drivenMotion(StepContext& w, std::size_t i, const FrictionLaw& law) const
 {
   // (its path is a parabola on the plane: a part of v into the floor, which a contact's
   // projection out of a leaning wall can leave, is the floor's)
@@ -65,12 +65,12 @@ bool World::ExactMotion::drivenMotion(World& w, std::size_t i, const FrictionLaw
   return false;
 }
 
-Vec3 World::ExactMotion::phaseVelocity(const World& w, std::size_t i, double x, const Vec3&, const Vec3&) const
+Vec3 StepState::ExactMotion::phaseVelocity(const StepContext& w, std::size_t i, double x, const Vec3&, const Vec3&) const
 {
   return SpinPhase::constantlyAccelerated(w, i, x);
 }
 
-double World::ExactMotion::speedSquaredAt(const World& w, std::size_t i, double, const Vec3& p) const
+double StepState::ExactMotion::speedSquaredAt(const StepContext& w, std::size_t i, double, const Vec3& p) const
 {
   return w.pulledSpeedSquared(i, p);
 }

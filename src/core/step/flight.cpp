@@ -19,12 +19,12 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-double World::floorRestitution() const
+double StepContext::floorRestitution() const
 {
   return scene_.floor && scene_.floor->restitution ? *scene_.floor->restitution : scene_.restitution;
 }
 
-void World::startFlight(std::size_t i)
+void StepContext::startFlight(std::size_t i)
 {
   Motion& m = motions_[i];
   m.b = dt_ * startVelocity(i);
@@ -38,12 +38,12 @@ void World::startFlight(std::size_t i)
   }
 }
 
-Vec3 World::flightVelocity(std::size_t i, double x) const
+Vec3 StepContext::flightVelocity(std::size_t i, double x) const
 {
   return startVelocity(i) + ((x - motions_[i].x0) * dt_) * gravity_;
 }
 
-void World::liftOff(std::size_t i, double x)
+void StepContext::liftOff(std::size_t i, double x)
 {
   balls_[i].flying = true;
   if (!friction_)
@@ -53,7 +53,7 @@ void World::liftOff(std::size_t i, double x)
   spins_[i].kind = MotionKind::kFlying;
 }
 
-bool World::leavesFloor(std::size_t i, const Vec3& position, const Vec3& v) const
+bool StepContext::leavesFloor(std::size_t i, const Vec3& position, const Vec3& v) const
 {
   if (!ground_.bends() || !(v.squaredNorm() > 0))
     return false;  // (a plane holds whatever moves along it)
@@ -66,7 +66,7 @@ bool World::leavesFloor(std::size_t i, const Vec3& position, const Vec3& v) cons
   return leavesFloorAt(i, foot.uv, foot.normal, v);
 }
 
-bool World::leavesFloorAt(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const
+bool StepContext::leavesFloorAt(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const
 {
   if (!ground_.bends())
     return false;
@@ -79,7 +79,7 @@ bool World::leavesFloorAt(std::size_t i, const Vec2& uv, const Vec3& n, const Ve
   return floorPush(i, uv, n, v) < 0;
 }
 
-double World::floorPush(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const
+double StepContext::floorPush(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const
 {
   const double g_n = -gravity_.dot(n);
   const Vec3 t = v - v.dot(n) * n;
@@ -105,7 +105,7 @@ double World::floorPush(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3
   return kappa_s / bend * v.squaredNorm() + g_n;
 }
 
-void World::queueTakeOff(std::size_t i)
+void StepContext::queueTakeOff(std::size_t i)
 {
   const Motion& m = motions_[i];
   if (!ground_.bends() || balls_[i].flying || m.frozen || grouped(i))
@@ -139,7 +139,7 @@ void World::queueTakeOff(std::size_t i)
   queue_.push(Event{x, k, k, m.epoch, m.epoch, false, WallFeature::kFace, true, MotionEnd::kTakeOff, Vec3::Zero()});
 }
 
-void World::resolveTakeOff(const Event& event)
+void StepContext::resolveTakeOff(const Event& event)
 {
   const std::size_t i = event.i;
   const double x = event.x;
@@ -156,12 +156,12 @@ void World::resolveTakeOff(const Event& event)
   detect(i);
 }
 
-std::optional<double> World::landingIn(std::size_t i, double rest) const
+std::optional<double> StepContext::landingIn(std::size_t i, double rest) const
 {
   return ground_.bends() ? landingOverCurve(i, rest) : landingOverPlane(i, rest);
 }
 
-std::optional<double> World::landingOverPlane(std::size_t i, double rest) const
+std::optional<double> StepContext::landingOverPlane(std::size_t i, double rest) const
 {
   // The height is the quadratic h(s) = h0 + B s + A s^2 in s = x - x0: its root where it
   // falls.
@@ -194,7 +194,7 @@ std::optional<double> World::landingOverPlane(std::size_t i, double rest) const
   return std::max(s, 0.0);
 }
 
-std::optional<double> World::landingOverCurve(std::size_t i, double rest) const
+std::optional<double> StepContext::landingOverCurve(std::size_t i, double rest) const
 {
   // The height sampled along the flight: the first sample more than round-off below the
   // floor closes a bracket, whose root is then found to neighbouring doubles. (A flight
@@ -228,7 +228,7 @@ std::optional<double> World::landingOverCurve(std::size_t i, double rest) const
   return std::nullopt;
 }
 
-void World::queueLanding(std::size_t i)
+void StepContext::queueLanding(std::size_t i)
 {
   if (!balls_[i].flying || motions_[i].frozen || !ground_.floor())
     return;
@@ -246,7 +246,7 @@ void World::queueLanding(std::size_t i)
                     MotionEnd::kLanding, Vec3::Zero()});
 }
 
-void World::resolveLanding(const Event& event)
+void StepContext::resolveLanding(const Event& event)
 {
   const std::size_t i = event.i;
   const double x = event.x;

@@ -14,19 +14,19 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-const Vec3& World::pathTerm(std::size_t i) const
+const Vec3& StepContext::pathTerm(std::size_t i) const
 {
   if (balls_[i].flying)
     return flight_c_;
   return friction_ ? spin_motions_[i].c : path_c_;
 }
 
-Vec3 World::spinOf(const BallDef& def, const Vec3& n)
+Vec3 StepContext::spinOf(const BallDef& def, const Vec3& n)
 {
   return def.angular_velocity ? *def.angular_velocity : Vec3(n.cross(def.velocity) / def.radius);
 }
 
-void World::recordKind(std::size_t i, double x)
+void StepContext::recordKind(std::size_t i, double x)
 {
   SpinMotion& sm = spin_motions_[i];
   if (sm.kind == sm.reported)
@@ -36,31 +36,31 @@ void World::recordKind(std::size_t i, double x)
   sm.reported = sm.kind;
 }
 
-FrictionLaw World::frictionUnder(const Vec3& n) const
+FrictionLaw StepContext::frictionUnder(const Vec3& n) const
 {
   return floor_motion_->lawUnder(*this, n);
 }
 
-double World::speedSquaredAt(std::size_t i, double x, const Vec3& p) const
+double StepContext::speedSquaredAt(std::size_t i, double x, const Vec3& p) const
 {
   if (friction_)
     return spin_motions_[i].phase->speedSquaredAt(*this, i, x, p);
   return pulledSpeedSquared(i, p);
 }
 
-double World::pulledSpeedSquared(std::size_t i, const Vec3& p) const
+double StepContext::pulledSpeedSquared(std::size_t i, const Vec3& p) const
 {
   return startVelocity(i).squaredNorm() + 2 * pullOf(i).dot(p - startPosition(i));
 }
 
-const Vec3& World::pullOf(std::size_t i) const
+const Vec3& StepContext::pullOf(std::size_t i) const
 {
   if (friction_)
     return spin_motions_[i].phase->pull(*this, spin_motions_[i]);
   return gravity_;
 }
 
-bool World::startFriction(std::size_t i, double x, bool record, bool impact)
+bool StepContext::startFriction(std::size_t i, double x, bool record, bool impact)
 {
   SpinMotion& sm = spin_motions_[i];
   const BallSpin& spin = spins_[i];
@@ -95,7 +95,7 @@ bool World::startFriction(std::size_t i, double x, bool record, bool impact)
   return sm.phase->startMotion(*this, i, law);
 }
 
-void World::keepSpin(std::size_t i)
+void StepContext::keepSpin(std::size_t i)
 {
   SpinMotion& sm = spin_motions_[i];
   sm.alpha = sm.a = sm.c = Vec3::Zero();
@@ -104,7 +104,7 @@ void World::keepSpin(std::size_t i)
   sm.phase = &SpinPhase::kept();
 }
 
-void World::constrainSpin(std::size_t i)
+void StepContext::constrainSpin(std::size_t i)
 {
   keepSpin(i);
   SpinMotion& sm = spin_motions_[i];
@@ -119,20 +119,20 @@ void World::constrainSpin(std::size_t i)
   sm.phase = &SpinPhase::constrained();
 }
 
-Vec3 World::spinAtEvent(std::size_t i, double x, const Vec3& normal, const Vec3& v) const
+Vec3 StepContext::spinAtEvent(std::size_t i, double x, const Vec3& normal, const Vec3& v) const
 {
   const SpinMotion& sm = spin_motions_[i];
   return floor_motion_->spinThere(*this, i, normal, v, spinAt(i, x), sm.phase->rollsAtEvent(sm));
 }
 
-Vec3 World::spinAt(std::size_t i, double x) const
+Vec3 StepContext::spinAt(std::size_t i, double x) const
 {
   const SpinMotion& sm = spin_motions_[i];
   const double t = (x - motions_[i].x0) * dt_;
   return sm.phase->spinAt(sm, t);
 }
 
-void World::queueTransition(std::size_t i)
+void StepContext::queueTransition(std::size_t i)
 {
   const SpinMotion& sm = spin_motions_[i];
   if (!sm.phase->ownsMotion() || motions_[i].frozen || !(sm.x_end <= 1))
@@ -142,7 +142,7 @@ void World::queueTransition(std::size_t i)
                      Vec3::Zero()});
 }
 
-void World::ballBallFriction(const PairContact& c, double normal_impulse, Vec3& va, Vec3& vb)
+void StepContext::ballBallFriction(const PairContact& c, double normal_impulse, Vec3& va, Vec3& vb)
 {
   Vec3& wa = spin_motions_[c.i].w0;
   Vec3& wb = spin_motions_[c.j].w0;
@@ -173,7 +173,7 @@ void World::ballBallFriction(const PairContact& c, double normal_impulse, Vec3& 
   wb += (c.inv_b / (kb * rb)) * c.n.cross(impulse);
 }
 
-void World::ballWallFriction(std::size_t i, const Vec3& n, const Vec3& floor_normal, double normal_impulse, Vec3& v)
+void StepContext::ballWallFriction(std::size_t i, const Vec3& n, const Vec3& floor_normal, double normal_impulse, Vec3& v)
 {
   Vec3& w = spin_motions_[i].w0;
   const double mu = scene_.friction->wall;
@@ -195,7 +195,7 @@ void World::ballWallFriction(std::size_t i, const Vec3& n, const Vec3& floor_nor
   w += (inv / (k * r)) * n.cross(impulse);
 }
 
-void World::turn(std::size_t i, const Vec3& angle)
+void StepContext::turn(std::size_t i, const Vec3& angle)
 {
   const double a = angle.norm();
   if (!(a > 0))

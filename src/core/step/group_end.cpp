@@ -14,7 +14,7 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-const std::vector<std::uint32_t>& World::linksInKeyOrder()
+const std::vector<std::uint32_t>& StepContext::linksInKeyOrder()
 {
   if (link_order_.size() != links_.size())
   {
@@ -28,7 +28,7 @@ const std::vector<std::uint32_t>& World::linksInKeyOrder()
   return link_order_;
 }
 
-World::ContactGroup& World::endGroup()
+StepState::ContactGroup& StepContext::endGroup()
 {
   ContactGroup& group = contact_group_.get();
   group.clear();
@@ -69,7 +69,7 @@ World::ContactGroup& World::endGroup()
   }
   return group;
 }
-void World::boundGroupEnergies()
+void StepContext::boundGroupEnergies()
 {
   if (group_parent_.empty())
     return;
@@ -101,7 +101,7 @@ void World::boundGroupEnergies()
   }
 }
 
-double World::separationRows()
+double StepContext::separationRows()
 {
   ContactGroup& group = contact_group_.get();
   group.clear();
@@ -145,7 +145,7 @@ double World::separationRows()
   return deepest;
 }
 
-void World::separateAtEnd()
+void StepContext::separateAtEnd()
 {
   // Each pass: the step's contacts as rows on the balls' moves along the floor, the
   // overlapping ones to open by their depth, the others to close by no more than their

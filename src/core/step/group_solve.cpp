@@ -14,7 +14,7 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-void World::solveGroup(std::size_t i, double x)
+void StepContext::solveGroup(std::size_t i, double x)
 {
   gatherGroup(i);
   startMembers(x);
@@ -27,7 +27,7 @@ void World::solveGroup(std::size_t i, double x)
   finishGroup(x, span);
 }
 
-void World::gatherGroup(std::size_t i)
+void StepContext::gatherGroup(std::size_t i)
 {
   const std::uint32_t root = groupOf(i);
   members_.clear();
@@ -49,7 +49,7 @@ void World::gatherGroup(std::size_t i)
   member_rolls_.resize(count);
 }
 
-void World::startMembers(double x)
+void StepContext::startMembers(double x)
 {
   ContactGroup& group = contact_group_.get();
   group.clear();
@@ -83,7 +83,7 @@ void World::startMembers(double x)
   }
 }
 
-double World::groupSpan(double x) const
+double StepContext::groupSpan(double x) const
 {
   // The rest of the step, or on a curved floor, as much of it as keeps each member's chord
   // within what the floor allows (Ground::longestChord()): the group is solved again where
@@ -102,7 +102,7 @@ double World::groupSpan(double x) const
   return span;
 }
 
-void World::makeRows(double span)
+void StepContext::makeRows(double span)
 {
   ContactGroup& group = contact_group_.get();
   row_links_.clear();
@@ -163,7 +163,7 @@ void World::makeRows(double span)
   row_links_.swap(links);
 }
 
-void World::solveRows(double span)
+void StepContext::solveRows(double span)
 {
   ContactGroup& group = contact_group_.get();
   const std::size_t count = members_.size();
@@ -202,7 +202,7 @@ void World::solveRows(double span)
     links_[row_links_[r]].rate = group.rows[r].impulse / span;
 }
 
-void World::solveGroupContacts(ContactGroup& group, double span, double slack)
+void StepContext::solveGroupContacts(ContactGroup& group, double span, double slack)
 {
   const std::size_t count = members_.size();
   const auto project = [&](std::vector<Vec3>& u) {
@@ -255,12 +255,12 @@ void World::solveGroupContacts(ContactGroup& group, double span, double slack)
   }
 }
 
-bool World::rollsInGroup(std::size_t i, const Vec3& n) const
+bool StepContext::rollsInGroup(std::size_t i, const Vec3& n) const
 {
   return friction_ && frictionUnder(n).holdsRolling(spins_[i].inertia);
 }
 
-void World::finishGroup(double x, double span)
+void StepContext::finishGroup(double x, double span)
 {
   ContactGroup& group = contact_group_.get();
   for (std::size_t m = 0; m < members_.size(); ++m)

@@ -15,7 +15,7 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-Vec3 World::positionAt(std::size_t i, double x) const
+Vec3 StepContext::positionAt(std::size_t i, double x) const
 {
   const Motion& m = motions_[i];
   const Vec3 p = startPosition(i) + (x - m.x0) * m.b;
@@ -25,23 +25,23 @@ Vec3 World::positionAt(std::size_t i, double x) const
   return p + (s * s) * pathTerm(i);
 }
 
-Vec3 World::rateAt(std::size_t i, double x) const
+Vec3 StepContext::rateAt(std::size_t i, double x) const
 {
   const Motion& m = motions_[i];
   return motions_[i].accelerates ? Vec3(m.b + (2 * (x - m.x0)) * pathTerm(i)) : m.b;
 }
 
-Vec3 World::parabolaOf(std::size_t i) const
+Vec3 StepContext::parabolaOf(std::size_t i) const
 {
   return motions_[i].accelerates ? pathTerm(i) : Vec3::Zero();
 }
 
-Vec3 World::floorNormalAt(std::size_t i, const Vec3& position) const
+Vec3 StepContext::floorNormalAt(std::size_t i, const Vec3& position) const
 {
   return ground_.normalAt(position, guessOf(i));
 }
 
-Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
+Vec3 StepContext::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
   if (balls_[i].flying)
     return flightVelocity(i, x);  // (off the floor)
@@ -53,18 +53,18 @@ Vec3 World::onFloorVelocity(std::size_t i, double x, const Vec3& position, const
   return ground_.velocityAt(startVelocity(i), (x - m.x0) * dt_, startPosition(i), position, normal);
 }
 
-double World::stillSpeed(const Vec3& floor_normal) const
+double StepContext::stillSpeed(const Vec3& floor_normal) const
 {
   return settings_.resting_steps * dt_ * ground_.gravityAlong(floor_normal) + settings_.resting_speed_floor;
 }
 
-Vec3 World::wallPush(const Vec3& n, const Vec3& floor_normal) const
+Vec3 StepContext::wallPush(const Vec3& n, const Vec3& floor_normal) const
 {
   const Vec3 along = ground_.along(n, floor_normal);
   return along.squaredNorm() < settings_.wall_along_floor_squared ? n : Vec3(along.normalized());
 }
 
-double World::restingSpeed(const Vec3& floor_normal, double restitution, const Vec3& position, double radius) const
+double StepContext::restingSpeed(const Vec3& floor_normal, double restitution, const Vec3& position, double radius) const
 {
   // Closing speeds of round-off: the floor's, and what a ball pulled along the floor at
   // a reaches falling through a gap of the positions' round-off, sqrt(2 a gap) (two
@@ -83,13 +83,13 @@ double World::restingSpeed(const Vec3& floor_normal, double restitution, const V
   return settings_.resting_steps * dt_ * a * (1 - restitution) / (2 * restitution) + roundoff;
 }
 
-double World::pairRestingSpeed(const Vec3& na, const Vec3& pa, double ra, const Vec3& nb, const Vec3& pb,
+double StepContext::pairRestingSpeed(const Vec3& na, const Vec3& pa, double ra, const Vec3& nb, const Vec3& pb,
                                double rb) const
 {
   return std::max(restingSpeed(na, scene_.restitution, pa, ra), restingSpeed(nb, scene_.restitution, pb, rb));
 }
 
-void World::beginMotion(std::size_t i, double x, const Vec3& position, const Vec3& v0)
+void StepContext::beginMotion(std::size_t i, double x, const Vec3& position, const Vec3& v0)
 {
   Motion& m = motions_[i];
   m.accelerates = false;
@@ -108,7 +108,7 @@ void World::beginMotion(std::size_t i, double x, const Vec3& position, const Vec
     group_motion_[i] = 0;
 }
 
-void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact)
+void StepContext::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact)
 {
   Motion& m = motions_[i];
   beginMotion(i, x, position, motions_[i].frozen ? Vec3::Zero() : velocity);
@@ -142,7 +142,7 @@ void World::startMotion(std::size_t i, double x, const Vec3& position, const Vec
   floor_motion_->start(*this, i, x, position, startVelocity(i));
 }
 
-void World::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)
+void StepContext::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)
 {
   if (chord_ends_.empty())
     return;  // (paths that do not bend are not chords)
@@ -160,7 +160,7 @@ void World::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)
   m.b = (predictedEnd(i, position, v0, span * dt_) - position) / span;
 }
 
-void World::queueCut(std::size_t i)
+void StepContext::queueCut(std::size_t i)
 {
   const double x = chord_ends_[i];
   if (!(x < 1) || motions_[i].frozen)
@@ -170,7 +170,7 @@ void World::queueCut(std::size_t i)
   queue_.push(Event{x, k, k, epoch, epoch, false, WallFeature::kFace, true, MotionEnd::kCut, Vec3::Zero()});
 }
 
-void World::resolveMotionEnd(const Event& event)
+void StepContext::resolveMotionEnd(const Event& event)
 {
   // The ball goes on from where it is, on the floor, with the velocity and spin there;
   // at its friction phase's end (not a chord's cut) the phase's end is made exact first.
@@ -207,7 +207,7 @@ void World::resolveMotionEnd(const Event& event)
   detect(i);
 }
 
-Vec3 World::onFloor(std::size_t i, const Vec3& q) const
+Vec3 StepContext::onFloor(std::size_t i, const Vec3& q) const
 {
   return ground_.land(q, balls_[i].radius, guessOf(i));
 }

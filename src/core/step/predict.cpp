@@ -10,7 +10,7 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-void World::predictMotions()
+void StepContext::predictMotions()
 {
   static_assert(sizeof(Motion) == 40, "a Motion is its start, its displacement and its counters");
   grid_.start(balls_.size(), ground_.up(), settings_, ground_.spreadsAlongUp());
@@ -26,7 +26,7 @@ void World::predictMotions()
     predictMotion(i, true);
 }
 
-void World::predictMotion(std::size_t i, bool at_step_start)
+void StepContext::predictMotion(std::size_t i, bool at_step_start)
 {
   const Ball& ball = balls_[i];
   Motion& m = motions_[i];
@@ -82,14 +82,14 @@ void World::predictMotion(std::size_t i, bool at_step_start)
                motions_[i].accelerates ? currentBox(i) : sweptBox(ball.position, ball.position + m.b, ball.radius));
 }
 
-Vec3 World::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span)
+Vec3 StepContext::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span)
 {
   // seed (1): ds = dt v + dt^2 g / 2, then back onto the floor, seed (2)-(4)
   const Vec3 q = p + span * v + (0.5 * span * span) * pullOf(i);
   return ground_.landKeepingFoot(q, balls_[i].radius, guessOf(i));
 }
 
-Aabb World::currentBox(std::size_t i) const
+Aabb StepContext::currentBox(std::size_t i) const
 {
   const Motion& m = motions_[i];
   const double rest = 1 - m.x0;

@@ -13,7 +13,7 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-void World::resolveEventsInTimeOrder()
+void StepContext::resolveEventsInTimeOrder()
 {
   while (!queue_.empty())
   {
@@ -47,7 +47,7 @@ void World::resolveEventsInTimeOrder()
   }
 }
 
-void World::resolveBallWall(const Event& event)
+void StepContext::resolveBallWall(const Event& event)
 {
   const std::size_t i = event.i;
   const Wall& wall = walls_[event.j];
@@ -84,7 +84,7 @@ void World::resolveBallWall(const Event& event)
   goOnAfter(event);
 }
 
-void World::wakeOnImpact(std::size_t i, std::size_t j, double closing, double rest_speed)
+void StepContext::wakeOnImpact(std::size_t i, std::size_t j, double closing, double rest_speed)
 {
   // An impact on a sleeping ball (not one that would rest on it) wakes its group; the
   // sleeping ball's velocity is zero.
@@ -92,7 +92,7 @@ void World::wakeOnImpact(std::size_t i, std::size_t j, double closing, double re
     wakeGroup(motions_[j].asleep ? j : i);
 }
 
-void World::resolveBallBall(const Event& event)
+void StepContext::resolveBallBall(const Event& event)
 {
   const std::size_t i = event.i, j = event.j;
   const Ball& a = balls_[i];
@@ -148,7 +148,7 @@ void World::resolveBallBall(const Event& event)
   goOnAfter(event);
 }
 
-void World::goOnAfter(const Event& event)
+void StepContext::goOnAfter(const Event& event)
 {
   const std::size_t i = event.i, j = event.j;
   const bool group_i = grouped(i);
@@ -165,7 +165,7 @@ void World::goOnAfter(const Event& event)
     detect(j);
 }
 
-void World::takeVelocity(std::size_t i, double x, const Vec3& p, const Vec3& normal, const Vec3& before, const Vec3& v)
+void StepContext::takeVelocity(std::size_t i, double x, const Vec3& p, const Vec3& normal, const Vec3& before, const Vec3& v)
 {
   if (!energy_ref_.empty())
     energy_ref_[i] += impulseEnergy(i, x, before, v);
@@ -177,7 +177,7 @@ void World::takeVelocity(std::size_t i, double x, const Vec3& p, const Vec3& nor
     startMotion(i, x, p, v, true);
 }
 
-void World::renewMotion(std::size_t i)
+void StepContext::renewMotion(std::size_t i)
 {
   // What was predicted for this ball before is stale now. Where the 16-bit epoch wraps,
   // the events queued under the one it is back at would pass for current: none is.
@@ -186,7 +186,7 @@ void World::renewMotion(std::size_t i)
   grid_.update(static_cast<std::uint32_t>(i), currentBox(i));
 }
 
-void World::countEvent(std::size_t i)
+void StepContext::countEvent(std::size_t i)
 {
   Motion& m = motions_[i];
   // What was predicted for this ball before is stale now. Where the 16-bit epoch wraps,
@@ -211,7 +211,7 @@ void World::countEvent(std::size_t i)
   grid_.update(static_cast<std::uint32_t>(i), currentBox(i));
 }
 
-void World::recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,
+void StepContext::recordEvent(CollisionEvent::Kind kind, int ball, int other, const Vec3& point, const Vec3& normal,
                         double impulse, double closing, bool resting, const Event& event)
 {
   ++stats_.events;
@@ -233,7 +233,7 @@ void World::recordEvent(CollisionEvent::Kind kind, int ball, int other, const Ve
   events_.push_back(out);
 }
 
-void World::recordEvents(bool record)
+void StepContext::recordEvents(bool record)
 {
   record_events_ = record;
   if (!record)

@@ -21,7 +21,7 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-std::uint32_t World::groupOf(std::size_t i)
+std::uint32_t StepContext::groupOf(std::size_t i)
 {
   if (group_parent_.empty())
     return kNone32;
@@ -33,7 +33,7 @@ std::uint32_t World::groupOf(std::size_t i)
   return k;
 }
 
-void World::startGroups()
+void StepContext::startGroups()
 {
   if (!group_parent_.empty())
     return;
@@ -45,7 +45,7 @@ void World::startGroups()
   group_velocity_.resize(n);
 }
 
-void World::joinGroup(std::size_t i)
+void StepContext::joinGroup(std::size_t i)
 {
   startGroups();
   if (group_parent_[i] != kNone32)
@@ -53,7 +53,7 @@ void World::joinGroup(std::size_t i)
   group_parent_[i] = group_next_[i] = static_cast<std::uint32_t>(i);
 }
 
-void World::mergeGroups(std::size_t i, std::size_t j)
+void StepContext::mergeGroups(std::size_t i, std::size_t j)
 {
   joinGroup(i);
   joinGroup(j);
@@ -64,7 +64,7 @@ void World::mergeGroups(std::size_t i, std::size_t j)
   std::swap(group_next_[a], group_next_[b]);  // (the two rings become one)
 }
 
-bool World::linked(std::size_t i, std::uint32_t other) const
+bool StepContext::linked(std::size_t i, std::uint32_t other) const
 {
   if (first_link_.empty())
     return false;
@@ -78,7 +78,7 @@ bool World::linked(std::size_t i, std::uint32_t other) const
   return false;
 }
 
-void World::link(std::size_t a, std::uint32_t other)
+void StepContext::link(std::size_t a, std::uint32_t other)
 {
   startGroups();
   const auto r = static_cast<std::uint32_t>(links_.size());
@@ -94,7 +94,7 @@ void World::link(std::size_t a, std::uint32_t other)
   links_.push_back(l);
 }
 
-std::uint64_t World::linkKey(std::size_t a, std::uint32_t other) const
+std::uint64_t StepContext::linkKey(std::size_t a, std::uint32_t other) const
 {
   const auto id_a = static_cast<std::uint64_t>(balls_[a].id);
   if (other & kWallRow)
@@ -103,7 +103,7 @@ std::uint64_t World::linkKey(std::size_t a, std::uint32_t other) const
   return (std::min(id_a, id_b) << 32) | std::max(id_a, id_b);
 }
 
-Vec3 World::groupVelocityAt(std::size_t i, double x) const
+Vec3 StepContext::groupVelocityAt(std::size_t i, double x) const
 {
   // (the span's impulses, gravity's and the contacts', spread evenly over it)
   const Motion& m = motions_[i];
@@ -114,7 +114,7 @@ Vec3 World::groupVelocityAt(std::size_t i, double x) const
   return group_velocity_[i] + ((x - m.x0) / span) * (solved - group_velocity_[i]);
 }
 
-double World::impulseEnergy(std::size_t i, double x, const Vec3& before, const Vec3& after) const
+double StepContext::impulseEnergy(std::size_t i, double x, const Vec3& before, const Vec3& after) const
 {
   // (a member of a group has at x the velocity the group's spread impulses give it, not
   // its chord's: the impulse's change is added to that)
@@ -122,7 +122,7 @@ double World::impulseEnergy(std::size_t i, double x, const Vec3& before, const V
   return 0.5 * balls_[i].mass * ((base + (after - before)).squaredNorm() - base.squaredNorm());
 }
 
-void World::takeImpulse(std::size_t i, double x, const Vec3& position, const Vec3& dv)
+void StepContext::takeImpulse(std::size_t i, double x, const Vec3& position, const Vec3& dv)
 {
   const Vec3 v = groupVelocityAt(i, x) + dv;
   beginMotion(i, x, position, v);
@@ -131,7 +131,7 @@ void World::takeImpulse(std::size_t i, double x, const Vec3& position, const Vec
   group_motion_[i] = 1;
 }
 
-void World::formRestingGroups()
+void StepContext::formRestingGroups()
 {
   const std::size_t n = balls_.size();
   // (the groups' per-ball data is made when the step links its first contact: a step
@@ -171,7 +171,7 @@ void World::formRestingGroups()
       solveGroup(i, 0.0);
 }
 
-double World::speculativeReach(double rest_speed, double pull) const
+double StepContext::speculativeReach(double rest_speed, double pull) const
 {
   // Speculative contacts: a pair or wall that closes no faster than it rests, near enough
   // to close its gap within the step (at its resting speed, and what gravity along the
@@ -180,7 +180,7 @@ double World::speculativeReach(double rest_speed, double pull) const
   return dt_ * (rest_speed + dt_ * pull);
 }
 
-void World::linkRestingWalls(double reach)
+void StepContext::linkRestingWalls(double reach)
 {
   const double touch = settings_.touch_slack;
   grid_.forEachNearObstacle([&](std::uint32_t i) {
@@ -212,7 +212,7 @@ void World::linkRestingWalls(double reach)
   });
 }
 
-void World::linkRestingPairs(double reach)
+void StepContext::linkRestingPairs(double reach)
 {
   const double touch = settings_.touch_slack;
   grid_.forEachPair([&](std::uint32_t i, std::uint32_t j) {

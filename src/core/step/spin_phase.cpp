@@ -1,5 +1,5 @@
 // The five ways a ball's motion and spin go within the step under friction
-// (World::SpinPhase): kept, constrained, frictionless, still, driven.
+// (StepState::SpinPhase): kept, constrained, frictionless, still, driven.
 // Reads motions_, spin_motions_, the start velocities, chord ends, gravity and the
 // ground; starting a phase writes the ball's motion (through the floor's motion type,
 // floor_motion_, where it depends on the floor).
@@ -9,38 +9,38 @@
 
 namespace ball_collision_sim::core
 {
-Vec3 World::SpinPhase::velocity(const World& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const
+Vec3 StepState::SpinPhase::velocity(const StepContext& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
   const Motion& m = w.motions_[i];
   return w.ground_.velocityAt(w.startVelocity(i), (x - m.x0) * w.dt_, w.startPosition(i), position, normal);
 }
 
-double World::SpinPhase::chordSpeedSquared(const World& w, std::size_t i, double rest, const Vec3& b) const
+double StepState::SpinPhase::chordSpeedSquared(const StepContext& w, std::size_t i, double rest, const Vec3& b) const
 {
   return w.linearChordSpeedSquared(i, rest, b);
 }
 
-Vec3 World::SpinPhase::constantlyAccelerated(const World& w, std::size_t i, double x)
+Vec3 StepState::SpinPhase::constantlyAccelerated(const StepContext& w, std::size_t i, double x)
 {
   return w.startVelocity(i) + ((x - w.motions_[i].x0) * w.dt_) * w.spin_motions_[i].a;
 }
 
-World::SpinMotion::SpinMotion() : phase(&SpinPhase::kept()) {}
+StepState::SpinMotion::SpinMotion() : phase(&SpinPhase::kept()) {}
 
 /// Kept: no motion of its own, its spin as it was.
-struct World::SpinPhase::Kept final : World::SpinPhase
+struct StepState::SpinPhase::Kept final : StepState::SpinPhase
 {
 };
 
 /// Constrained: its spin changes along the floor for along_time and about the normal for
 /// normal_time; its kind at the end follows from its velocity and spin there.
-struct World::SpinPhase::Constrained final : World::SpinPhase
+struct StepState::SpinPhase::Constrained final : StepState::SpinPhase
 {
   Vec3 spinAt(const SpinMotion& sm, double t) const override
   {
     return sm.w0 + std::min(t, sm.along_time) * sm.alpha + (std::min(t, sm.normal_time) * sm.normal_rate) * sm.normal;
   }
-  MotionKind kindAtEnd(const World& w, std::size_t i, const SpinMotion&, const Vec3& normal, const Vec3& v,
+  MotionKind kindAtEnd(const StepContext& w, std::size_t i, const SpinMotion&, const Vec3& normal, const Vec3& v,
                        const Vec3& spin) const override
   {
     return w.frictionUnder(normal).constrainedKind(w.balls_[i].radius, v, spin);
@@ -48,25 +48,25 @@ struct World::SpinPhase::Constrained final : World::SpinPhase
 };
 
 /// Frictionless: a frictionless ball's motion (the caller gives it), its spin the phase's.
-struct World::SpinPhase::Frictionless final : World::SpinPhase
+struct StepState::SpinPhase::Frictionless final : StepState::SpinPhase
 {
   bool ownsMotion() const override { return true; }
   bool rollsAtCommit(const SpinMotion& sm) const override { return sm.kind == MotionKind::kRolling; }
 };
 
 /// Friction acts on the motion: the phase's pull moves it.
-struct World::SpinPhase::Forced : World::SpinPhase
+struct StepState::SpinPhase::Forced : StepState::SpinPhase
 {
   bool ownsMotion() const override { return true; }
-  const Vec3& pull(const World&, const SpinMotion& sm) const override { return sm.pull; }
-  double chordSpeedSquared(const World& w, std::size_t i, double rest, const Vec3& b) const override
+  const Vec3& pull(const StepContext&, const SpinMotion& sm) const override { return sm.pull; }
+  double chordSpeedSquared(const StepContext& w, std::size_t i, double rest, const Vec3& b) const override
   {
     return w.speedSquaredAt(i, w.chordEnd(i), w.startPosition(i) + rest * b);
   }
   bool rollsAtCommit(const SpinMotion& sm) const override { return sm.kind == MotionKind::kRolling; }
   bool rollsAtEvent(const SpinMotion& sm) const override { return sm.kind == MotionKind::kRolling; }
   /// (sliding and rolling: what the floor's motion type says the phase's energy is)
-  double speedSquaredAt(const World& w, std::size_t i, double x, const Vec3& p) const override
+  double speedSquaredAt(const StepContext& w, std::size_t i, double x, const Vec3& p) const override
   {
     const MotionKind kind = w.spin_motions_[i].kind;
     if (kind == MotionKind::kSliding || kind == MotionKind::kRolling)
@@ -76,13 +76,13 @@ struct World::SpinPhase::Forced : World::SpinPhase
 };
 
 /// Still (spinning or stationary): it stays where it is, its velocity the phase's.
-struct World::SpinPhase::Still final : World::SpinPhase::Forced
+struct StepState::SpinPhase::Still final : StepState::SpinPhase::Forced
 {
-  bool startMotion(World& w, std::size_t i, const FrictionLaw& law) const override
+  bool startMotion(StepContext& w, std::size_t i, const FrictionLaw& law) const override
   {
     return w.floor_motion_->stillMotion(w, i, law);
   }
-  Vec3 velocity(const World& w, std::size_t i, double x, const Vec3&, const Vec3&) const override
+  Vec3 velocity(const StepContext& w, std::size_t i, double x, const Vec3&, const Vec3&) const override
   {
     return constantlyAccelerated(w, i, x);
   }
@@ -90,31 +90,31 @@ struct World::SpinPhase::Still final : World::SpinPhase::Forced
 
 /// Driven (sliding or rolling): its share of gravity and the friction force move it; its
 /// velocity and the energy it has are the floor's motion type's to give.
-struct World::SpinPhase::Driven final : World::SpinPhase::Forced
+struct StepState::SpinPhase::Driven final : StepState::SpinPhase::Forced
 {
-  bool startMotion(World& w, std::size_t i, const FrictionLaw& law) const override
+  bool startMotion(StepContext& w, std::size_t i, const FrictionLaw& law) const override
   {
     return w.floor_motion_->drivenMotion(w, i, law);
   }
-  Vec3 velocity(const World& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const override
+  Vec3 velocity(const StepContext& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const override
   {
     return w.floor_motion_->phaseVelocity(w, i, x, position, normal);
   }
 };
 
-const World::SpinPhase& World::SpinPhase::kept()
+const StepState::SpinPhase& StepState::SpinPhase::kept()
 {
   static const Kept phase;
   return phase;
 }
 
-const World::SpinPhase& World::SpinPhase::constrained()
+const StepState::SpinPhase& StepState::SpinPhase::constrained()
 {
   static const Constrained phase;
   return phase;
 }
 
-const World::SpinPhase& World::SpinPhase::of(const FrictionPhase& start)
+const StepState::SpinPhase& StepState::SpinPhase::of(const FrictionPhase& start)
 {
   static const Frictionless frictionless;
   static const Still still;

@@ -17,7 +17,7 @@
 
 namespace ball_collision_sim::core
 {
-struct World::SpinPhase
+struct StepState::SpinPhase
 {
   virtual ~SpinPhase() = default;
   static const SpinPhase& kept();
@@ -26,36 +26,36 @@ struct World::SpinPhase
   static const SpinPhase& of(const FrictionPhase& start);
   /// Ball i's velocity at x under its phase's constant acceleration (SpinMotion::a): a
   /// still phase's anywhere, a driven one's on a plane.
-  static Vec3 constantlyAccelerated(const World& w, std::size_t i, double x);
+  static Vec3 constantlyAccelerated(const StepContext& w, std::size_t i, double x);
 
   /// Its motion follows a friction phase (else its contacts', or none): a phase that
   /// ends within the step is an event, and a contact that takes the motion over takes
-  /// the spin over too (World::constrainSpin()).
+  /// the spin over too (StepContext::constrainSpin()).
   virtual bool ownsMotion() const { return false; }
   /// The ball's spin t seconds into its motion.
   virtual Vec3 spinAt(const SpinMotion& sm, double t) const { return sm.w0 + t * sm.alpha; }
-  /// Gives ball i the motion of its new phase under `law` (World::startFriction()); true
+  /// Gives ball i the motion of its new phase under `law` (StepContext::startFriction()); true
   /// where the caller is to give it a frictionless ball's motion, or the chord under
   /// SpinMotion::pull on a curved floor.
-  virtual bool startMotion(World&, std::size_t, const FrictionLaw&) const { return true; }
+  virtual bool startMotion(StepContext&, std::size_t, const FrictionLaw&) const { return true; }
   /// What pulls the ball's motion [m/s^2]: gravity, or with friction acting on the
   /// motion the phase's pull (gravity's share and the friction force).
-  virtual const Vec3& pull(const World& w, const SpinMotion&) const { return w.gravity_; }
+  virtual const Vec3& pull(const StepContext& w, const SpinMotion&) const { return w.gravity_; }
   /// Ball i's velocity at x, at `position` on the floor with this normal.
-  virtual Vec3 velocity(const World& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const;
+  virtual Vec3 velocity(const StepContext& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const;
   /// |v|^2 of ball i at x where its motion is at p, from the energy.
-  virtual double speedSquaredAt(const World& w, std::size_t i, double, const Vec3& p) const
+  virtual double speedSquaredAt(const StepContext& w, std::size_t i, double, const Vec3& p) const
   {
     return w.pulledSpeedSquared(i, p);
   }
-  /// |v|^2 where ball i's chord b ends, `rest` of the step on (World::EnergyCheck).
-  virtual double chordSpeedSquared(const World& w, std::size_t i, double rest, const Vec3& b) const;
+  /// |v|^2 where ball i's chord b ends, `rest` of the step on (StepContext::EnergyCheck).
+  virtual double chordSpeedSquared(const StepContext& w, std::size_t i, double rest, const Vec3& b) const;
   /// Its spin rolls the ball where it ends the step (under the normal there) ...
   virtual bool rollsAtCommit(const SpinMotion&) const { return false; }
   /// ... and where an event finds it.
   virtual bool rollsAtEvent(const SpinMotion&) const { return false; }
   /// The kind it ends the step in, where its velocity is v and its spin w under `normal`.
-  virtual MotionKind kindAtEnd(const World&, std::size_t, const SpinMotion& sm, const Vec3&, const Vec3&,
+  virtual MotionKind kindAtEnd(const StepContext&, std::size_t, const SpinMotion& sm, const Vec3&, const Vec3&,
                                const Vec3&) const
   {
     return sm.kind;

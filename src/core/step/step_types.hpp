@@ -3,7 +3,7 @@
 // and a predicted event. Not part of the public interface.
 #pragma once
 
-#include "ball_collision_sim/core/world.hpp"
+#include "step_context.hpp"
 
 #include "contact_solver.hpp"
 
@@ -31,7 +31,7 @@ inline double roundoffAt(const Vec3& p, double r, const StepSettings& settings)
 /// It holds the rest of what detection reads and the ball's counters in the step; the
 /// ball's record holds p0, its velocity at x0 and its radius (startPosition(),
 /// startVelocity()).
-struct World::Motion
+struct StepState::Motion
 {
   Motion() : events(0), frozen(0), asleep(0), accelerates(0) {}
   double x0 = 0.0;               ///< where this motion starts, fraction of the step
@@ -45,11 +45,11 @@ struct World::Motion
   /// cap, or asleep
   std::uint16_t frozen : 1;
   std::uint16_t asleep : 1;      ///< frozen because the ball sleeps: an impact wakes it
-  /// its motion is the parabola of a free ball (World::path_c_), not a chord
+  /// its motion is the parabola of a free ball (StepContext::path_c_), not a chord
   std::uint16_t accelerates : 1;
 };
 
-inline step::ExactSettings World::exactSettings() const
+inline step::ExactSettings StepContext::exactSettings() const
 {
   step::ExactSettings exact;
   exact.rounds = settings_.exact_solves;
@@ -62,11 +62,11 @@ inline step::ExactSettings World::exactSettings() const
 /// The largest event cap a Motion's 12-bit count holds with one past it [events].
 constexpr std::uint32_t kMaxEventCap = (1u << 12) - 2;
 
-inline double World::inverseMass(std::size_t i) const
+inline double StepContext::inverseMass(std::size_t i) const
 {
   return motions_[i].frozen ? 0.0 : 1.0 / balls_[i].mass;
 }
-inline double World::groupInverseMass(std::size_t i, bool rolls) const
+inline double StepContext::groupInverseMass(std::size_t i, bool rolls) const
 {
   if (motions_[i].frozen)
     return 0.0;
@@ -75,7 +75,7 @@ inline double World::groupInverseMass(std::size_t i, bool rolls) const
 /// A ball's friction phase in the step (worlds with friction), by visiting index: while
 /// `free`, its motion's parabola term is c = a dt^2 / 2 and its spin at x is
 /// w0 + alpha (x - x0) dt, until x_end, where the phase ends as `ends` says.
-struct World::SpinMotion
+struct StepState::SpinMotion
 {
   SpinMotion();  ///< kept (SpinPhase::kept())
   Vec3 w0 = Vec3::Zero();     ///< spin at the motion's start [rad/s]
@@ -98,11 +98,11 @@ struct World::SpinMotion
   /// the floor's normal the phase was found under
   Vec3 normal = Vec3::UnitZ();
   /// curved floors: the chord's pull, gravity and the phase's friction force per unit
-  /// mass, in gravity's place (World::pullOf()) [m/s^2]
+  /// mass, in gravity's place (StepContext::pullOf()) [m/s^2]
   Vec3 pull = Vec3::Zero();
   /// curved floors, sliding: the slip at the start [m/s], the rate it falls at along its
   /// direction [m/s^2] and friction's deceleration mu_s g_n [m/s^2], for the energy the
-  /// slip takes (World::speedSquaredAt())
+  /// slip takes (StepContext::speedSquaredAt())
   double slip0 = 0.0;
   double slip_rate = 0.0;
   double slip_force = 0.0;

@@ -1,0 +1,273 @@
+// The world's lifecycle, the step as its named stages (each in src/core/step/) and
+// the queries; the edits between steps are in edits.cpp.
+#include "step_context.hpp"
+
+#include "contact_group.hpp"
+#include "floor_motion.hpp"
+
+#include "ball_collision_sim/core/state_hash.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace ball_collision_sim::core
+{
+
+StepContext::StepContext(const Scene& scene, const StepSettings& settings) : StepContext(scene, check(scene), settings)
+{
+}
+
+StepState::StepState(const Scene& scene, const StepSettings& settings)
+    : scene_(scene)
+    , settings_(settings)
+    , dt_(scene.dt)
+    , gravity_(scene.gravity)
+    , ground_(scene.floor, scene.gravity, settings)
+    , floor_motion_(&FloorMotion::of(ground_))
+    , flight_c_((0.5 * scene.dt * scene.dt) * scene.gravity)
+    , path_c_((0.5 * scene.dt * scene.dt) * ground_.pathAcceleration())
+    , free_parabolas_(path_c_ != Vec3::Zero())
+    , parabolas_(free_parabolas_ || scene.friction.has_value())
+{
+}
+
+StepContext::StepContext(const Scene& scene, SceneCheck checked, const StepSettings& settings)
+    : StepState(scene, settings)
+{
+  if (!checked.issues.empty())
+    throw std::invalid_argument(joinIssues(checked.issues));
+  // (the plane's laws; on a curved floor each ball's are found under its normal)
+  if (scene.friction)
+    friction_.emplace(*scene.friction, ground_.flatNormal(),
+                      scene.gravity, ground_.pathAcceleration(), settings_.slip_tolerance,
+                      settings_.resting_speed_floor);
+  // (a ball's event count is kept in 12 bits, up to one past the cap)
+  if (settings_.max_events_per_ball_step > kMaxEventCap)
+    throw std::invalid_argument("max_events_per_ball_step: must be at most " + std::to_string(kMaxEventCap));
+  // (a chord of no length would be cut again and again where it starts)
+  if (!(settings_.chord_turn > 0))
+    throw std::invalid_argument("chord_turn: must be > 0");
+  if (!(settings_.chord_sag > 0))
+    throw std::invalid_argument("chord_sag: must be > 0");
+  sleep_steps_ = static_cast<std::uint16_t>(std::clamp(std::ceil(settings_.sleep_time / dt_), 1.0, 65535.0));
+  load(std::move(checked.balls));
+}
+
+StepContext::StepContext(const StepContext&) = default;
+StepContext& StepContext::operator=(const StepContext&) = default;
+StepContext::StepContext(StepContext&&) noexcept = default;
+StepContext& StepContext::operator=(StepContext&&) noexcept = default;
+StepContext::~StepContext() = default;
+
+void StepContext::load(PlacedBalls placed)
+{
+  walls_.clear();
+  next_wall_id_ = kFirstId;
+  for (const WallDef& def : scene_.walls)
+    walls_.emplace_back(next_wall_id_++, def, scene_.restitution);
+  balls_.clear();
+  by_id_.clear();
+  feet_.clear();
+  spins_.clear();
+  next_ball_id_ = kFirstId;
+  // (the records taken over as they are, not copied: loading holds one list of them)
+  balls_ = std::move(placed.balls);
+  by_id_.resize(balls_.size());
+  for (std::size_t k = 0; k < balls_.size(); ++k)
+  {
+    by_id_[k] = static_cast<std::uint32_t>(k);
+    balls_[k].id = next_ball_id_++;
+  }
+  if (friction_)
+  {
+    spins_.reserve(balls_.size());
+    for (std::size_t k = 0; k < balls_.size(); ++k)
+    {
+      // (its definition: the scene's own ball, or a random one's, where the record has it now)
+      BallDef def = k < scene_.balls.size() ? scene_.balls[k] : randomBallDef(scene_, balls_[k]);
+      def.position = balls_[k].position;
+      def.velocity = balls_[k].velocity;
+      spins_.push_back(makeSpin(def, placed.feet[k], balls_[k].flying));
+    }
+  }
+  if (floor_motion_->keepsFeet())
+    feet_ = std::move(placed.feet);
+  stats_ = WorldStats{};
+  events_.clear();
+  transitions_.clear();
+  forgetOrder();
+}
+
+void StepContext::reset()
+{
+  load(placeBalls(scene_));
+}
+
+void StepContext::forgetOrder()
+{
+  sortById();
+  order_age_ = 0;
+  motions_ready_ = false;
+}
+
+Ball StepContext::makeBall(int id, const BallDef& placed)
+{
+  Ball ball = ballRecord(placed);
+  ball.id = id;
+  return ball;
+}
+
+BallSpin StepContext::makeSpin(const BallDef& placed, const Vec2& foot, bool flying) const
+{
+  BallSpin spin;
+  if (flying)
+  {
+    spin.angular_velocity = placed.angular_velocity ? *placed.angular_velocity : Vec3::Zero();
+    spin.inertia = placed.inertia;
+    spin.kind = MotionKind::kFlying;
+    return spin;
+  }
+  const FrictionLaw law = frictionUnder(ground_.normalAt(placed.position, foot));
+  spin.angular_velocity = spinOf(placed, law.normal());
+  spin.inertia = placed.inertia;
+  spin.kind = law.kindOf(placed.inertia, placed.radius, placed.velocity, spin.angular_velocity);
+  return spin;
+}
+
+// ---- the step ------------------------------------------------------------------------
+
+void StepContext::step()
+{
+  events_.clear();
+  transitions_.clear();
+  // (each commit takes back what it kept of where balls started; a step cut short, or
+  // balls added or removed since, leave that to do here)
+  if (!step_starts_.empty() || step_start_of_.size() != balls_.size())
+    step_start_of_.assign(balls_.size(), kNoStepStart);
+  step_starts_.clear();
+  predictMotions();            // each ball's free motion over the step, on the floor, and its swept box
+  buildBroadPhase();           // the swept boxes into a uniform grid
+  formRestingGroups();         // resting contacts as constraints, each group's motions solved
+  findFirstImpacts();          // exact times of impact of nearby pairs and walls
+  resolveEventsInTimeOrder();  // earliest first; re-detect only the balls involved
+  // The next step visits the balls in this step's cell order, so that neighbours in
+  // space are neighbours in memory too; not after every step, as balls move less than a
+  // cell in one: while the order stays, the commit predicts the next step's motions, with
+  // each ball's record at hand.
+  const bool reorder = grid_.inCellOrder() && (order_age_ == 0 || order_age_ >= settings_.reorder_steps);
+  commitToFloor(!reorder);     // every ball to the step's end, back on the floor
+  if (reorder)
+  {
+    std::vector<std::uint32_t> from;
+    grid_.takeCellOrder(from);  // the slots in the grid's cell order
+    permute(from);
+  }
+  order_age_ = reorder ? 1 : order_age_ + 1;
+  motions_ready_ = !reorder;
+  ++stats_.steps;
+}
+
+// ---- queries -------------------------------------------------------------------------
+
+Energy StepContext::energy() const
+{
+  // (summed in id order: the same sums whatever order the records are in)
+  Energy e;
+  for (const std::uint32_t s : by_id_)
+  {
+    const Ball& ball = balls_[s];
+    e.kinetic += 0.5 * ball.mass * ball.velocity.squaredNorm();
+    e.potential -= ball.mass * gravity_.dot(ball.position);
+  }
+  if (!spins_.empty())
+    for (const std::uint32_t s : by_id_)
+    {
+      const Ball& ball = balls_[s];
+      e.rotational +=
+          0.5 * spins_[s].inertia * ball.mass * ball.radius * ball.radius * spins_[s].angular_velocity.squaredNorm();
+    }
+  return e;
+}
+
+Vec3 StepContext::momentum() const
+{
+  Vec3 p = Vec3::Zero();
+  for (const std::uint32_t s : by_id_)
+    p += balls_[s].mass * balls_[s].velocity;
+  return p;
+}
+
+std::uint64_t StepContext::stateHash() const
+{
+  Fnv1a h;
+  h.add(stats_.steps);
+  h.add(balls_.size());
+  for (const std::uint32_t s : by_id_)
+  {
+    const Ball& ball = balls_[s];
+    h.add(ball.id);
+    h.add(ball.radius);
+    h.add(ball.mass);
+    h.add(ball.position.data(), 3 * sizeof(double));
+    h.add(ball.velocity.data(), 3 * sizeof(double));
+    h.add(ball.orientation.coeffs().data(), 4 * sizeof(double));
+  }
+  for (std::size_t k = 0; k < spins_.size(); ++k)
+  {
+    const BallSpin& spin = spins_[by_id_[k]];
+    h.add(spin.angular_velocity.data(), 3 * sizeof(double));
+    h.add(spin.inertia);
+    h.add(spin.kind);
+  }
+  return h.value();
+}
+
+std::size_t StepContext::indexOf(int id) const
+{
+  // by_id_ lists the records in id order.
+  const auto it = std::lower_bound(by_id_.begin(), by_id_.end(), id,
+                                   [this](std::uint32_t s, int v) { return balls_[s].id < v; });
+  return it != by_id_.end() && balls_[*it].id == id ? static_cast<std::size_t>(it - by_id_.begin()) : by_id_.size();
+}
+
+std::size_t StepContext::slotOf(int id) const
+{
+  const std::size_t k = indexOf(id);
+  return k < by_id_.size() ? by_id_[k] : balls_.size();
+}
+
+const Ball* StepContext::findBall(int id) const
+{
+  const std::size_t s = slotOf(id);
+  return s < balls_.size() ? &balls_[s] : nullptr;
+}
+
+Vec3 StepContext::angularVelocity(std::size_t k) const
+{
+  const std::size_t s = by_id_.at(k);
+  if (friction_)
+    return spins_[s].angular_velocity;
+  const Ball& ball = balls_[s];
+  if (ball.flying)
+    return Vec3::Zero();  // (without friction a ball turns only by rolling)
+  const Vec3 normal = ground_.normalUnder(footOf(s));
+  return normal.cross(ball.velocity) / ball.radius;
+}
+
+MotionKind StepContext::motionKind(std::size_t k) const
+{
+  const std::size_t s = by_id_.at(k);
+  if (balls_[s].flying)
+    return MotionKind::kFlying;
+  if (friction_)
+    return spins_[s].kind;
+  return balls_[s].velocity == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling;
+}
+
+double StepContext::inertia(std::size_t k) const
+{
+  const std::size_t s = by_id_.at(k);
+  return friction_ ? spins_[s].inertia : kSolidInertia;
+}
+}  // namespace ball_collision_sim::core

@@ -1,0 +1,191 @@
+// The world's state and the step's per-ball work space, as plain data: the balls'
+// records and spins, the walls and ground, and what each step predicts, queues, groups
+// and solves per ball. StepContext (step_context.hpp) adds what reads and writes it.
+#pragma once
+
+#include "ball_collision_sim/core/world.hpp"
+
+#include <cassert>
+#include <memory>
+#include <unordered_map>
+
+namespace ball_collision_sim::core
+{
+namespace step
+{
+struct ExactSettings;  // src/core/step/contact_solver.hpp
+}
+
+/// A ball's own spin, kept where the world has friction.
+struct BallSpin
+{
+  Vec3 angular_velocity = Vec3::Zero();      ///< [rad/s]
+  double inertia = kSolidInertia;            ///< k in I = k m r^2
+  MotionKind kind = MotionKind::kStationary;
+};
+
+/// Working memory a StepContext keeps between steps only so as not to allocate it again: not
+/// part of its state, so a copy starts without it. T may be incomplete where this is
+/// declared, and complete where the owner's special members are defined.
+template <class T>
+class Scratch
+{
+public:
+  Scratch() = default;
+  Scratch(const Scratch& /*other*/) {}
+  Scratch& operator=(const Scratch& /*other*/) { return *this; }
+  Scratch(Scratch&&) noexcept = default;
+  Scratch& operator=(Scratch&&) noexcept = default;
+  ~Scratch() = default;
+  /// The work space, made on first use.
+  T& get()
+  {
+    if (!held_)
+      held_ = std::make_unique<T>();
+    return *held_;
+  }
+  /// The work space a get() made before.
+  const T& made() const
+  {
+    assert(held_);
+    return *held_;
+  }
+
+private:
+  std::unique_ptr<T> held_;
+};
+
+/// What a World is made of between and within steps; every stage of the step reads and
+/// writes it through StepContext.
+struct StepState
+{
+  StepState(const Scene& scene, const StepSettings& settings);
+
+  struct Motion;
+  struct SpinMotion;
+  /// How a ball's motion and spin go within the step with friction
+  /// (src/core/step/spin_phase.hpp): a type per phase, not a branch in the step.
+  struct SpinPhase;
+  /// How balls move on this world's ground within a step (src/core/step/floor_motion.hpp):
+  /// a type the ground provides, exact paths on a plane or without a floor, chords on a
+  /// curved floor.
+  struct FloorMotion;
+  struct ExactMotion;
+  struct ChordMotion;
+  using Event = StepEvent;
+  /// A resting contact as a constraint of the step: balls a and b (visiting indices), or
+  /// ball a and wall w (b = kWallRow | w); next_a and next_b link the rows of each ball.
+  struct ContactLink
+  {
+    std::uint32_t a;
+    std::uint32_t b;
+    std::uint32_t next_a;
+    std::uint32_t next_b;
+    /// the last solve's impulse per unit of the step it spanned, its next solve's warm
+    /// start (the last step's, until solved in this one)
+    double rate;
+  };
+  static constexpr std::uint32_t kWallRow = 0x80000000u;
+  static constexpr std::uint32_t kNone32 = 0xffffffffu;
+  /// A group of balls joined by resting contacts, as the contact solver takes it
+  /// (src/core/step/contact_group.hpp).
+  struct ContactGroup;
+
+  Scene scene_;
+  StepSettings settings_;
+  double dt_;
+  /// sleep_time in steps of dt (at least one, at most what Ball::quiet_steps counts)
+  std::uint16_t sleep_steps_ = 1;
+  Vec3 gravity_;
+  Ground ground_;
+  /// The ground's motion type (FloorMotion::of(ground_)); the step asks it whatever
+  /// depends on the kind of floor.
+  const FloorMotion* floor_motion_ = nullptr;
+  /// The parabola term of flights, g dt^2 / 2 [m].
+  Vec3 flight_c_ = Vec3::Zero();
+  /// Balls whose predicted motion for the step is a flight (their landings are looked
+  /// for at its start only where there are some).
+  std::uint32_t flights_ = 0;
+  /// The parabola term of free balls' motions, a dt^2 / 2 with the ground's path
+  /// acceleration a [m]; parabolas_ where it is not zero.
+  Vec3 path_c_ = Vec3::Zero();
+  /// Free balls without friction move on parabolas (path_c_ not zero).
+  bool free_parabolas_ = false;
+  /// Some motions are parabolas: free_parabolas_, or a world with friction, where each
+  /// ball's phase has its own (SpinMotion::c).
+  bool parabolas_ = false;
+  std::vector<Wall> walls_;
+  /// The balls' records in the order the step visits them (its work space is indexed the
+  /// same way): a recent step's cell order, so that neighbours in space are neighbours in
+  /// memory; in id order after an edit.
+  std::vector<Ball> balls_;
+  /// The slot in balls_ of the ball with the k-th lowest id (balls() lists them so).
+  std::vector<std::uint32_t> by_id_;
+  /// Curved floors: each ball's foot point (u, v), beside balls_ (empty otherwise).
+  std::vector<Vec2> feet_;
+  int next_ball_id_ = 0;
+  int next_wall_id_ = 0;
+  WorldStats stats_;
+
+  /// Steps since the records were put in cell order; they are so anew every
+  /// settings_.reorder_steps steps.
+  std::uint32_t order_age_ = 0;
+  /// motions_ (and the grid's boxes) hold the next step's predicted motions.
+  bool motions_ready_ = false;
+  // per-step work space, kept between steps to avoid allocation
+  std::vector<Motion> motions_;
+  /// Per ball, where step_starts_ keeps the position it had at the step's start, once a
+  /// new motion started elsewhere (startMotion()); kNoStepStart while it has none.
+  std::vector<std::uint32_t> step_start_of_;
+  std::vector<Vec3> step_starts_;
+  static constexpr std::uint32_t kNoStepStart = 0xffffffffu;
+  EventQueue queue_;
+  StepGrid grid_;
+  std::vector<Aabb> wall_boxes_;  ///< the walls' boxes, handed to the grid each step (its obstacles)
+  std::vector<Vec3> floor_normals_;
+  std::vector<Vec2> floor_uv_;  ///< curved floors: each ball's last foot point, Newton's guess
+  std::vector<double> chord_ends_;  ///< curved floors: where each ball's chord ends (chordEnd())
+  Vec2 no_foot_ = Vec2(0.5, 0.5);  ///< the foot point where the ground keeps none
+  std::vector<CollisionEvent> events_;
+  bool record_events_ = true;
+  /// Resting groups: per ball its union-find parent (kNone32: in none), the next member of
+  /// its group (a ring), and its first contact; the step's contacts.
+  std::vector<std::uint32_t> group_parent_;
+  std::vector<std::uint32_t> group_next_;
+  std::vector<std::uint32_t> first_link_;
+  std::vector<ContactLink> links_;
+  /// per ball: its motion is its group's (a chord at the constant velocity it starts with),
+  /// and its velocity where that motion starts, before the step's impulses
+  std::vector<std::uint8_t> group_motion_;
+  std::vector<Vec3> group_velocity_;
+  std::vector<std::uint32_t> row_links_;
+  std::vector<std::uint32_t> link_order_;
+  /// each contact's last impulse, by its balls' ids (and wall), for the next step's warm start
+  std::unordered_map<std::uint64_t, double> warm_;
+  std::vector<std::uint32_t> members_;
+  std::vector<Vec3> member_positions_;
+  std::vector<Vec3> member_normals_;
+  std::vector<Vec3> member_velocities_;
+  std::vector<Vec3> free_u_;
+  /// per member of the group being solved: its motion before rolling resistance [m],
+  /// gravity's pull [m/s per unit of the step], the most resistance takes from it [m per
+  /// unit of the step], whether it rolls, and what resistance took [m]
+  std::vector<Vec3> base_u_;
+  std::vector<Vec3> member_pulls_;
+  std::vector<double> member_caps_;
+  std::vector<char> member_rolls_;
+  std::vector<Vec3> resisted_;
+  /// per ball: its energy at the step's start plus what its impacts in the step gave it
+  /// [J]; a group ends the step with no more than its members' sum
+  std::vector<double> energy_ref_;
+  /// the contact solver's work space
+  Scratch<ContactGroup> contact_group_;
+
+  /// With friction: the laws under the plane's normal, each ball's spin beside balls_,
+  /// the step's phases by visiting index, and the step's changes of kind.
+  std::optional<FrictionLaw> friction_;
+  std::vector<BallSpin> spins_;
+  std::vector<SpinMotion> spin_motions_;
+  std::vector<MotionTransition> transitions_;
+};
+}  // namespace ball_collision_sim::core
