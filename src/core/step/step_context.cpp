@@ -137,7 +137,7 @@ BallSpin StepContext::makeSpin(const BallDef& placed, const Vec2& foot, bool fly
 
 // ---- the step ------------------------------------------------------------------------
 
-void StepContext::step()
+void StepContext::startStep()
 {
   events_.clear();
   transitions_.clear();
@@ -146,6 +146,11 @@ void StepContext::step()
   if (!step_starts_.empty() || step_start_of_.size() != balls_.size())
     step_start_of_.assign(balls_.size(), kNoStepStart);
   step_starts_.clear();
+}
+
+void StepContext::step()
+{
+  startStep();
   predictMotions();            // each ball's free motion over the step, on the floor, and its swept box
   buildBroadPhase();           // the swept boxes into a uniform grid
   formRestingGroups();         // resting contacts as constraints, each group's motions solved

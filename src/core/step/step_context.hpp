@@ -97,6 +97,8 @@ public:
   const Vec2& footOf(std::size_t s) const { return feet_.empty() ? no_foot_ : feet_[s]; }
 
   // The stages of a step, in order.
+  /// The step's lists emptied and its record of where balls started made ready.
+  void startStep();
   void predictMotions();
   /// Ball i's free motion over the next step from its record, and its swept box; at the
   /// step's start (not at the last one's commit, which saw to it) a ball that the floor

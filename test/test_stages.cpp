@@ -1,0 +1,202 @@
+// The step's stages one at a time on a StepContext (src/core/step/step_context.hpp), each
+// against what it alone must give: predict (a ball's motion over the step: a line, the
+// parabola along a sloped plane, a flight), broad phase and detection (the queued first
+// impact of a pair and of a wall at their closed-form times), a landing and a take-off
+// queued as motion ends, resolve (the pair's velocities exchanged at the impact),
+// and commit (every ball at its closed-form end, the next step's motions predicted).
+#include "fixtures.hpp"
+
+#include "core/step/floor_motion.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace ball_collision_sim::core;
+using namespace ball_collision_sim::test;
+
+namespace
+{
+constexpr double kDt = 0.01;
+
+/// A context at a step's start, as StepContext::step() makes it before its first stage.
+StepContext started(const Scene& scene)
+{
+  StepContext c(scene);
+  c.startStep();
+  return c;
+}
+}  // namespace
+
+// Predict: on a level plane a ball's motion is the line dt v; along a plane sloped by
+// angle a, the parabola of g sin(a) along its fall line; a ball in flight, gravity's own.
+TEST(Stages, PredictGivesEachBallsMotionOverTheStep)
+{
+  Scene level = flatScene(-5, 5, -5, 5);
+  level.balls = {ball(0, 0, 1, 0.5), ball(2, 0, 0, 0)};
+  BallDef up = ball(-2, 0, 1, 0);
+  up.position.z() = 1;
+  up.velocity.z() = 2;
+  up.placement = BallPlacement::kAsGiven;
+  level.balls.push_back(up);
+  StepContext c = started(level);
+  c.predictMotions();
+  EXPECT_EQ(c.motions_[0].b, Vec3(kDt * 1, kDt * 0.5, 0));
+  EXPECT_FALSE(c.motions_[0].accelerates);
+  EXPECT_EQ(c.motions_[1].b, Vec3::Zero());
+  EXPECT_TRUE(c.motions_[2].accelerates);
+  EXPECT_EQ(c.motions_[2].b, Vec3(kDt * 1, 0, kDt * 2));
+  EXPECT_EQ(c.pathTerm(2), Vec3(0, 0, -0.5 * 9.81 * kDt * kDt));
+  const Vec3 end = c.positionAt(2, 1.0);
+  EXPECT_NEAR(end.z(), 1 + 2 * kDt - 0.5 * 9.81 * kDt * kDt, 1e-15);
+
+  // sloped: z = -x tan(a) over the plane
+  const double a = 0.2;
+  Scene slope;
+  FloorDef f;
+  f.type = FloorDef::Type::kPlane;
+  f.point = Vec3(-5, -5, 5 * std::tan(a));
+  f.u = Vec3(10, 0, -10 * std::tan(a));
+  f.v = Vec3(0, 10, 0);
+  slope.floor = f;
+  slope.balls = {ball(0, 0, 0, 1)};
+  StepContext s = started(slope);
+  s.predictMotions();
+  const Vec3 d = s.positionAt(0, 1.0) - s.balls_[0].position;
+  const double along = 0.5 * 9.81 * std::sin(a) * kDt * kDt;  // down the fall line
+  EXPECT_NEAR(d.x(), along * std::cos(a), 1e-15);
+  EXPECT_NEAR(d.y(), kDt, 1e-15);
+  EXPECT_NEAR(d.z(), -along * std::sin(a), 1e-15);
+}
+
+// Broad phase and detection: two balls closing head on at 2 v meet after (d - 2 r) / (2 v);
+// one toward a wall, after (g - r) / v: each the first event queued, at that step fraction.
+TEST(Stages, DetectionQueuesTheFirstImpactsAtTheirTimes)
+{
+  Scene scene = flatScene(-5, 5, -5, 5);
+  const double r = 0.1, v = 10;
+  scene.balls = {ball(-0.2, 0, v, 0, r), ball(0.2, 0, -v, 0, r)};
+  StepContext c = started(scene);
+  c.predictMotions();
+  c.buildBroadPhase();
+  c.findFirstImpacts();
+  ASSERT_FALSE(c.queue_.empty());
+  const StepEvent first = c.queue_.pop();
+  EXPECT_FALSE(first.wall);
+  EXPECT_FALSE(first.transition);
+  EXPECT_NEAR(first.x * kDt, (0.4 - 2 * r) / (2 * v), 1e-15);
+
+  Scene walled = flatScene(-5, 5, -5, 5);
+  addBox(walled, -1, 1, -1, 1);
+  walled.balls = {ball(0.85, 0, v, 0, r)};
+  StepContext w = started(walled);
+  w.predictMotions();
+  w.buildBroadPhase();
+  w.findFirstImpacts();
+  ASSERT_FALSE(w.queue_.empty());
+  const StepEvent hit = w.queue_.pop();
+  EXPECT_TRUE(hit.wall);
+  EXPECT_NEAR(hit.x * kDt, (1 - 0.85 - r) / v, 1e-15);
+  EXPECT_NEAR(hit.normal.x(), -1, 1e-15);
+}
+
+// A ball in flight 0.5 m above a plane, falling at 20 m/s: its landing is queued as a
+// motion end at the root of its height, 0.5 + r - r = 20 t + g t^2 / 2 - ... within the step.
+TEST(Stages, DetectionQueuesALandingAtTheRootOfTheHeight)
+{
+  Scene scene = flatScene(-5, 5, -5, 5);
+  const double r = 0.1, h = 0.1, v = 20;
+  BallDef b = ball(0, 0, 0, 0, r);
+  b.position.z() = r + h;
+  b.velocity.z() = -v;
+  b.placement = BallPlacement::kAsGiven;
+  scene.balls = {b};
+  StepContext c = started(scene);
+  c.predictMotions();
+  c.buildBroadPhase();
+  c.findFirstImpacts();
+  ASSERT_FALSE(c.queue_.empty());
+  const StepEvent landing = c.queue_.pop();
+  EXPECT_TRUE(landing.transition);
+  EXPECT_EQ(landing.end, MotionEnd::kLanding);
+  const double g = 9.81;
+  const double t = (-v + std::sqrt(v * v + 2 * g * h)) / g;  // h = v t + g t^2 / 2
+  EXPECT_NEAR(landing.x * kDt, t, 1e-15);
+}
+
+// The dome of test_flight's take-off, a ball 3.0 m down its diagonal at the speed its
+// energy gives from the top at 4 m/s, just before it leaves: the take-off is queued as a
+// motion end where the floor's push changes sign, to neighbouring doubles.
+TEST(Stages, DetectionQueuesATakeOffWhereTheFloorsPushFallsToZero)
+{
+  FloorDef f;
+  f.type = FloorDef::Type::kBiquadratic;
+  const double c3[3] = {-4, 0, 4};
+  const double z[3][3] = {{0, 8, 0}, {8, 8, 8}, {0, 8, 0}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      f.control_points[i][j] = Vec3(c3[i], c3[j], z[i][j]);
+  Scene scene;
+  scene.floor = f;
+  const double x = 3.0 / std::sqrt(2.0), speed = 6.41;
+  const double w = 3.0 / (8 * std::sqrt(2.0));
+  // along the floor's tangent down the diagonal
+  const double slope = std::atan((32 * w + 128 * w * w * w) / (8 * std::sqrt(2.0)));
+  const double level = speed * std::cos(slope) / std::sqrt(2.0);
+  BallDef b = ball(x, x, level, level, 0.1);
+  b.velocity.z() = -speed * std::sin(slope);
+  b.position.z() = 6 - 16 * w * w - 32 * w * w * w * w + 0.1;  // (put on the floor under it)
+  scene.balls = {b};
+  StepContext c = started(scene);
+  c.predictMotions();
+  c.buildBroadPhase();
+  c.findFirstImpacts();
+  bool found = false;
+  while (!c.queue_.empty())
+  {
+    const StepEvent e = c.queue_.pop();
+    if (!e.transition || e.end != MotionEnd::kTakeOff)
+      continue;
+    found = true;
+    const Floor& floor = *c.ground_.floor();
+    const auto push = [&](double s) {
+      const FloorFoot foot = floor.project(c.positionAt(0, s), c.guessOf(0));
+      return c.floorPush(0, foot.uv, foot.normal,
+                         c.onFloorVelocity(0, s, floor.ballCentre(foot, 0.1), foot.normal));
+    };
+    EXPECT_GT(e.x, 0);
+    EXPECT_LT(e.x, 1);
+    EXPECT_GE(push(e.x), 0);
+    EXPECT_LT(push(std::nextafter(e.x, 2.0)), 0);
+  }
+  EXPECT_TRUE(found);
+}
+
+// Resolve: the head-on pair of equal balls at e = 1 exchange their velocities at the
+// impact, which is listed once at its time; commit then puts each at x0 + v t from the
+// impact to the step's end, and predicts the next step's motion from there.
+TEST(Stages, ResolveExchangesAndCommitEndsTheStep)
+{
+  Scene scene = flatScene(-5, 5, -5, 5);
+  const double r = 0.1, v = 10;
+  scene.balls = {ball(-0.2, 0, v, 0, r), ball(0.2, 0, -v, 0, r)};
+  StepContext c = started(scene);
+  c.predictMotions();
+  c.buildBroadPhase();
+  c.formRestingGroups();
+  c.findFirstImpacts();
+  c.resolveEventsInTimeOrder();
+  ASSERT_EQ(c.events_.size(), 1u);
+  const double t = (0.4 - 2 * r) / (2 * v);
+  EXPECT_NEAR(c.events_[0].time, t, 1e-15);
+  EXPECT_NEAR(c.startVelocity(0).x(), -v, 1e-12);
+  EXPECT_NEAR(c.startVelocity(1).x(), v, 1e-12);
+  c.commitToFloor(true);
+  const double after = kDt - t;
+  EXPECT_NEAR(c.balls_[0].position.x(), -0.2 + v * t - v * after, 1e-12);
+  EXPECT_NEAR(c.balls_[1].position.x(), 0.2 - v * t + v * after, 1e-12);
+  EXPECT_NEAR(c.balls_[0].velocity.x(), -v, 1e-12);
+  // (the next step's motions, from the records' ends)
+  EXPECT_NEAR(c.motions_[0].b.x(), -v * kDt, 1e-12);
+  EXPECT_EQ(c.motions_[0].x0, 0.0);
+}
