@@ -96,9 +96,7 @@ StepContext::Committed StepContext::commitBall(std::size_t i, bool settle)
     spin.kind = sm.kind;
   }
   ball.position = end.centre;
-  // (where the floor cannot hold it on its bend at the step's end, it flies from there)
-  if (!ball.flying && !grouped(i) && !motions_[i].frozen && leavesFloorAt(i, end.foot, end.normal, ball.velocity))
-    liftOff(i, 1.0);
+  // (a ball the floor cannot hold on its bend took off within the step: queueTakeOff())
   return {moved, end.normal};
 }
 

@@ -88,7 +88,7 @@ void StepContext::detectBall(std::size_t i, std::size_t j)
   const double xs = std::max(ma.x0, mb.x0);
   const double reach = balls_[a].radius + balls_[b].radius;
   std::optional<double> t;
-  if (!parabolas_ && !ma.accelerates && !mb.accelerates)
+  if (!parabolas_ && (flights_ == 0 || (!ma.accelerates && !mb.accelerates)))
   {
     const Vec3 d = (balls_[a].position + (xs - ma.x0) * ma.b) - (balls_[b].position + (xs - mb.x0) * mb.b);
     t = sphereSweep(d, ma.b - mb.b, reach, 1 - xs, settings_.closing_slop);

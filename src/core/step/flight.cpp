@@ -29,6 +29,7 @@ void StepContext::startFlight(std::size_t i)
   Motion& m = motions_[i];
   m.b = dt_ * startVelocity(i);
   m.accelerates = true;  // (pathTerm(): flight_c_)
+  ++flights_;
   if (!chord_ends_.empty())
     chord_ends_[i] = 1.0;
   if (friction_)
@@ -53,10 +54,10 @@ void StepContext::liftOff(std::size_t i, double x)
   spins_[i].kind = MotionKind::kFlying;
 }
 
-bool StepContext::leavesFloor(std::size_t i, const Vec3& position, const Vec3& v) const
+bool StepContext::leavesCurvedFloor(std::size_t i, const Vec3& position, const Vec3& v) const
 {
-  if (!ground_.bends() || !(v.squaredNorm() > 0))
-    return false;  // (a plane holds whatever moves along it)
+  if (!(v.squaredNorm() > 0))
+    return false;
   // (as leavesFloorAt(), with the least of gravity's part into the floor over its grid,
   // over the margin again, before the foot point is looked for)
   const double margin = settings_.take_off_margin;

@@ -119,7 +119,7 @@ void StepContext::startMotion(std::size_t i, double x, const Vec3& position, con
       keepSpin(i);
     return;
   }
-  if (!balls_[i].flying && !grouped(i) && leavesFloor(i, position, startVelocity(i)))
+  if (!balls_[i].flying && leavesFloor(i, position, startVelocity(i)) && !grouped(i))
   {
     // The floor cannot hold it on its bend: it flies from the floor (a chord's point can
     // lie off it), its speed what its energy gives there.

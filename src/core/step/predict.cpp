@@ -59,7 +59,6 @@ void StepContext::predictMotion(std::size_t i, bool at_step_start)
     }
     liftOff(i, 0.0);  // (its kind recorded where it left the floor just now)
     startFlight(i);
-    ++flights_;
     grid_.setBox(static_cast<std::uint32_t>(i), currentBox(i));
     return;
   }

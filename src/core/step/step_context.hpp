@@ -175,7 +175,11 @@ public:
   /// A ball on a curved floor at `position` with velocity v leaves it: the floor would
   /// have to pull it to keep it on its bend (the normal force m (kappa |v|^2 + g_n) below
   /// zero, kappa the curvature of the centre's path along v).
-  bool leavesFloor(std::size_t i, const Vec3& position, const Vec3& v) const;
+  bool leavesFloor(std::size_t i, const Vec3& position, const Vec3& v) const
+  {
+    return ground_.bends() && leavesCurvedFloor(i, position, v);  // (a plane holds whatever moves along it)
+  }
+  bool leavesCurvedFloor(std::size_t i, const Vec3& position, const Vec3& v) const;
   /// The same where its foot point uv and the normal n there are known.
   bool leavesFloorAt(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const;
   /// The normal force per unit mass the floor gives ball i with foot point uv, normal n

@@ -103,8 +103,9 @@ struct StepState
   const FloorMotion* floor_motion_ = nullptr;
   /// The parabola term of flights, g dt^2 / 2 [m].
   Vec3 flight_c_ = Vec3::Zero();
-  /// Balls whose predicted motion for the step is a flight (their landings are looked
-  /// for at its start only where there are some).
+  /// Flights started since the step's motions were predicted (startFlight()): while
+  /// there are none, no motion is a flight, so that landings are not looked for and
+  /// pairs on a level plane take the straight sweep without asking.
   std::uint32_t flights_ = 0;
   /// The parabola term of free balls' motions, a dt^2 / 2 with the ground's path
   /// acceleration a [m]; parabolas_ where it is not zero.
