@@ -485,6 +485,53 @@ TEST(Flight, LeavesADomeWhereTheFloorsPushFallsToZero)
   }
 }
 
+// Without friction a ball's kind changes only as it leaves or lands: a drop at e = 0.5
+// reports one change, FLYING to STATIONARY at its last (resting) landing; the dome's
+// take-off at 4 m/s one, ROLLING to FLYING, within the step it is first seen flying.
+TEST(Flight, TakeOffsAndLandingsAreTransitionsWithoutFriction)
+{
+  const double r = 0.1;
+  Scene drop = level(0.5);
+  drop.balls.push_back(given(0, r + 0.5, 0, 0, r));
+  World world(drop);
+  std::vector<MotionTransition> changes;
+  std::vector<CollisionEvent> impacts;
+  while (world.time() < 2.0)
+  {
+    world.step();
+    changes.insert(changes.end(), world.lastTransitions().begin(), world.lastTransitions().end());
+    impacts.insert(impacts.end(), world.lastEvents().begin(), world.lastEvents().end());
+  }
+  ASSERT_FALSE(impacts.empty());
+  ASSERT_TRUE(impacts.back().resting);
+  ASSERT_EQ(changes.size(), 1u);
+  EXPECT_EQ(changes[0].from, MotionKind::kFlying);
+  EXPECT_EQ(changes[0].to, MotionKind::kStationary);
+  EXPECT_EQ(changes[0].time, impacts.back().time);
+  EXPECT_EQ(world.stats().transitions, 1u);
+
+  Scene scene;
+  scene.floor = dome();
+  const double d = 4 / std::sqrt(2.0);
+  BallDef b = ball(0, 0, d, d, r);
+  b.position = Vec3(0, 0, 6);
+  scene.balls.push_back(b);
+  World over(scene);
+  changes.clear();
+  while (!over.balls()[0].flying && over.time() < 2.0)
+  {
+    over.step();
+    changes.insert(changes.end(), over.lastTransitions().begin(), over.lastTransitions().end());
+  }
+  ASSERT_TRUE(over.balls()[0].flying);
+  ASSERT_EQ(changes.size(), 1u);
+  EXPECT_EQ(changes[0].from, MotionKind::kRolling);
+  EXPECT_EQ(changes[0].to, MotionKind::kFlying);
+  EXPECT_GT(changes[0].time, over.time() - over.dt());
+  EXPECT_LT(changes[0].time, over.time());
+  EXPECT_EQ(over.motionKind(0), MotionKind::kFlying);
+}
+
 // Twenty-five balls dropped in a 5 x 5 grid from 0.3-1.5 m into a box, on one another
 // in part (every other one above a ball at rest on the floor), at e = 0.5 with friction:
 // no ball below the floor or in another or a wall at any step, the energy never above

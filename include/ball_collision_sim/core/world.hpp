@@ -198,7 +198,8 @@ public:
   const WorldStats& stats() const;
   /// The friction block of the scene, or none (balls slide without friction).
   const std::optional<FrictionDef>& friction() const;
-  /// Changes of motion kind in the last step, in time order (empty without friction).
+  /// Changes of motion kind in the last step, in time order (without friction only take-offs
+  /// and landings: a ball on the floor is rolling while it moves).
   const std::vector<MotionTransition>& lastTransitions() const;
 
   Energy energy() const;

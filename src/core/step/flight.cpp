@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace ball_collision_sim::core
 {
@@ -22,6 +23,12 @@ using namespace step;
 double StepContext::floorRestitution() const
 {
   return scene_.floor && scene_.floor->restitution ? *scene_.floor->restitution : scene_.restitution;
+}
+
+void StepContext::recordFlightChange(std::size_t i, double x, MotionKind from, MotionKind to)
+{
+  ++stats_.transitions;
+  transitions_.push_back({(static_cast<double>(stats_.steps) + x) * dt_, balls_[i].id, from, to});
 }
 
 void StepContext::startFlight(std::size_t i)
@@ -46,9 +53,15 @@ Vec3 StepContext::flightVelocity(std::size_t i, double x) const
 
 void StepContext::liftOff(std::size_t i, double x)
 {
-  balls_[i].flying = true;
+  const bool flew = std::exchange(balls_[i].flying, true);
   if (!friction_)
+  {
+    // (without friction a ball on the floor is rolling while it moves)
+    if (!flew)
+      recordFlightChange(i, x, startVelocity(i) == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling,
+                         MotionKind::kFlying);
     return;
+  }
   spin_motions_[i].kind = MotionKind::kFlying;
   recordKind(i, x);
   spins_[i].kind = MotionKind::kFlying;
@@ -290,6 +303,9 @@ void StepContext::resolveLanding(const Event& event)
   {
     v -= away * n;  // (on the floor: what is left along its normal is the floor's)
     ball.flying = false;
+    // (with friction the phase it lands in reports its kind: startMotion())
+    if (!friction_)
+      recordFlightChange(i, x, MotionKind::kFlying, v == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling);
   }
   ++stats_.floor_impacts;
   recordEvent(CollisionEvent::Kind::kBallFloor, ball.id, 0, p - r * n, -n, normal_impulse, closing, lands, event);

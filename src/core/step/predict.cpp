@@ -47,9 +47,8 @@ void StepContext::predictMotion(std::size_t i, bool at_step_start)
     grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(ball.position, ball.position, ball.radius));
     return;
   }
-  if (at_step_start && !ball.flying && leavesFloor(i, ball.position, ball.velocity))
-    balls_[i].flying = true;
-  if (ball.flying)
+  const bool takes_off = at_step_start && !ball.flying && leavesFloor(i, ball.position, ball.velocity);
+  if (ball.flying || takes_off)
   {
     if (friction_)
     {
@@ -57,7 +56,7 @@ void StepContext::predictMotion(std::size_t i, bool at_step_start)
       sm.w0 = spins_[i].angular_velocity;
       sm.reported = spins_[i].kind;
     }
-    liftOff(i, 0.0);  // (its kind recorded where it left the floor just now)
+    liftOff(i, 0.0);  // (its kind recorded where it leaves the floor, or left it just now)
     startFlight(i);
     grid_.setBox(static_cast<std::uint32_t>(i), currentBox(i));
     return;

@@ -193,6 +193,9 @@ public:
   void resolveTakeOff(const Event& event);
   /// Ball i leaves the floor at x: in flight from there, its kind recorded.
   void liftOff(std::size_t i, double x);
+  /// Records ball i's change of kind at x where no friction phase reports it (a world
+  /// without friction: its take-offs and landings).
+  void recordFlightChange(std::size_t i, double x, MotionKind from, MotionKind to);
   /// The restitution of impacts on the floor: the floor's own, else the scene's.
   double floorRestitution() const;
   // Resting groups (src/core/step/resting_groups.cpp).
