@@ -93,11 +93,13 @@ inline core::FrictionDef pileFriction()
 }
 
 /// 60 balls (radius 0.05-0.08 m, 0.5-2 kg, up to 1 m/s) dropped in a 3 m square bowl
-/// 0.6 m deep at restitution 0.5: they settle into a pile at its bottom.
+/// 0.6 m deep, walled in on its rim, at restitution 0.5: they settle into a pile at its
+/// bottom.
 inline Scene bowlPile(std::uint32_t seed)
 {
   Scene scene;
   scene.floor = bowl(3, 0.3);
+  addBox(scene, -1.5, 1.5, -1.5, 1.5, 1.0);  // walls on the rim: past it a ball falls off the floor
   scene.restitution = 0.5;
   scene.random_balls = randomBalls(60, seed, {0.05, 0.08}, {0.5, 2}, {0, 1});
   return scene;

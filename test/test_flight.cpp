@@ -532,6 +532,81 @@ TEST(Flight, TakeOffsAndLandingsAreTransitionsWithoutFriction)
   EXPECT_EQ(over.motionKind(0), MotionKind::kFlying);
 }
 
+// A ball rolling off the edge of a level floor [-1, 1]^2 at 2 m/s leaves it where its
+// foot point passes the edge, x = 1 at t_e = 0.25 s, and flies on from there:
+// x = 1 + 2 (t - t_e), z = r - g (t - t_e)^2 / 2; it is in the world until its centre is
+// more than r below the floor's lowest point, sqrt(4 r / g) = 0.2019 s later.
+TEST(Flight, FallsOffTheFloorsEdgeAndIsLostBelowIt)
+{
+  const double r = 0.1, v = 2, te = 0.25;
+  Scene scene = flatScene(-1, 1, -1, 1);
+  scene.balls.push_back(ball(0.5, 0, v, 0, r));
+  World world(scene);
+  std::vector<MotionTransition> changes;
+  while (world.time() < te + 0.19 - 1e-9)
+  {
+    world.step();
+    changes.insert(changes.end(), world.lastTransitions().begin(), world.lastTransitions().end());
+    EXPECT_EQ(world.lostBalls(), 0) << "t " << world.time();
+  }
+  ASSERT_EQ(changes.size(), 1u);
+  EXPECT_EQ(changes[0].from, MotionKind::kRolling);
+  EXPECT_EQ(changes[0].to, MotionKind::kFlying);
+  EXPECT_NEAR(changes[0].time, te, 1e-12);
+  const Ball& b = world.balls()[0];
+  ASSERT_TRUE(b.flying);
+  const double s = world.time() - te;
+  EXPECT_NEAR(b.position.x(), 1 + v * s, 1e-12);
+  EXPECT_NEAR(b.position.z(), r - 0.5 * kG * s * s, 1e-12);
+  EXPECT_NEAR(b.velocity.z(), -kG * s, 1e-12);
+  EXPECT_EQ(world.stats().floor_impacts, 0u);  // (past the edge there is no floor to land on)
+  for (int k = 0; k < 3; ++k)
+    world.step();  // (past sqrt(4 r / g))
+  ASSERT_EQ(world.lostBalls(), 1);
+  const std::vector<LostBall> lost = world.removeLostBalls();
+  ASSERT_EQ(lost.size(), 1u);
+  EXPECT_NE(lost[0].reason.find("fell past its edge"), std::string::npos) << lost[0].reason;
+}
+
+// Out of the bowl z = x^2 / 8 + y^2 / 8 over [-2, 2]^2, without walls: a ball from its
+// bottom at 3.5 m/s along x climbs to the rim, where its foot passes x = 2 (the floor's
+// slope 1/2 there), and flies from the centre over that point with the speed its energy
+// gives, along the floor: its level speed v* cos(a) and its height over where it is on
+// that parabola after a step in flight.
+TEST(Flight, FliesOffTheRimOfABowlFromItsEdge)
+{
+  const double r = 0.1, v0 = 3.5;
+  Scene scene;
+  FloorDef f;
+  f.type = FloorDef::Type::kBiquadratic;
+  const double c[3] = {-2, 0, 2};
+  const double z[3] = {0.5, -0.5, 0.5};  // (fixtures' bowl(4, 0.5): z = (x^2 + y^2) / 8)
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      f.control_points[i][j] = Vec3(c[i], c[j], z[i] + z[j]);
+  scene.floor = f;
+  BallDef b = ball(0, 0, v0, 0, r);
+  b.position.z() = r;
+  scene.balls.push_back(b);
+  World world(scene);
+  while (!world.balls()[0].flying && world.time() < 3)
+    world.step();
+  ASSERT_TRUE(world.balls()[0].flying);
+  world.step();
+  const Ball& out = world.balls()[0];
+  ASSERT_TRUE(out.flying);
+  // the centre over the rim's point (2, 0, 0.5), r along the normal (-1/2, 0, 1) / |.|
+  const double slope = std::atan(0.5), len = std::sqrt(1.25);
+  const double xe = 2 - r * 0.5 / len, ze = 0.5 + r / len;
+  const double speed = std::sqrt(v0 * v0 - 2 * kG * (ze - r));
+  const double level = speed * std::cos(slope);
+  EXPECT_NEAR(out.velocity.x(), level, 1e-9);
+  const double run = out.position.x() - xe;
+  ASSERT_GT(run, 0);
+  EXPECT_NEAR(out.position.z(), ze + std::tan(slope) * run - kG * run * run / (2 * level * level), 1e-9);
+  EXPECT_NEAR(out.position.y(), 0, 1e-12);
+}
+
 // Twenty-five balls dropped in a 5 x 5 grid from 0.3-1.5 m into a box, on one another
 // in part (every other one above a ball at rest on the floor), at e = 0.5 with friction:
 // no ball below the floor or in another or a wall at any step, the energy never above

@@ -485,7 +485,7 @@ TEST(Bowl, LargestCurvatureGivesTheLongestChord)
 // A ball at 100 m/s in that bowl, walled, crosses it once a step. One chord a step would
 // run far off the surface (its end put back on the floor beyond the walls, where the
 // paraboloid rises): it met the walls up to 8.6 cm above where the ball touches the
-// floor. Cut into chords of at most 0.125 m, the ball meets them within what such a chord
+// floor, or its foot passes the floor's edge and it falls off. Cut into chords of at most 0.125 m, the ball meets them within what such a chord
 // strays (k L^2 / 8 for the surface its centre keeps to, 4.4 mm), ends every step on the
 // floor, and keeps its energy.
 TEST(Bowl, AFastBallsChordsAreCutToStayOnTheFloor)
@@ -509,10 +509,11 @@ TEST(Bowl, AFastBallsChordsAreCutToStayOnTheFloor)
   StepSettings uncut;
   uncut.chord_turn = uncut.chord_sag = std::numeric_limits<double>::infinity();
   World whole(scene, uncut);
+  // (its chords' ends, put back on the floor beyond the walls, lie past the floor's edge:
+  // it meets the walls far off the floor, or its foot passes the edge and it falls off)
   const OffTheFloor whole_off = offTheFloor(whole, b.radius);
-  EXPECT_GT(whole_off.impacts, 200u);  // (its path off the floor meets the walls less often)
-  EXPECT_LT(whole_off.at_step_ends, 1e-9);
-  EXPECT_GT(whole_off.at_impacts, 0.05);
+  EXPECT_TRUE(whole_off.at_impacts > 0.05 || whole_off.at_step_ends > 0.05)
+      << whole_off.at_impacts << " " << whole_off.at_step_ends;
 }
 
 // A small ball (r = 2 mm) at 20 m/s in the same bowl: chords cut to the floor's turning

@@ -19,6 +19,7 @@ void StepContext::buildBroadPhase()
   wall_boxes_.resize(walls_.size());
   for (std::size_t w = 0; w < walls_.size(); ++w)
     wall_boxes_[w] = Aabb{walls_[w].box_min, walls_[w].box_max};
+  wall_boxes_.insert(wall_boxes_.end(), edge_boxes_.begin(), edge_boxes_.end());
   grid_.markObstacles(wall_boxes_);
 }
 
@@ -73,6 +74,10 @@ void StepContext::detectWalls(std::size_t i)
       queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0, true,
                         hit->feature, false, MotionEnd::kPhase, hit->normal});
   }
+  // (near an edge of the floor, where it may pass it)
+  for (std::size_t e = 0; e < edge_boxes_.size(); ++e)
+    if (grid_.reaches(static_cast<std::uint32_t>(i), walls_.size() + e))
+      return queueEdgeFall(i);
 }
 
 void StepContext::detectBall(std::size_t i, std::size_t j)

@@ -2,9 +2,8 @@
 // meets the floor (an event at the exact time: a quadratic's root over a plane, a
 // bracketed root of its height over a curved floor), a wall or a ball. At the floor it
 // bounces at the floor's restitution, friction's impulse against the slip of its contact
-// point turning its spin; a bounce too low to fly puts it on the floor. A ball leaves the
-// floor where an edit or a landing sends it away from it fast enough, or where a curved
-// floor would have to pull it to keep it on its bend.
+// point turning its spin; a bounce too low to fly puts it on the floor. (Where a ball
+// leaves the floor: take_off.cpp.)
 // Reads and writes motions_, spin_motions_, the start positions and velocities, the
 // balls' flying flags; writes the queue, events_, transitions_ and stats_.
 #include "floor_motion.hpp"
@@ -49,125 +48,6 @@ void StepContext::startFlight(std::size_t i)
 Vec3 StepContext::flightVelocity(std::size_t i, double x) const
 {
   return startVelocity(i) + ((x - motions_[i].x0) * dt_) * gravity_;
-}
-
-void StepContext::liftOff(std::size_t i, double x)
-{
-  const bool flew = std::exchange(balls_[i].flying, true);
-  if (!friction_)
-  {
-    // (without friction a ball on the floor is rolling while it moves)
-    if (!flew)
-      recordFlightChange(i, x, startVelocity(i) == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling,
-                         MotionKind::kFlying);
-    return;
-  }
-  spin_motions_[i].kind = MotionKind::kFlying;
-  recordKind(i, x);
-  spins_[i].kind = MotionKind::kFlying;
-}
-
-bool StepContext::leavesCurvedFloor(std::size_t i, const Vec3& position, const Vec3& v) const
-{
-  if (!(v.squaredNorm() > 0))
-    return false;
-  // (as leavesFloorAt(), with the least of gravity's part into the floor over its grid,
-  // over the margin again, before the foot point is looked for)
-  const double margin = settings_.take_off_margin;
-  if (margin * ground_.floor()->maxCurvature() * v.squaredNorm() <= ground_.leastNormalGravity() / margin)
-    return false;
-  const FloorFoot foot = ground_.floor()->project(position, guessOf(i));
-  return leavesFloorAt(i, foot.uv, foot.normal, v);
-}
-
-bool StepContext::leavesFloorAt(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const
-{
-  if (!ground_.bends())
-    return false;
-  // (the centre's path bends at most as much as the floor over a crest: where even the
-  // floor's largest curvature, take_off_margin times the largest its grid found, asks less
-  // than gravity gives along n, the ball stays, without the floor's derivatives)
-  if (!(v.squaredNorm() > 0) ||
-      settings_.take_off_margin * ground_.floor()->maxCurvature() * v.squaredNorm() <= -gravity_.dot(n))
-    return false;
-  return floorPush(i, uv, n, v) < 0;
-}
-
-double StepContext::floorPush(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const
-{
-  const double g_n = -gravity_.dot(n);
-  const Vec3 t = v - v.dot(n) * n;
-  const double speed2 = t.squaredNorm();
-  if (!ground_.bends() || !(speed2 > 0))
-    return g_n;
-  // The floor's normal curvature along t, kappa_s = <n, S''> / |t|^2 with t = a S_u + b S_v
-  // (negative where it bends away from its normal, as over a crest); the centre, r off it,
-  // moves on a path of curvature kappa_s / (1 - r kappa_s).
-  const Floor& floor = *ground_.floor();
-  Vec3 s, su, sv, suu, suv, svv;
-  floor.derivatives(uv, s, su, sv, suu, suv, svv);
-  const double e = su.dot(su), f = su.dot(sv), g = sv.dot(sv);
-  const double det = e * g - f * f;
-  if (!(det > 0))
-    return g_n;
-  const double tu = su.dot(t), tv = sv.dot(t);
-  const double a = (g * tu - f * tv) / det, b = (e * tv - f * tu) / det;
-  const double kappa_s = n.dot(a * a * suu + 2 * a * b * suv + b * b * svv) / speed2;
-  const double bend = 1 - balls_[i].radius * kappa_s;
-  if (!(bend > 0))
-    return std::numeric_limits<double>::max();  // (a hollow tighter than the ball: it rests on its rim)
-  return kappa_s / bend * v.squaredNorm() + g_n;
-}
-
-void StepContext::queueTakeOff(std::size_t i)
-{
-  const Motion& m = motions_[i];
-  if (!ground_.bends() || balls_[i].flying || m.frozen || grouped(i))
-    return;
-  const double end = chordEnd(i);
-  if (!(end > m.x0))
-    return;
-  // (the fastest it can go within the motion, its start speed and all gravity can add,
-  // checked as leavesFloor() does before the floor is looked at)
-  const double fastest = startVelocity(i).norm() + (end - m.x0) * dt_ * gravity_.norm();
-  const double margin = settings_.take_off_margin;
-  if (margin * ground_.floor()->maxCurvature() * fastest * fastest <= ground_.leastNormalGravity() / margin)
-    return;
-  // The floor's push where the motion is at x, on the floor under it, with the velocity
-  // it has there: where it falls below zero within the motion, found to neighbouring
-  // doubles, the ball takes off.
-  const Floor& floor = *ground_.floor();
-  const double r = balls_[i].radius;
-  const auto push = [&](double x) {
-    const FloorFoot foot = floor.project(positionAt(i, x), guessOf(i));
-    return floorPush(i, foot.uv, foot.normal, onFloorVelocity(i, x, floor.ballCentre(foot, r), foot.normal));
-  };
-  const double at_end = push(end);
-  if (!(at_end < 0))
-    return;
-  const double at_start = push(m.x0);
-  if (!(at_start >= 0))
-    return;  // (it leaves where the motion starts: startMotion() lifts it off there)
-  const double x = bracketedRoot(push, [](double f) { return f >= 0 ? 1 : -1; }, m.x0, end, at_start, at_end);
-  const auto k = static_cast<std::uint32_t>(i);
-  queue_.push(Event{x, k, k, m.epoch, m.epoch, false, WallFeature::kFace, true, MotionEnd::kTakeOff, Vec3::Zero()});
-}
-
-void StepContext::resolveTakeOff(const Event& event)
-{
-  const std::size_t i = event.i;
-  const double x = event.x;
-  // from where it is, on the floor, with the velocity and spin it has there
-  const FloorFoot foot = ground_.floor()->project(positionAt(i, x), guessOf(i));
-  guessOf(i) = foot.uv;
-  const Vec3 p = ground_.floor()->ballCentre(foot, balls_[i].radius);
-  const Vec3 v = onFloorVelocity(i, x, p, foot.normal);
-  if (friction_)
-    spin_motions_[i].w0 = spinAtEvent(i, x, foot.normal, v);
-  liftOff(i, x);
-  startMotion(i, x, p, v, false);
-  countEvent(i);
-  detect(i);
 }
 
 std::optional<double> StepContext::landingIn(std::size_t i, double rest) const
@@ -250,10 +130,13 @@ void StepContext::queueLanding(std::size_t i)
   const std::optional<double> s = landingIn(i, 1 - m.x0);
   if (!s)
     return;
-  // (where it lands off the floor's patch, it does not: it falls past the edge)
+  // (where it lands off the floor's patch, it does not: it falls past the edge; the
+  // patch's margin of Floor::inside() less its tolerance, so that a ball that has just
+  // passed the edge, where it took off, is never taken for one landing there)
   const Vec3 p = positionAt(i, m.x0 + *s);
-  if (ground_.bends() ? !ground_.floor()->project(p, guessOf(i)).inside
-                      : !Floor::inside(ground_.floor()->planeParameters(p)))
+  const Floor& floor = *ground_.floor();
+  if (!(edgeMarginOf(ground_.bends() ? floor.project(p, guessOf(i)).uv : floor.planeParameters(p)) >=
+        Floor::kInsideTolerance))
     return;
   const auto k = static_cast<std::uint32_t>(i);
   queue_.push(Event{std::min(m.x0 + *s, 1.0), k, k, m.epoch, m.epoch, false, WallFeature::kFace, true,

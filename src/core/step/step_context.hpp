@@ -191,6 +191,17 @@ public:
   /// Ball i takes off (StepEvent::end kTakeOff): it flies from where it is on the floor,
   /// with its velocity there.
   void resolveTakeOff(const Event& event);
+  /// Queues where ball i's foot point passes the floor's edge within its motion, the
+  /// first double past it, as a take-off: past the edge no floor holds it.
+  void queueEdgeFall(std::size_t i);
+  /// How far the foot point uv lies inside the floor's patch [0, 1]^2 (below zero past
+  /// its edge; Floor::inside() takes up to kInsideTolerance past it for round-off).
+  static double edgeMarginOf(const Vec2& uv);
+  /// ... that of ball i's foot point at x.
+  double edgeMargin(std::size_t i, double x) const;
+  /// The boxes of the floor's four edges (none without a floor): obstacles of the grid,
+  /// so that only the balls near an edge look for passing it.
+  std::vector<Aabb> floorEdgeBoxes() const;
   /// Ball i leaves the floor at x: in flight from there, its kind recorded.
   void liftOff(std::size_t i, double x);
   /// Records ball i's change of kind at x where no friction phase reports it (a world

@@ -142,7 +142,10 @@ struct StepState
   static constexpr std::uint32_t kNoStepStart = 0xffffffffu;
   EventQueue queue_;
   StepGrid grid_;
-  std::vector<Aabb> wall_boxes_;  ///< the walls' boxes, handed to the grid each step (its obstacles)
+  /// the walls' boxes, then the floor's edges' (edge_boxes_), handed to the grid each step
+  /// (its obstacles)
+  std::vector<Aabb> wall_boxes_;
+  std::vector<Aabb> edge_boxes_;  ///< floorEdgeBoxes()
   std::vector<Vec3> floor_normals_;
   std::vector<Vec2> floor_uv_;  ///< curved floors: each ball's last foot point, Newton's guess
   std::vector<double> chord_ends_;  ///< curved floors: where each ball's chord ends (chordEnd())
