@@ -248,8 +248,9 @@ TEST(ApplyImpulse, ChangesTheVelocityByImpulseOverMass)
   EXPECT_NEAR((world.findBall(1)->position - (start + 0.1 * v)).norm(), 0, 1e-12);
 }
 
-// A ball that rolls off the floor (its wall removed) is taken out at the step its centre
-// leaves the floor, once, with the others untouched; without a floor, the walls' bounds.
+// A ball that rolls off the floor (its wall removed) falls from its edge and is taken out
+// at the step its centre is its radius below the floor, once, with the others untouched;
+// without a floor, the walls' bounds.
 TEST(LostBalls, LeavingTheFloorIsFoundOnceAndTakenOut)
 {
   Scene scene = flatScene();
@@ -271,9 +272,14 @@ TEST(LostBalls, LeavingTheFloorIsFoundOnceAndTakenOut)
   ASSERT_EQ(lost.size(), 1u);
   EXPECT_EQ(lost[0].ball.id, 1);
   EXPECT_NE(lost[0].reason.find("left the floor"), std::string::npos) << lost[0].reason;
-  // its centre passes x = 2 at t = 0.5 s: found at the end of step 51 (x = 2.02)
-  EXPECT_EQ(found_at, 51);
-  EXPECT_NEAR(lost[0].ball.position.x(), 1.0 + 2.0 * 0.51, 1e-12);
+  // its foot passes x = 2 at t = 0.5 s and it falls off the floor: its centre is r below
+  // the floor's lowest point (z = 0) sqrt(4 r / g) = 0.2019 s later, found at the end of
+  // step 71 (x = 2.42)
+  EXPECT_NE(lost[0].reason.find("fell past its edge"), std::string::npos) << lost[0].reason;
+  EXPECT_EQ(found_at, 71);
+  EXPECT_NEAR(lost[0].ball.position.x(), 1.0 + 2.0 * 0.71, 1e-12);
+  EXPECT_NEAR(lost[0].ball.position.z(), 0.1 - 0.5 * 9.81 * 0.21 * 0.21, 1e-12);
+  EXPECT_EQ(lost[0].motion, ball_collision_sim::core::MotionKind::kFlying);
   EXPECT_EQ(world.balls().size(), 2u);
   EXPECT_EQ(world.balls()[0].id, 2);
   EXPECT_NEAR(world.findBall(2)->position.y(), 1 + 0.1, 1e-12);

@@ -312,14 +312,17 @@ class NodeApi(unittest.TestCase):
         self.assertTrue(nh.call(NS + "remove_wall", RemoveObject, id=4).success)  # the east wall
         r = nh.call(NS + "set_ball_state", SetBallState, id=2, position=vec(1.5, 0.5), velocity=vec(2.0))
         self.assertTrue(r.success, r.message)
-        step(60)  # its centre passes x = 2 at t = 0.25 s
+        # its foot passes x = 2 at t = 0.25 s and it falls off the floor: its centre is r below
+        # the floor sqrt(4 r / g) = 0.2258 s later, found at the end of the step at 0.48 s
+        step(60)
         self.assertTrue(lost.wait_for(lambda all: len(all) >= 1))
         time.sleep(0.3)
         gone = lost.take()
         self.assertEqual(len(gone), 1)
         self.assertEqual(gone[0].ball.id, 2)
-        self.assertIn("left the floor", gone[0].reason)
-        self.assertAlmostEqual(gone[0].header.stamp.to_sec(), 0.26, places=9)
+        self.assertIn("fell past its edge", gone[0].reason)
+        self.assertEqual(gone[0].ball.motion, BallState.FLYING)
+        self.assertAlmostEqual(gone[0].header.stamp.to_sec(), 0.48, places=9)
         self.assertEqual([b.id for b in get().balls], [1])
         self.assertTrue(log.wait_for(lambda all: any(m.level == Log.WARN and "ball 2 left the floor" in m.msg
                                                      for m in all)))
