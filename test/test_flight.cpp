@@ -607,6 +607,50 @@ TEST(Flight, FliesOffTheRimOfABowlFromItsEdge)
   EXPECT_NEAR(out.position.y(), 0, 1e-12);
 }
 
+// A small ball in flight (r 0.05 m, 1 kg) strikes a large one resting on a level floor
+// (r 0.2 m, 4 kg) below its centre: the floor only pushes, so the large ball is not held
+// and the two meet as free bodies, the impulse 2 m M / (m + M) (v . n) along the full
+// normal n; the large ball flies off with J n / M, and over the rest of the step both move
+// on gravity's parabolas from there.
+TEST(Flight, ABallStruckBelowItsCentreLeavesTheFloor)
+{
+  const double g = kG, vx = 5, vz0 = 0.75, m = 1, M = 4;
+  Scene scene = level(1.0);
+  BallDef small = given(-1, 0.1, vx, vz0, 0.05);
+  small.mass = m;
+  BallDef big = ball(0, 0, 0, 0, 0.2, M);
+  big.position.z() = 0.2;
+  scene.balls = {small, big};
+  World world(scene);
+  std::vector<CollisionEvent> hits;
+  while (hits.empty() && world.time() < 1)
+  {
+    world.step();
+    for (const CollisionEvent& e : world.lastEvents())
+      if (e.kind == CollisionEvent::Kind::kBallBall)
+        hits.push_back(e);
+  }
+  ASSERT_EQ(hits.size(), 1u);
+  const double t = hits[0].time;
+  const Vec3 ps(-1 + vx * t, 0, 0.1 + vz0 * t - 0.5 * g * t * t), pb(0, 0, 0.2);
+  ASSERT_NEAR((pb - ps).norm(), 0.25, 1e-12);  // (they touch)
+  const Vec3 n = (pb - ps).normalized();
+  ASSERT_GT(n.z(), 0.3);  // (below the large ball's centre)
+  const Vec3 vs(vx, 0, vz0 - g * t);
+  const double J = 2 * vs.dot(n) / (1 / m + 1 / M);
+  const double after = world.time() - t;
+  const Ball& a = *world.findBall(1);
+  const Ball& b = *world.findBall(2);
+  ASSERT_TRUE(b.flying);
+  EXPECT_EQ(world.motionKind(1), MotionKind::kFlying);
+  const Vec3 gz(0, 0, -g);
+  EXPECT_NEAR((b.velocity - (J / M * n + after * gz)).norm(), 0, 1e-12);
+  EXPECT_NEAR((a.velocity - (vs - J / m * n + after * gz)).norm(), 0, 1e-12);
+  EXPECT_NEAR((b.position - (pb + after * (J / M) * n + 0.5 * after * after * gz)).norm(), 0, 1e-12);
+  // the impact's own momentum and energy: those of two free bodies
+  EXPECT_NEAR(hits[0].impulse, J, 1e-12);
+}
+
 // Twenty-five balls dropped in a 5 x 5 grid from 0.3-1.5 m into a box, on one another
 // in part (every other one above a ball at rest on the floor), at e = 0.5 with friction:
 // no ball below the floor or in another or a wall at any step, the energy never above

@@ -111,9 +111,9 @@ void StepContext::resolveBallBall(const Event& event)
   wakeOnImpact(i, j, n.dot(va - vb), rest_speed);
   // Each ball on the floor is pushed along the normal's part tangent to the floor under
   // it; one in flight along the normal itself, and it rests on nothing.
-  const Vec3 ta = a.flying ? n : ground_.along(n, na);
-  const Vec3 tb = b.flying ? n : ground_.along(n, nb);
-  const double closing = va.dot(ta) - vb.dot(tb);
+  Vec3 ta = a.flying ? n : ground_.along(n, na);
+  Vec3 tb = b.flying ? n : ground_.along(n, nb);
+  double closing = va.dot(ta) - vb.dot(tb);
   const bool resting = !a.flying && !b.flying && closing <= rest_speed;
   if (resting)
   {
@@ -132,7 +132,19 @@ void StepContext::resolveBallBall(const Event& event)
   }
   const double inv_a = inverseMass(i);
   const double inv_b = inverseMass(j);
-  const double impulse = collisionImpulse(closing, inv_a, ta, inv_b, tb, scene_.restitution);
+  double impulse = collisionImpulse(closing, inv_a, ta, inv_b, tb, scene_.restitution);
+  // The floor only pushes: a ball on it that a ball in flight pushes away from it (struck
+  // below its centre) is not held, takes the whole normal and flies. (Two balls on the
+  // floor push each other along it, whatever their radii: the floor's plane model.)
+  const bool lifts_a = b.flying && !a.flying && liftedBy(i, (-impulse * inv_a) * n, na);
+  const bool lifts_b = a.flying && !b.flying && liftedBy(j, (impulse * inv_b) * n, nb);
+  if (lifts_a || lifts_b)
+  {
+    ta = lifts_a ? n : ta;
+    tb = lifts_b ? n : tb;
+    closing = va.dot(ta) - vb.dot(tb);
+    impulse = collisionImpulse(closing, inv_a, ta, inv_b, tb, scene_.restitution);
+  }
   const Vec3 va_before = va, vb_before = vb;
   va -= (impulse * inv_a) * ta;
   vb += (impulse * inv_b) * tb;
@@ -140,8 +152,13 @@ void StepContext::resolveBallBall(const Event& event)
   const PairContact pair{i, j, n, na, nb, ta, tb, ta, tb, inv_a, inv_b};
   if (friction_)
     ballBallFriction(pair, impulse, va, vb);
-  takeVelocity(i, event.x, pa, na, va_before, va);
-  takeVelocity(j, event.x, pb, nb, vb_before, vb);
+  // (a ball lifted flies from where it is on the floor)
+  if (lifts_a)
+    liftOff(i, event.x);
+  if (lifts_b)
+    liftOff(j, event.x);
+  takeVelocity(i, event.x, lifts_a ? onFloor(i, pa) : pa, na, va_before, va);
+  takeVelocity(j, event.x, lifts_b ? onFloor(j, pb) : pb, nb, vb_before, vb);
   recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, impulse, closing, false, event);
   countEvent(i);
   countEvent(j);
@@ -163,6 +180,14 @@ void StepContext::goOnAfter(const Event& event)
     solveGroup(j, event.x);
   else if (!group_j)
     detect(j);
+}
+
+bool StepContext::liftedBy(std::size_t i, const Vec3& dv, const Vec3& floor_normal) const
+{
+  // (as an edit's push: away from the floor for min_flight_time or more; a ball in a
+  // group moves with it)
+  const double away = dv.dot(floor_normal);
+  return away > 0 && !(2 * away < settings_.min_flight_time * -gravity_.dot(floor_normal)) && !grouped(i);
 }
 
 void StepContext::takeVelocity(std::size_t i, double x, const Vec3& p, const Vec3& normal, const Vec3& before, const Vec3& v)

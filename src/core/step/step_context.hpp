@@ -306,6 +306,10 @@ public:
   /// free velocity; what the impulse gave it counts toward the energy its group may end
   /// with.
   void takeVelocity(std::size_t i, double x, const Vec3& p, const Vec3& normal, const Vec3& before, const Vec3& v);
+  /// Whether the change dv of ball i's velocity at an impact lifts it off the floor with
+  /// this normal: it points away from the floor enough to keep it off it for
+  /// StepSettings::min_flight_time (the floor takes a push into it, never one out of it).
+  bool liftedBy(std::size_t i, const Vec3& dv, const Vec3& floor_normal) const;
   /// Ball i's new motion from x on, from `position` with `velocity` (`impact`: an impact
   /// gave it, not a resting contact or a chord's or phase's end).
   void startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact);
