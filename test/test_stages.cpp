@@ -200,3 +200,26 @@ TEST(Stages, ResolveExchangesAndCommitEndsTheStep)
   EXPECT_NEAR(c.motions_[0].b.x(), -v * kDt, 1e-12);
   EXPECT_EQ(c.motions_[0].x0, 0.0);
 }
+
+// The floor's edges as the grid's obstacles: a floor walled in on every side has none
+// (a ball on it meets a wall before its foot can pass an edge); each wall taken away
+// leaves its edge to be passed, and a wall that only hangs below an edge covers nothing.
+TEST(Stages, OnlyEdgesNoWallCoversAreObstacles)
+{
+  Scene scene = flatScene(-1, 1, -1, 1);
+  addBox(scene, -1, 1, -1, 1);
+  StepContext c(scene);
+  EXPECT_TRUE(c.edge_boxes_.empty());
+  ASSERT_TRUE(c.removeWall(4));  // (x = 1)
+  ASSERT_EQ(c.edge_boxes_.size(), 1u);
+  EXPECT_EQ(c.edge_boxes_[0].min.x(), 1);
+  EXPECT_EQ(c.edge_boxes_[0].max.x(), 1);
+  WallDef below;
+  below.point = Vec3(1, -1, 0);
+  below.u = Vec3(0, 2, 0);
+  below.v = Vec3(0, 0, -0.5);
+  ASSERT_TRUE(c.addWall(below).ok);
+  EXPECT_EQ(c.edge_boxes_.size(), 1u);
+  Scene open = flatScene(-1, 1, -1, 1);
+  EXPECT_EQ(StepContext(open).edge_boxes_.size(), 4u);
+}

@@ -197,6 +197,7 @@ AddResult StepContext::addWall(const WallDef& def)
   }
   ++next_wall_id_;
   walls_.push_back(wall);
+  edge_boxes_ = floorEdgeBoxes();  // (the floor's edges it covers are none to pass)
   wakeAll();
   result.ok = true;
   result.id = wall.id;
@@ -226,6 +227,7 @@ bool StepContext::removeWall(int id)
   if (it == walls_.end())
     return false;
   walls_.erase(it);
+  edge_boxes_ = floorEdgeBoxes();  // (an edge it covered can be passed now)
   wakeAll();  // what leaned on it
   return true;
 }

@@ -50,7 +50,6 @@ StepContext::StepContext(const Scene& scene, SceneCheck checked, const StepSetti
     throw std::invalid_argument("chord_turn: must be > 0");
   if (!(settings_.chord_sag > 0))
     throw std::invalid_argument("chord_sag: must be > 0");
-  edge_boxes_ = floorEdgeBoxes();
   sleep_steps_ = static_cast<std::uint16_t>(std::clamp(std::ceil(settings_.sleep_time / dt_), 1.0, 65535.0));
   load(std::move(checked.balls));
 }
@@ -67,6 +66,7 @@ void StepContext::load(PlacedBalls placed)
   next_wall_id_ = kFirstId;
   for (const WallDef& def : scene_.walls)
     walls_.emplace_back(next_wall_id_++, def, scene_.restitution);
+  edge_boxes_ = floorEdgeBoxes();
   balls_.clear();
   by_id_.clear();
   feet_.clear();

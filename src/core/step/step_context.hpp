@@ -199,8 +199,9 @@ public:
   static double edgeMarginOf(const Vec2& uv);
   /// ... that of ball i's foot point at x.
   double edgeMargin(std::size_t i, double x) const;
-  /// The boxes of the floor's four edges (none without a floor): obstacles of the grid,
-  /// so that only the balls near an edge look for passing it.
+  /// The boxes of the floor's edges that no wall covers (none without a floor): obstacles
+  /// of the grid, so that only the balls near such an edge look for passing it. (Made
+  /// again as walls come and go.)
   std::vector<Aabb> floorEdgeBoxes() const;
   /// Ball i leaves the floor at x: in flight from there, its kind recorded.
   void liftOff(std::size_t i, double x);

@@ -9,6 +9,7 @@
 #include "../bracketed_root.hpp"
 
 #include <algorithm>
+#include <vector>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -140,30 +141,61 @@ void StepContext::resolveTakeOff(const Event& event)
 
 std::vector<Aabb> StepContext::floorEdgeBoxes() const
 {
-  // (each edge lies in the box of its control points: a Bezier curve keeps to their hull)
+  // Each edge lies in the box of its control points (a Bezier curve keeps to their hull),
+  // and where a wall holds them all (within round-off of its plane and inside it), the
+  // edge is in the wall: a ball on the floor meets the wall before its foot passes there.
   std::vector<Aabb> boxes;
   if (!ground_.floor())
     return boxes;
   const FloorDef& def = ground_.floor()->def();
-  const auto boxOf = [](std::initializer_list<Vec3> points) {
-    Aabb box{*points.begin(), *points.begin()};
-    for (const Vec3& p : points)
+  std::vector<std::vector<Vec3>> edges;
+  if (ground_.floor()->isPlane())
+  {
+    const Vec3 a = def.point, b = def.point + def.u, c = def.point + def.v, d = def.point + def.u + def.v;
+    edges = {{a, b}, {c, d}, {a, c}, {b, d}};
+  }
+  else
+  {
+    const auto& q = def.control_points;
+    for (int k : {0, 2})
+    {
+      edges.push_back({q[k][0], q[k][1], q[k][2]});
+      edges.push_back({q[0][k], q[1][k], q[2][k]});
+    }
+  }
+  constexpr double kInWall = 1e-9;  // [m] off its plane, and of its parameters past its sides
+  const auto inWall = [&](const Wall& wall, const Vec3& p) {
+    const Vec3 d = p - wall.def.point;
+    const double s = d.dot(wall.dual_u), t = d.dot(wall.dual_v);
+    return std::abs(d.dot(wall.normal)) <= kInWall && s >= -kInWall && s <= 1 + kInWall && t >= -kInWall &&
+           t <= 1 + kInWall;
+  };
+  // (and the wall rises above the floor there: one that only hangs below the edge, as a
+  // table's side, lets a ball roll off over it)
+  const Vec3& up = ground_.up();
+  const auto rises = [&](const Wall& wall, const std::vector<Vec3>& edge) {
+    double top = -std::numeric_limits<double>::infinity(), highest = top;
+    for (const Vec3& c : wall.corners)
+      top = std::max(top, up.dot(c));
+    for (const Vec3& p : edge)
+      highest = std::max(highest, up.dot(p));
+    return top > highest + kInWall;
+  };
+  for (const std::vector<Vec3>& edge : edges)
+  {
+    const bool walled = std::any_of(walls_.begin(), walls_.end(), [&](const Wall& wall) {
+      return rises(wall, edge) &&
+             std::all_of(edge.begin(), edge.end(), [&](const Vec3& p) { return inWall(wall, p); });
+    });
+    if (walled)
+      continue;
+    Aabb box{edge.front(), edge.front()};
+    for (const Vec3& p : edge)
     {
       box.min = box.min.cwiseMin(p);
       box.max = box.max.cwiseMax(p);
     }
-    return box;
-  };
-  if (ground_.floor()->isPlane())
-  {
-    const Vec3 a = def.point, b = def.point + def.u, c = def.point + def.v, d = def.point + def.u + def.v;
-    return {boxOf({a, b}), boxOf({c, d}), boxOf({a, c}), boxOf({b, d})};
-  }
-  const auto& q = def.control_points;
-  for (int k : {0, 2})
-  {
-    boxes.push_back(boxOf({q[k][0], q[k][1], q[k][2]}));
-    boxes.push_back(boxOf({q[0][k], q[1][k], q[2][k]}));
+    boxes.push_back(box);
   }
   return boxes;
 }
