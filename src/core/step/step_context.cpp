@@ -50,6 +50,7 @@ StepContext::StepContext(const Scene& scene, SceneCheck checked, const StepSetti
     throw std::invalid_argument("chord_turn: must be > 0");
   if (!(settings_.chord_sag > 0))
     throw std::invalid_argument("chord_sag: must be > 0");
+  take_off_speed2_ = takeOffSpeedSquared();
   sleep_steps_ = static_cast<std::uint16_t>(std::clamp(std::ceil(settings_.sleep_time / dt_), 1.0, 65535.0));
   load(std::move(checked.balls));
 }

@@ -187,7 +187,9 @@ public:
   double floorPush(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const;
   /// Queues the exact time at which ball i's motion on a curved floor reaches where the
   /// floor's push on it falls to zero, if that is within the motion.
-  void queueTakeOff(std::size_t i);
+  void queueTakeOff(std::size_t i);  // (inline: step_types.hpp)
+  /// ... past the check of its speed: the floor's push followed along the motion.
+  void searchTakeOff(std::size_t i);
   /// Ball i takes off (StepEvent::end kTakeOff): it flies from where it is on the floor,
   /// with its velocity there.
   void resolveTakeOff(const Event& event);
@@ -203,6 +205,10 @@ public:
   /// of the grid, so that only the balls near such an edge look for passing it. (Made
   /// again as walls come and go.)
   std::vector<Aabb> floorEdgeBoxes() const;
+  /// The speed squared below which no ball takes off from the floor's bend: where even
+  /// take_off_margin times its largest curvature asks less of it than the least of
+  /// gravity along the floor's normal over the margin [m^2/s^2].
+  double takeOffSpeedSquared() const;
   /// Ball i leaves the floor at x: in flight from there, its kind recorded.
   void liftOff(std::size_t i, double x);
   /// Records ball i's change of kind at x where no friction phase reports it (a world

@@ -36,12 +36,9 @@ void StepContext::liftOff(std::size_t i, double x)
 
 bool StepContext::leavesCurvedFloor(std::size_t i, const Vec3& position, const Vec3& v) const
 {
-  if (!(v.squaredNorm() > 0))
-    return false;
   // (as leavesFloorAt(), with the least of gravity's part into the floor over its grid,
   // over the margin again, before the foot point is looked for)
-  const double margin = settings_.take_off_margin;
-  if (margin * ground_.floor()->maxCurvature() * v.squaredNorm() <= ground_.leastNormalGravity() / margin)
+  if (!(v.squaredNorm() > take_off_speed2_))
     return false;
   const FloorFoot foot = ground_.floor()->project(position, guessOf(i));
   return leavesFloorAt(i, foot.uv, foot.normal, v);
@@ -86,19 +83,11 @@ double StepContext::floorPush(std::size_t i, const Vec2& uv, const Vec3& n, cons
   return kappa_s / bend * v.squaredNorm() + g_n;
 }
 
-void StepContext::queueTakeOff(std::size_t i)
+void StepContext::searchTakeOff(std::size_t i)
 {
   const Motion& m = motions_[i];
-  if (!ground_.bends() || balls_[i].flying || m.frozen || grouped(i))
-    return;
   const double end = chordEnd(i);
-  if (!(end > m.x0))
-    return;
-  // (the fastest it can go within the motion, its start speed and all gravity can add,
-  // checked as leavesFloor() does before the floor is looked at)
-  const double fastest = startVelocity(i).norm() + (end - m.x0) * dt_ * gravity_.norm();
-  const double margin = settings_.take_off_margin;
-  if (margin * ground_.floor()->maxCurvature() * fastest * fastest <= ground_.leastNormalGravity() / margin)
+  if (!(end > m.x0) || grouped(i))
     return;
   // The floor's push where the motion is at x, on the floor under it, with the velocity
   // it has there: where it falls below zero within the motion, found to neighbouring
@@ -198,6 +187,16 @@ std::vector<Aabb> StepContext::floorEdgeBoxes() const
     boxes.push_back(box);
   }
   return boxes;
+}
+
+double StepContext::takeOffSpeedSquared() const
+{
+  // (where even the floor's largest curvature, take_off_margin times what its grid found,
+  // asks less than the least of gravity along its normal over the margin)
+  const double margin = settings_.take_off_margin;
+  if (!ground_.bends() || !(ground_.floor()->maxCurvature() > 0))
+    return std::numeric_limits<double>::infinity();
+  return ground_.leastNormalGravity() / (margin * margin * ground_.floor()->maxCurvature());
 }
 
 double StepContext::edgeMarginOf(const Vec2& uv)
