@@ -78,6 +78,22 @@ inline FloorDef bowl(double L, double h)
   return f;
 }
 
+/// A dome: corners at height 0, the edges' middles and the centre at 8, over [-4, 4]^2.
+/// Along its diagonal x = y its section is z(w) = 6 - 16 w^2 - 32 w^4 (w = s - 1/2 on the
+/// diagonal's parameter s, xi = 8 sqrt(2) w along it), a crest of curvature 1/4 at the top
+/// that bends more the further down: a ball on it leaves the floor part way down.
+inline FloorDef dome()
+{
+  FloorDef f;
+  f.type = FloorDef::Type::kBiquadratic;
+  const double c[3] = {-4, 0, 4};
+  const double z[3][3] = {{0, 8, 0}, {8, 8, 8}, {0, 8, 0}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      f.control_points[i][j] = Vec3(c[i], c[j], z[i][j]);
+  return f;
+}
+
 /// Friction for piles in a bowl (sliding 0.2, rolling resistance 0.01, spinning 0.044):
 /// what takes their energy as they come to rest. The test bowls are paraboloids, where a
 /// frictionless pile's centre of mass swings as one body for good (every ball is pulled

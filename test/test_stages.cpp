@@ -26,6 +26,26 @@ StepContext started(const Scene& scene)
   c.startStep();
   return c;
 }
+
+/// ... and through detection: its motions predicted, the grid built, the resting groups
+/// formed and the first impacts and motion ends queued.
+StepContext detected(const Scene& scene)
+{
+  StepContext c = started(scene);
+  c.predictMotions();
+  c.buildBroadPhase();
+  c.formRestingGroups();
+  c.findFirstImpacts();
+  return c;
+}
+
+/// Two balls of radius r closing head on at 2 v on a level floor, 0.4 m apart.
+Scene headOn(double r, double v)
+{
+  Scene scene = flatScene(-5, 5, -5, 5);
+  scene.balls = {ball(-0.2, 0, v, 0, r), ball(0.2, 0, -v, 0, r)};
+  return scene;
+}
 }  // namespace
 
 // Predict: on a level plane a ball's motion is the line dt v; along a plane sloped by
@@ -73,13 +93,8 @@ TEST(Stages, PredictGivesEachBallsMotionOverTheStep)
 // one toward a wall, after (g - r) / v: each the first event queued, at that step fraction.
 TEST(Stages, DetectionQueuesTheFirstImpactsAtTheirTimes)
 {
-  Scene scene = flatScene(-5, 5, -5, 5);
   const double r = 0.1, v = 10;
-  scene.balls = {ball(-0.2, 0, v, 0, r), ball(0.2, 0, -v, 0, r)};
-  StepContext c = started(scene);
-  c.predictMotions();
-  c.buildBroadPhase();
-  c.findFirstImpacts();
+  StepContext c = detected(headOn(r, v));
   ASSERT_FALSE(c.queue_.empty());
   const StepEvent first = c.queue_.pop();
   EXPECT_FALSE(first.wall);
@@ -89,10 +104,7 @@ TEST(Stages, DetectionQueuesTheFirstImpactsAtTheirTimes)
   Scene walled = flatScene(-5, 5, -5, 5);
   addBox(walled, -1, 1, -1, 1);
   walled.balls = {ball(0.85, 0, v, 0, r)};
-  StepContext w = started(walled);
-  w.predictMotions();
-  w.buildBroadPhase();
-  w.findFirstImpacts();
+  StepContext w = detected(walled);
   ASSERT_FALSE(w.queue_.empty());
   const StepEvent hit = w.queue_.pop();
   EXPECT_TRUE(hit.wall);
@@ -111,10 +123,7 @@ TEST(Stages, DetectionQueuesALandingAtTheRootOfTheHeight)
   b.velocity.z() = -v;
   b.placement = BallPlacement::kAsGiven;
   scene.balls = {b};
-  StepContext c = started(scene);
-  c.predictMotions();
-  c.buildBroadPhase();
-  c.findFirstImpacts();
+  StepContext c = detected(scene);
   ASSERT_FALSE(c.queue_.empty());
   const StepEvent landing = c.queue_.pop();
   EXPECT_TRUE(landing.transition);
@@ -129,15 +138,8 @@ TEST(Stages, DetectionQueuesALandingAtTheRootOfTheHeight)
 // motion end where the floor's push changes sign, to neighbouring doubles.
 TEST(Stages, DetectionQueuesATakeOffWhereTheFloorsPushFallsToZero)
 {
-  FloorDef f;
-  f.type = FloorDef::Type::kBiquadratic;
-  const double c3[3] = {-4, 0, 4};
-  const double z[3][3] = {{0, 8, 0}, {8, 8, 8}, {0, 8, 0}};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      f.control_points[i][j] = Vec3(c3[i], c3[j], z[i][j]);
   Scene scene;
-  scene.floor = f;
+  scene.floor = dome();
   const double x = 3.0 / std::sqrt(2.0), speed = 6.41;
   const double w = 3.0 / (8 * std::sqrt(2.0));
   // along the floor's tangent down the diagonal
@@ -147,10 +149,7 @@ TEST(Stages, DetectionQueuesATakeOffWhereTheFloorsPushFallsToZero)
   b.velocity.z() = -speed * std::sin(slope);
   b.position.z() = 6 - 16 * w * w - 32 * w * w * w * w + 0.1;  // (put on the floor under it)
   scene.balls = {b};
-  StepContext c = started(scene);
-  c.predictMotions();
-  c.buildBroadPhase();
-  c.findFirstImpacts();
+  StepContext c = detected(scene);
   bool found = false;
   while (!c.queue_.empty())
   {
@@ -177,14 +176,8 @@ TEST(Stages, DetectionQueuesATakeOffWhereTheFloorsPushFallsToZero)
 // impact to the step's end, and predicts the next step's motion from there.
 TEST(Stages, ResolveExchangesAndCommitEndsTheStep)
 {
-  Scene scene = flatScene(-5, 5, -5, 5);
   const double r = 0.1, v = 10;
-  scene.balls = {ball(-0.2, 0, v, 0, r), ball(0.2, 0, -v, 0, r)};
-  StepContext c = started(scene);
-  c.predictMotions();
-  c.buildBroadPhase();
-  c.formRestingGroups();
-  c.findFirstImpacts();
+  StepContext c = detected(headOn(r, v));
   c.resolveEventsInTimeOrder();
   ASSERT_EQ(c.events_.size(), 1u);
   const double t = (0.4 - 2 * r) / (2 * v);

@@ -26,7 +26,7 @@ std::string StepContext::place(BallDef& def, Landing landing, int ignore_id, Vec
       &flying);
   if (!why.empty())
     return "position: " + why;
-  for (const Ball& other : balls())  // (the first in id order is named)
+  for (const Ball& other : BallList(balls_, by_id_))  // (the first in id order is named)
   {
     const double depth = def.radius + other.radius - (def.position - other.position).norm();
     if (other.id != ignore_id && depth > kContactTolerance)
@@ -186,7 +186,7 @@ AddResult StepContext::addWall(const WallDef& def)
   if (!result.error.empty())
     return result;
   const Wall wall(next_wall_id_, def, scene_.restitution);
-  for (const Ball& ball : balls())  // (the first in id order is named)
+  for (const Ball& ball : BallList(balls_, by_id_))  // (the first in id order is named)
   {
     const double depth = ball.radius - wall.distance(ball.position);
     if (depth > kContactTolerance)

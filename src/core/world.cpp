@@ -30,20 +30,20 @@ World::~World() = default;
 
 void World::step() { c_->step(); }
 void World::reset() { c_->reset(); }
-double World::time() const { return c_->time(); }
-double World::dt() const { return c_->dt(); }
-const Vec3& World::gravity() const { return c_->gravity(); }
-const Scene& World::scene() const { return c_->scene(); }
-const StepSettings& World::stepSettings() const { return c_->stepSettings(); }
-BallList World::balls() const { return c_->balls(); }
-const std::vector<Wall>& World::walls() const { return c_->walls(); }
-const std::optional<Floor>& World::floor() const { return c_->floor(); }
-const std::vector<CollisionEvent>& World::lastEvents() const { return c_->lastEvents(); }
+double World::time() const { return static_cast<double>(c_->stats_.steps) * c_->dt_; }
+double World::dt() const { return c_->dt_; }
+const Vec3& World::gravity() const { return c_->gravity_; }
+const Scene& World::scene() const { return c_->scene_; }
+const StepSettings& World::stepSettings() const { return c_->settings_; }
+BallList World::balls() const { return BallList(c_->balls_, c_->by_id_); }
+const std::vector<Wall>& World::walls() const { return c_->walls_; }
+const std::optional<Floor>& World::floor() const { return c_->ground_.floor(); }
+const std::vector<CollisionEvent>& World::lastEvents() const { return c_->events_; }
 void World::recordEvents(bool record) { c_->recordEvents(record); }
-bool World::recordsEvents() const { return c_->recordsEvents(); }
-const WorldStats& World::stats() const { return c_->stats(); }
-const std::optional<FrictionDef>& World::friction() const { return c_->friction(); }
-const std::vector<MotionTransition>& World::lastTransitions() const { return c_->lastTransitions(); }
+bool World::recordsEvents() const { return c_->record_events_; }
+const WorldStats& World::stats() const { return c_->stats_; }
+const std::optional<FrictionDef>& World::friction() const { return c_->scene_.friction; }
+const std::vector<MotionTransition>& World::lastTransitions() const { return c_->transitions_; }
 Energy World::energy() const { return c_->energy(); }
 Vec3 World::momentum() const { return c_->momentum(); }
 int World::lostBalls() const { return c_->lostBalls(); }

@@ -17,7 +17,8 @@ namespace ball_collision_sim::core
 class StepContext : public StepState
 {
 public:
-  // World's API (world.hpp, where each call is documented), which forwards here.
+  // World's API (world.hpp, where each call is documented), which forwards here; its
+  // accessors read StepState's members themselves.
   explicit StepContext(const Scene& scene, const StepSettings& settings = StepSettings());
   StepContext(const Scene& scene, SceneCheck checked, const StepSettings& settings = StepSettings());
   StepContext(const StepContext&);
@@ -29,20 +30,7 @@ public:
   void step();
   void reset();
 
-  double time() const { return static_cast<double>(stats_.steps) * dt_; }
-  double dt() const { return dt_; }
-  const Vec3& gravity() const { return gravity_; }
-  const Scene& scene() const { return scene_; }
-  const StepSettings& stepSettings() const { return settings_; }
-  BallList balls() const { return BallList(balls_, by_id_); }
-  const std::vector<Wall>& walls() const { return walls_; }
-  const std::optional<Floor>& floor() const { return ground_.floor(); }
-  const std::vector<CollisionEvent>& lastEvents() const { return events_; }
   void recordEvents(bool record);
-  bool recordsEvents() const { return record_events_; }
-  const WorldStats& stats() const { return stats_; }
-  const std::optional<FrictionDef>& friction() const { return scene_.friction; }
-  const std::vector<MotionTransition>& lastTransitions() const { return transitions_; }
 
   Energy energy() const;
   Vec3 momentum() const;
