@@ -132,19 +132,9 @@ void StepContext::resolveBallBall(const Event& event)
   }
   const double inv_a = inverseMass(i);
   const double inv_b = inverseMass(j);
-  double impulse = collisionImpulse(closing, inv_a, ta, inv_b, tb, scene_.restitution);
-  // The floor only pushes: a ball on it that a ball in flight pushes away from it (struck
-  // below its centre) is not held, takes the whole normal and flies. (Two balls on the
-  // floor push each other along it, whatever their radii: the floor's plane model.)
-  const bool lifts_a = b.flying && !a.flying && liftedBy(i, (-impulse * inv_a) * n, na);
-  const bool lifts_b = a.flying && !b.flying && liftedBy(j, (impulse * inv_b) * n, nb);
-  if (lifts_a || lifts_b)
-  {
-    ta = lifts_a ? n : ta;
-    tb = lifts_b ? n : tb;
-    closing = va.dot(ta) - vb.dot(tb);
-    impulse = collisionImpulse(closing, inv_a, ta, inv_b, tb, scene_.restitution);
-  }
+  const Lift lift = pairLift(i, j, n, na, nb, va, vb, ta, tb, closing);
+  const double impulse = collisionImpulse(closing, inv_a, ta, inv_b, tb, scene_.restitution);
+  const bool lifts_a = lift.a, lifts_b = lift.b;
   const Vec3 va_before = va, vb_before = vb;
   va -= (impulse * inv_a) * ta;
   vb += (impulse * inv_b) * tb;
@@ -180,6 +170,27 @@ void StepContext::goOnAfter(const Event& event)
     solveGroup(j, event.x);
   else if (!group_j)
     detect(j);
+}
+
+StepContext::Lift StepContext::pairLift(std::size_t i, std::size_t j, const Vec3& n, const Vec3& na, const Vec3& nb,
+                                        const Vec3& va, const Vec3& vb, Vec3& ta, Vec3& tb, double& closing) const
+{
+  // The floor only pushes: a ball on it that a ball in flight pushes away from it (struck
+  // below its centre) is not held, takes the whole normal and flies. (Two balls on the
+  // floor push each other along it, whatever their radii: the floor's plane model.)
+  const bool a_flies = balls_[i].flying, b_flies = balls_[j].flying;
+  if (a_flies == b_flies)
+    return {};
+  const double inv_a = inverseMass(i), inv_b = inverseMass(j);
+  const double impulse = collisionImpulse(closing, inv_a, ta, inv_b, tb, scene_.restitution);
+  const Lift lift{b_flies && liftedBy(i, (-impulse * inv_a) * n, na), a_flies && liftedBy(j, (impulse * inv_b) * n, nb)};
+  if (lift.a || lift.b)
+  {
+    ta = lift.a ? n : ta;
+    tb = lift.b ? n : tb;
+    closing = va.dot(ta) - vb.dot(tb);
+  }
+  return lift;
 }
 
 bool StepContext::liftedBy(std::size_t i, const Vec3& dv, const Vec3& floor_normal) const
