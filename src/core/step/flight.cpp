@@ -133,14 +133,9 @@ void StepContext::queueLanding(std::size_t i)
   // (where it lands off the floor's patch, it does not: it falls past the edge; the
   // patch's margin of Floor::inside() less its tolerance, so that a ball that has just
   // passed the edge, where it took off, is never taken for one landing there)
-  const Vec3 p = positionAt(i, m.x0 + *s);
-  const Floor& floor = *ground_.floor();
-  if (!(edgeMarginOf(ground_.bends() ? floor.project(p, guessOf(i)).uv : floor.planeParameters(p)) >=
-        Floor::kInsideTolerance))
+  if (!(edgeMargin(i, m.x0 + *s) >= Floor::kInsideTolerance))
     return;
-  const auto k = static_cast<std::uint32_t>(i);
-  queue_.push(Event{std::min(m.x0 + *s, 1.0), k, k, m.epoch, m.epoch, false, WallFeature::kFace, true,
-                    MotionEnd::kLanding, Vec3::Zero()});
+  queueMotionEnd(i, std::min(m.x0 + *s, 1.0), MotionEnd::kLanding);
 }
 
 void StepContext::resolveLanding(const Event& event)

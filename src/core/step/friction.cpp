@@ -137,9 +137,7 @@ void StepContext::queueTransition(std::size_t i)
   const SpinMotion& sm = spin_motions_[i];
   if (!sm.phase->ownsMotion() || motions_[i].frozen || !(sm.x_end <= 1))
     return;
-  const auto k = static_cast<std::uint32_t>(i);
-  queue_.push(Event{sm.x_end, k, k, motions_[i].epoch, motions_[i].epoch, false, WallFeature::kFace, true, MotionEnd::kPhase,
-                     Vec3::Zero()});
+  queueMotionEnd(i, sm.x_end, MotionEnd::kPhase);
 }
 
 void StepContext::ballBallFriction(const PairContact& c, double normal_impulse, Vec3& va, Vec3& vb)

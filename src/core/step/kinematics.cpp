@@ -165,9 +165,14 @@ void StepContext::queueCut(std::size_t i)
   const double x = chord_ends_[i];
   if (!(x < 1) || motions_[i].frozen)
     return;
+  queueMotionEnd(i, x, MotionEnd::kCut);
+}
+
+void StepContext::queueMotionEnd(std::size_t i, double x, MotionEnd end)
+{
   const auto k = static_cast<std::uint32_t>(i);
   const std::uint16_t epoch = motions_[i].epoch;
-  queue_.push(Event{x, k, k, epoch, epoch, false, WallFeature::kFace, true, MotionEnd::kCut, Vec3::Zero()});
+  queue_.push(Event{x, k, k, epoch, epoch, false, WallFeature::kFace, true, end, Vec3::Zero()});
 }
 
 void StepContext::resolveMotionEnd(const Event& event)

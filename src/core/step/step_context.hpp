@@ -137,6 +137,9 @@ public:
   /// on the floor; the ball goes on from there by an event (queueCut(), resolveMotionEnd()).
   void cutChord(std::size_t i, const Vec3& position, const Vec3& v0);
   void queueCut(std::size_t i);
+  /// Queues the end of ball i's motion at x, for why it ends (a StepEvent::transition
+  /// under the motion's epoch).
+  void queueMotionEnd(std::size_t i, double x, MotionEnd end);
   /// Ball i's motion ends within the step (StepEvent::transition): its friction phase's,
   /// made exact by FrictionLaw::finish(), or its chord at a cut; a new one starts there.
   void resolveMotionEnd(const Event& event);
@@ -168,8 +171,6 @@ public:
     return ground_.bends() && leavesCurvedFloor(i, position, v);  // (a plane holds whatever moves along it)
   }
   bool leavesCurvedFloor(std::size_t i, const Vec3& position, const Vec3& v) const;
-  /// The same where its foot point uv and the normal n there are known.
-  bool leavesFloorAt(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const;
   /// The normal force per unit mass the floor gives ball i with foot point uv, normal n
   /// there and velocity v, kappa |v|^2 + g_n [m/s^2]: below zero it would have to pull.
   double floorPush(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const;

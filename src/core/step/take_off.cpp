@@ -36,25 +36,16 @@ void StepContext::liftOff(std::size_t i, double x)
 
 bool StepContext::leavesCurvedFloor(std::size_t i, const Vec3& position, const Vec3& v) const
 {
-  // (as leavesFloorAt(), with the least of gravity's part into the floor over its grid,
-  // over the margin again, before the foot point is looked for)
+  // (where even the floor's largest curvature, take_off_margin times the largest its grid
+  // found, asks less than gravity gives along the normal, the ball stays, without the
+  // floor's derivatives: first with the least of gravity's part over its grid, over the
+  // margin again, before the foot point is looked for, then with the normal there)
   if (!(v.squaredNorm() > take_off_speed2_))
     return false;
   const FloorFoot foot = ground_.floor()->project(position, guessOf(i));
-  return leavesFloorAt(i, foot.uv, foot.normal, v);
-}
-
-bool StepContext::leavesFloorAt(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const
-{
-  if (!ground_.bends())
+  if (settings_.take_off_margin * ground_.floor()->maxCurvature() * v.squaredNorm() <= -gravity_.dot(foot.normal))
     return false;
-  // (the centre's path bends at most as much as the floor over a crest: where even the
-  // floor's largest curvature, take_off_margin times the largest its grid found, asks less
-  // than gravity gives along n, the ball stays, without the floor's derivatives)
-  if (!(v.squaredNorm() > 0) ||
-      settings_.take_off_margin * ground_.floor()->maxCurvature() * v.squaredNorm() <= -gravity_.dot(n))
-    return false;
-  return floorPush(i, uv, n, v) < 0;
+  return floorPush(i, foot.uv, foot.normal, v) < 0;
 }
 
 double StepContext::floorPush(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const
@@ -62,7 +53,7 @@ double StepContext::floorPush(std::size_t i, const Vec2& uv, const Vec3& n, cons
   const double g_n = -gravity_.dot(n);
   const Vec3 t = v - v.dot(n) * n;
   const double speed2 = t.squaredNorm();
-  if (!ground_.bends() || !(speed2 > 0))
+  if (!(speed2 > 0))
     return g_n;
   // The floor's normal curvature along t, kappa_s = <n, S''> / |t|^2 with t = a S_u + b S_v
   // (negative where it bends away from its normal, as over a crest); the centre, r off it,
@@ -105,8 +96,7 @@ void StepContext::searchTakeOff(std::size_t i)
   if (!(at_start >= 0))
     return;  // (it leaves where the motion starts: startMotion() lifts it off there)
   const double x = bracketedRoot(push, [](double f) { return f >= 0 ? 1 : -1; }, m.x0, end, at_start, at_end);
-  const auto k = static_cast<std::uint32_t>(i);
-  queue_.push(Event{x, k, k, m.epoch, m.epoch, false, WallFeature::kFace, true, MotionEnd::kTakeOff, Vec3::Zero()});
+  queueMotionEnd(i, x, MotionEnd::kTakeOff);
 }
 
 void StepContext::resolveTakeOff(const Event& event)
@@ -229,7 +219,6 @@ void StepContext::queueEdgeFall(std::size_t i)
   const double lo = bracketedRoot([&](double x) { return edgeMargin(i, x); },
                                   [](double f) { return f >= 0 ? 1 : -1; }, m.x0, end, at_start, at_end);
   const double x = std::nextafter(lo, end);
-  const auto k = static_cast<std::uint32_t>(i);
-  queue_.push(Event{x, k, k, m.epoch, m.epoch, false, WallFeature::kFace, true, MotionEnd::kTakeOff, Vec3::Zero()});
+  queueMotionEnd(i, x, MotionEnd::kTakeOff);
 }
 }  // namespace ball_collision_sim::core
