@@ -15,12 +15,12 @@ namespace
 {
 StepEvent ballEvent(double x, std::uint32_t i, std::uint32_t j)
 {
-  return StepEvent{x, i, j, 0, 0, false, WallFeature::kFace, false, MotionEnd::kPhase, Vec3::Zero()};
+  return StepEvent{x, i, j, 0, 0, EventKind::kBallBall, WallFeature::kFace, MotionEnd::kPhase, Vec3::Zero()};
 }
 
 StepEvent wallEvent(double x, std::uint32_t i, std::uint32_t wall)
 {
-  return StepEvent{x, i, wall, 0, 0, true, WallFeature::kFace, false, MotionEnd::kPhase, Vec3::UnitX()};
+  return StepEvent{x, i, wall, 0, 0, EventKind::kBallWall, WallFeature::kFace, MotionEnd::kPhase, Vec3::UnitX()};
 }
 
 /// Every field of an event that came out of the queue is as it went in.
@@ -31,9 +31,8 @@ void expectSameEvent(const StepEvent& out, const StepEvent& in)
   EXPECT_EQ(out.j, in.j);
   EXPECT_EQ(out.epoch_i, in.epoch_i);
   EXPECT_EQ(out.epoch_j, in.epoch_j);
-  EXPECT_EQ(out.wall, in.wall);
+  EXPECT_EQ(out.kind, in.kind);
   EXPECT_EQ(out.feature, in.feature);
-  EXPECT_EQ(out.transition, in.transition);
   EXPECT_EQ(out.end, in.end);
   EXPECT_EQ(out.normal, in.normal) << "event " << out.epoch_i;
 }
@@ -67,7 +66,7 @@ TEST(EventQueue, EarliestFirstAndTiesByTheBallsIdsNotTheVisitingOrder)
   while (!queue.empty())
   {
     const StepEvent e = queue.pop();
-    got.push_back({e.x, {order[e.i], e.wall ? 100 + e.j : order[e.j]}});
+    got.push_back({e.x, {order[e.i], e.kind == EventKind::kBallWall ? 100 + e.j : order[e.j]}});
   }
   const std::vector<std::pair<double, std::vector<std::uint32_t>>> expected{
       {0.25, {2, 3}},
@@ -106,8 +105,8 @@ TEST(EventQueue, DrainsInOrderWithSlotsReused)
   }
   using Key = std::array<double, 4>;
   const auto key = [&](const StepEvent& e) {
-    const double i = order[e.i], j = e.wall ? e.j : order[e.j];
-    return e.wall ? Key{e.x, i, 0, j} : Key{e.x, std::min(i, j), 1, std::max(i, j)};
+    const double i = order[e.i], j = e.kind == EventKind::kBallWall ? e.j : order[e.j];
+    return e.kind == EventKind::kBallWall ? Key{e.x, i, 0, j} : Key{e.x, std::min(i, j), 1, std::max(i, j)};
   };
   std::vector<Key> drained;
   while (!queue.empty())
@@ -144,7 +143,7 @@ TEST(EventQueue, EachEventComesBackWithItsOwnNormalAndFields)
   {
     const double x = 0.5 + 0.5 * u(rng);
     StepEvent e = k % 2 == 0 ? wallEvent(x, ball(rng), k % 5) : ballEvent(x, ball(rng), ball(rng));
-    if (e.wall)
+    if (e.kind == EventKind::kBallWall)
     {
       e.normal = Vec3(u(rng), u(rng), u(rng)).normalized();
       e.feature = k % 3 == 0 ? WallFeature::kEdge : WallFeature::kFace;
@@ -175,17 +174,19 @@ TEST(EventQueue, ForgetDropsOneBallsEventsAndKeepsTheRestInOrder)
   std::vector<StepEvent> sent;
   const auto push = [&](StepEvent e) {
     e.epoch_i = static_cast<std::uint16_t>(sent.size());  // its number
-    if (e.wall)
+    if (e.kind == EventKind::kBallWall)
       e.normal = Vec3(u(rng), u(rng), 1).normalized();
     sent.push_back(e);
     queue.push(e);
   };
-  const auto involves = [](const StepEvent& e, std::uint32_t k) { return e.i == k || (!e.wall && e.j == k); };
+  const auto involves = [](const StepEvent& e, std::uint32_t k) {
+    return e.i == k || (e.kind != EventKind::kBallWall && e.j == k);
+  };
   for (int k = 0; k < 600; ++k)
   {
     const std::uint32_t a = ball(rng);
     if (k % 7 == 0)
-      push(StepEvent{u(rng), a, a, 0, 0, false, WallFeature::kFace, true, MotionEnd::kPhase, Vec3::Zero()});
+      push(StepEvent{u(rng), a, a, 0, 0, EventKind::kMotionEnd, WallFeature::kFace, MotionEnd::kPhase, Vec3::Zero()});
     else
       push(k % 3 == 0 ? wallEvent(u(rng), a, 3) : ballEvent(u(rng), a, ball(rng)));
   }

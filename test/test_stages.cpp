@@ -97,8 +97,7 @@ TEST(Stages, DetectionQueuesTheFirstImpactsAtTheirTimes)
   StepContext c = detected(headOn(r, v));
   ASSERT_FALSE(c.queue_.empty());
   const StepEvent first = c.queue_.pop();
-  EXPECT_FALSE(first.wall);
-  EXPECT_FALSE(first.transition);
+  EXPECT_EQ(first.kind, EventKind::kBallBall);
   EXPECT_NEAR(first.x * kDt, (0.4 - 2 * r) / (2 * v), 1e-15);
 
   Scene walled = flatScene(-5, 5, -5, 5);
@@ -107,7 +106,7 @@ TEST(Stages, DetectionQueuesTheFirstImpactsAtTheirTimes)
   StepContext w = detected(walled);
   ASSERT_FALSE(w.queue_.empty());
   const StepEvent hit = w.queue_.pop();
-  EXPECT_TRUE(hit.wall);
+  EXPECT_EQ(hit.kind, EventKind::kBallWall);
   EXPECT_NEAR(hit.x * kDt, (1 - 0.85 - r) / v, 1e-15);
   EXPECT_NEAR(hit.normal.x(), -1, 1e-15);
 }
@@ -126,7 +125,7 @@ TEST(Stages, DetectionQueuesALandingAtTheRootOfTheHeight)
   StepContext c = detected(scene);
   ASSERT_FALSE(c.queue_.empty());
   const StepEvent landing = c.queue_.pop();
-  EXPECT_TRUE(landing.transition);
+  EXPECT_EQ(landing.kind, EventKind::kMotionEnd);
   EXPECT_EQ(landing.end, MotionEnd::kLanding);
   const double g = 9.81;
   const double t = (-v + std::sqrt(v * v + 2 * g * h)) / g;  // h = v t + g t^2 / 2
@@ -154,7 +153,7 @@ TEST(Stages, DetectionQueuesATakeOffWhereTheFloorsPushFallsToZero)
   while (!c.queue_.empty())
   {
     const StepEvent e = c.queue_.pop();
-    if (!e.transition || e.end != MotionEnd::kTakeOff)
+    if (e.kind != EventKind::kMotionEnd || e.end != MotionEnd::kTakeOff)
       continue;
     found = true;
     const Floor& floor = *c.ground_.floor();

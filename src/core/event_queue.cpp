@@ -43,11 +43,11 @@ bool EventQueue::later(const Entry& qa, const Entry& qb) const
   const auto key = [&](const Queued& e) {
     // (ids are positive)
     const auto i = static_cast<std::uint32_t>((*balls_)[e.i].id);
-    const auto j = e.wall ? e.j : static_cast<std::uint32_t>((*balls_)[e.j].id);
+    const auto j = e.kind == EventKind::kBallWall ? e.j : static_cast<std::uint32_t>((*balls_)[e.j].id);
     using Key = std::array<std::uint32_t, 3>;
-    if (e.transition)  // after the ball's wall events
+    if (e.kind == EventKind::kMotionEnd)  // after the ball's wall events
       return Key{i, 0, std::numeric_limits<std::uint32_t>::max() - (e.end == MotionEnd::kLanding ? 1 : 0)};
-    return e.wall ? Key{i, 0, j} : Key{std::min(i, j), 1, std::max(i, j)};
+    return e.kind == EventKind::kBallWall ? Key{i, 0, j} : Key{std::min(i, j), 1, std::max(i, j)};
   };
   return key(a) > key(b);
 }
@@ -56,9 +56,8 @@ void EventQueue::push(const StepEvent& event)
 {
   static_assert(sizeof(Queued) == 20, "a queued event is its fields but the time and the normal");
   static_assert(sizeof(Entry) == 12, "a heap entry is a time and a slot");
-  Queued queued{event.i,    event.j,          event.epoch_i, event.epoch_j, event.wall,
-                event.feature, event.transition, event.end,    0};
-  if (event.wall)
+  Queued queued{event.i, event.j, event.epoch_i, event.epoch_j, event.kind, event.feature, event.end, 0};
+  if (event.kind == EventKind::kBallWall)
     queued.normal = place(normals_, free_normals_, event.normal);
   const std::uint32_t slot = place(pool_, free_slots_, queued);
   heap_.push_back({event.x, slot});
@@ -69,10 +68,10 @@ void EventQueue::forget(std::uint32_t ball)
 {
   const auto of_ball = [&](const Entry& entry) {
     const Queued& q = pool_[entry.slot];
-    if (q.i != ball && (q.wall || q.j != ball))
+    if (q.i != ball && (q.kind == EventKind::kBallWall || q.j != ball))
       return false;
     free_slots_.push_back(entry.slot);
-    if (q.wall)
+    if (q.kind == EventKind::kBallWall)
       free_normals_.push_back(q.normal);
     return true;
   };
@@ -91,8 +90,8 @@ StepEvent EventQueue::pop()
   if (!heap_.empty())
     __builtin_prefetch(&pool_[heap_.front().slot]);
   const Queued& q = pool_[slot];
-  StepEvent event{x, q.i, q.j, q.epoch_i, q.epoch_j, q.wall, q.feature, q.transition, q.end, Vec3::Zero()};
-  if (q.wall)
+  StepEvent event{x, q.i, q.j, q.epoch_i, q.epoch_j, q.kind, q.feature, q.end, Vec3::Zero()};
+  if (q.kind == EventKind::kBallWall)
   {
     event.normal = normals_[q.normal];
     free_normals_.push_back(q.normal);

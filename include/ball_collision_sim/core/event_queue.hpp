@@ -10,7 +10,7 @@
 namespace ball_collision_sim::core
 {
 /// How a ball's motion ends within the step where that is not an impact
-/// (StepEvent::transition): its friction phase ends, its chord reaches the longest a
+/// (EventKind::kMotionEnd): its friction phase ends, its chord reaches the longest a
 /// curved floor allows, its flight reaches the floor, or the floor's bend stops holding
 /// it (it takes off).
 enum class MotionEnd : std::uint8_t
@@ -19,6 +19,15 @@ enum class MotionEnd : std::uint8_t
   kCut,
   kLanding,
   kTakeOff,
+};
+
+/// What a step's event is: an impact of two balls, or of a ball and a wall, or the end of
+/// a ball's motion (MotionEnd says why).
+enum class EventKind : std::uint8_t
+{
+  kBallBall,
+  kBallWall,
+  kMotionEnd,
 };
 
 /// An impact predicted inside the step; stale once either ball's epoch has moved on (it
@@ -30,10 +39,9 @@ struct StepEvent
   std::uint32_t j;           ///< visiting index of the other ball, or the wall's index
   std::uint16_t epoch_i;     ///< the balls' epochs when it was found (World::Motion::epoch)
   std::uint16_t epoch_j;
-  bool wall;
+  EventKind kind;
   WallFeature feature;
-  /// Not an impact: ball i's motion ends (j = i, `wall` false), as `end` says.
-  bool transition;
+  /// kMotionEnd: why ball i's motion ends (j = i)
   MotionEnd end;
   Vec3 normal;               ///< ball-wall: unit, from the wall toward the ball
 };
@@ -61,9 +69,8 @@ public:
     std::uint32_t j;
     std::uint16_t epoch_i;
     std::uint16_t epoch_j;
-    bool wall;
+    EventKind kind;
     WallFeature feature;
-    bool transition;
     MotionEnd end;
     std::uint32_t normal;
   };

@@ -71,8 +71,8 @@ void StepContext::detectWalls(std::size_t i)
     const auto hit = parabolas_ || m.accelerates ? sweepWall(wall, ball.position, m.b, parabolaOf(i), ball.radius, rest, slop)
                                 : sweepWall(wall, ball.position, m.b, ball.radius, rest, slop);
     if (hit)
-      queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0, true,
-                        hit->feature, false, MotionEnd::kPhase, hit->normal});
+      queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0, EventKind::kBallWall,
+                        hit->feature, MotionEnd::kPhase, hit->normal});
   }
   // (near an edge of the floor, where it may pass it)
   for (std::size_t e = 0; e < edge_boxes_.size(); ++e)
@@ -107,7 +107,7 @@ void StepContext::detectBall(std::size_t i, std::size_t j)
                                settings_.closing_slop);
   }
   if (t)
-    queue_.push(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), ma.epoch, mb.epoch, false,
-                      WallFeature::kFace, false, MotionEnd::kPhase, Vec3::Zero()});
+    queue_.push(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), ma.epoch, mb.epoch, EventKind::kBallBall,
+                      WallFeature::kFace, MotionEnd::kPhase, Vec3::Zero()});
 }
 }  // namespace ball_collision_sim::core

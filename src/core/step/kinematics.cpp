@@ -172,7 +172,7 @@ void StepContext::queueMotionEnd(std::size_t i, double x, MotionEnd end)
 {
   const auto k = static_cast<std::uint32_t>(i);
   const std::uint16_t epoch = motions_[i].epoch;
-  queue_.push(Event{x, k, k, epoch, epoch, false, WallFeature::kFace, true, end, Vec3::Zero()});
+  queue_.push(Event{x, k, k, epoch, epoch, EventKind::kMotionEnd, WallFeature::kFace, end, Vec3::Zero()});
 }
 
 void StepContext::resolveMotionEnd(const Event& event)

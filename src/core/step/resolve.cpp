@@ -25,25 +25,40 @@ void StepContext::resolveEventsInTimeOrder()
       };
       const auto& next = queue_.top();
       fetch(next.i);
-      if (!next.wall)
+      if (next.kind != EventKind::kBallWall)
         fetch(next.j);
     }
     const Event event = queue_.pop();
-    if (motions_[event.i].epoch != event.epoch_i || (!event.wall && motions_[event.j].epoch != event.epoch_j))
+    if (motions_[event.i].epoch != event.epoch_i ||
+        (event.kind != EventKind::kBallWall && motions_[event.j].epoch != event.epoch_j))
     {
       ++stats_.stale_events;  // a ball involved has had an event since this was found
       continue;
     }
-    if (event.transition && event.end == MotionEnd::kLanding)
-      resolveLanding(event);
-    else if (event.transition && event.end == MotionEnd::kTakeOff)
-      resolveTakeOff(event);
-    else if (event.transition)
-      resolveMotionEnd(event);
-    else if (event.wall)
-      resolveBallWall(event);
-    else
-      resolveBallBall(event);
+    resolve(event);
+  }
+}
+
+void StepContext::resolve(const Event& event)
+{
+  switch (event.kind)
+  {
+    case EventKind::kBallBall:
+      return resolveBallBall(event);
+    case EventKind::kBallWall:
+      return resolveBallWall(event);
+    case EventKind::kMotionEnd:
+      break;
+  }
+  switch (event.end)
+  {
+    case MotionEnd::kLanding:
+      return resolveLanding(event);
+    case MotionEnd::kTakeOff:
+      return resolveTakeOff(event);
+    case MotionEnd::kPhase:
+    case MotionEnd::kCut:
+      return resolveMotionEnd(event);
   }
 }
 
@@ -163,7 +178,7 @@ void StepContext::goOnAfter(const Event& event)
     solveGroup(i, event.x);
   else
     detect(i);
-  if (event.wall)
+  if (event.kind == EventKind::kBallWall)
     return;
   const bool group_j = grouped(j);
   if (group_j && !(group_i && groupOf(i) == groupOf(j)))

@@ -119,6 +119,8 @@ public:
   void detect(std::size_t i);
   void detectWalls(std::size_t i);
   void detectBall(std::size_t i, std::size_t j);
+  /// The event as its kind, and a motion end as its end, says.
+  void resolve(const Event& event);
   void resolveBallWall(const Event& event);
   void resolveBallBall(const Event& event);
   /// A ball-ball contact as resolveBallBall() works it out: visiting indices, the normal
@@ -137,10 +139,10 @@ public:
   /// on the floor; the ball goes on from there by an event (queueCut(), resolveMotionEnd()).
   void cutChord(std::size_t i, const Vec3& position, const Vec3& v0);
   void queueCut(std::size_t i);
-  /// Queues the end of ball i's motion at x, for why it ends (a StepEvent::transition
+  /// Queues the end of ball i's motion at x, for why it ends (an EventKind::kMotionEnd
   /// under the motion's epoch).
   void queueMotionEnd(std::size_t i, double x, MotionEnd end);
-  /// Ball i's motion ends within the step (StepEvent::transition): its friction phase's,
+  /// Ball i's motion ends within the step (EventKind::kMotionEnd): its friction phase's,
   /// made exact by FrictionLaw::finish(), or its chord at a cut; a new one starts there.
   void resolveMotionEnd(const Event& event);
   // Flight (src/core/step/flight.cpp).
