@@ -62,9 +62,9 @@ TEST(Stages, PredictGivesEachBallsMotionOverTheStep)
   StepContext c = started(level);
   c.predictMotions();
   EXPECT_EQ(c.motions_[0].b, Vec3(kDt * 1, kDt * 0.5, 0));
-  EXPECT_FALSE(c.motions_[0].accelerates);
+  EXPECT_EQ(c.motions_[0].type, MotionType::kLine);
   EXPECT_EQ(c.motions_[1].b, Vec3::Zero());
-  EXPECT_TRUE(c.motions_[2].accelerates);
+  EXPECT_EQ(c.motions_[2].type, MotionType::kFlight);
   EXPECT_EQ(c.motions_[2].b, Vec3(kDt * 1, 0, kDt * 2));
   EXPECT_EQ(c.pathTerm(2), Vec3(0, 0, -0.5 * 9.81 * kDt * kDt));
   const Vec3 end = c.positionAt(2, 1.0);

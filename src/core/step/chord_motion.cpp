@@ -37,7 +37,7 @@ void StepState::ChordMotion::start(StepContext& w, std::size_t i, double x, cons
 void StepState::ChordMotion::keepEnergy(StepContext& w, std::size_t i)
 {
   const double rest = w.chordEnd(i) - w.motions_[i].x0;
-  if (w.motions_[i].frozen || !(rest > 0))
+  if (w.motions_[i].frozen() || !(rest > 0))
     return;
   const StepContext::EnergyCheck energy{&w, i, rest};
   // (the chord's own end is what counts: one cut short of where its energy runs out
@@ -155,7 +155,7 @@ bool StepState::ChordMotion::stillMotion(StepContext& w, std::size_t i, const Fr
   // It stays where it is, with no speed (a chord's point below the floor, where a
   // phase ended mid-step, is not lifted onto it for nothing).
   w.startVelocity(i) = w.motions_[i].b = Vec3::Zero();
-  w.motions_[i].accelerates = false;
+  w.motions_[i].become(MotionType::kLine);
   return false;
 }
 

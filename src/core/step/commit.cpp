@@ -66,7 +66,7 @@ StepContext::Committed StepContext::commitBall(std::size_t i, bool settle)
   Ball& ball = balls_[i];
   // (a ball asleep stays where it is, on the foot point it had; the floor's normal there
   // counts only across resting contacts: its spin is kept as it is, SpinPhase::kept())
-  const Ground::End end = motions_[i].asleep ? ground_.stillEnd(ball.position, ball.radius, guessOf(i), settle)
+  const Ground::End end = motions_[i].asleep() ? ground_.stillEnd(ball.position, ball.radius, guessOf(i), settle)
                           : ball.flying      ? ground_.airEnd(positionAt(i, 1.0), guessOf(i))
                                              : ground_.end(positionAt(i, 1.0), ball.radius, guessOf(i));
   if (!feet_.empty())
@@ -79,7 +79,7 @@ StepContext::Committed StepContext::commitBall(std::size_t i, bool settle)
   const Vec3 moved = end.centre - (start == kNoStepStart ? ball.position : step_starts_[start]);
   start = kNoStepStart;
   // (a ball frozen by the event cap keeps no speed it does not move with)
-  ball.velocity = motions_[i].frozen ? Vec3::Zero() : onFloorVelocity(i, 1.0, end.centre, end.normal);
+  ball.velocity = motions_[i].frozen() ? Vec3::Zero() : onFloorVelocity(i, 1.0, end.centre, end.normal);
   if (friction_)
   {
     // its own spin at the end, and its turn over the step by the mean of its spins

@@ -22,9 +22,9 @@ void StepContext::wakeGroup(std::size_t first)
   {
     const std::size_t k = todo.back();
     todo.pop_back();
-    if (!motions_[k].asleep)
+    if (!motions_[k].asleep())
       continue;
-    motions_[k].frozen = motions_[k].asleep = false;
+    motions_[k].type = MotionType::kLine;  // (still, until its next motion starts)
     Ball& ball = balls_[k];
     ball.asleep = false;
     ball.quiet_steps = 0;
@@ -32,7 +32,7 @@ void StepContext::wakeGroup(std::size_t first)
     grid_.query(static_cast<std::uint32_t>(k), [&](std::uint32_t other) {
       const Ball& b = balls_[other];
       const double reach = b.radius + ball.radius + settings_.touch_slack;
-      if (motions_[other].asleep && (b.position - ball.position).norm() <= reach && !wallBetween(ball, b))
+      if (motions_[other].asleep() && (b.position - ball.position).norm() <= reach && !wallBetween(ball, b))
         todo.push_back(other);
     });
   }
@@ -96,7 +96,7 @@ void StepContext::sleepStillGroups()
       continue;  // (a wall)
     const std::size_t j = group.ballAt(row.b);
     leans[j] = 1;
-    if (motions_[i].asleep || motions_[j].asleep)
+    if (motions_[i].asleep() || motions_[j].asleep())
       continue;  // a sleeping ball holds the other like a wall does
     const std::size_t a = root(i), b = root(j);
     parent[std::max(a, b)] = static_cast<std::uint32_t>(std::min(a, b));

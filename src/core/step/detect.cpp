@@ -58,7 +58,7 @@ void StepContext::detect(std::size_t i)
 void StepContext::detectWalls(std::size_t i)
 {
   const Motion& m = motions_[i];
-  if (motions_[i].frozen || !grid_.nearObstacle(static_cast<std::uint32_t>(i)))
+  if (motions_[i].frozen() || !grid_.nearObstacle(static_cast<std::uint32_t>(i)))
     return;
   for (std::size_t w = 0; w < walls_.size(); ++w)
   {
@@ -68,7 +68,7 @@ void StepContext::detectWalls(std::size_t i)
     const Wall& wall = walls_[w];
     const Ball& ball = balls_[i];
     const double rest = 1 - m.x0, slop = settings_.closing_slop;
-    const auto hit = parabolas_ || m.accelerates ? sweepWall(wall, ball.position, m.b, parabolaOf(i), ball.radius, rest, slop)
+    const auto hit = parabolas_ || m.accelerates() ? sweepWall(wall, ball.position, m.b, parabolaOf(i), ball.radius, rest, slop)
                                 : sweepWall(wall, ball.position, m.b, ball.radius, rest, slop);
     if (hit)
       queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0, EventKind::kBallWall,
@@ -84,7 +84,7 @@ void StepContext::detectBall(std::size_t i, std::size_t j)
 {
   // Always in index order, so that the same pair gives the same bits whoever asks.
   const std::size_t a = std::min(i, j), b = std::max(i, j);
-  if (motions_[a].frozen && motions_[b].frozen)
+  if (motions_[a].frozen() && motions_[b].frozen())
     return;  // neither moves (asleep, or stopped by the cap): no impact
   if (grouped(a) && linked(a, static_cast<std::uint32_t>(b)))
     return;  // a resting contact: a constraint of their group
@@ -93,7 +93,7 @@ void StepContext::detectBall(std::size_t i, std::size_t j)
   const double xs = std::max(ma.x0, mb.x0);
   const double reach = balls_[a].radius + balls_[b].radius;
   std::optional<double> t;
-  if (!parabolas_ && (flights_ == 0 || (!ma.accelerates && !mb.accelerates)))
+  if (!parabolas_ && (flights_ == 0 || (!ma.accelerates() && !mb.accelerates())))
   {
     const Vec3 d = (balls_[a].position + (xs - ma.x0) * ma.b) - (balls_[b].position + (xs - mb.x0) * mb.b);
     t = sphereSweep(d, ma.b - mb.b, reach, 1 - xs, settings_.closing_slop);

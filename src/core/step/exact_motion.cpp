@@ -23,7 +23,7 @@ void StepState::ExactMotion::predict(StepContext& w, std::size_t i, const Vec3& 
   if (w.free_parabolas_)
   {
     m.b = w.dt_ * v;  // the parabola the ground gives a free ball
-    w.motions_[i].accelerates = true;
+    w.motions_[i].become(MotionType::kPath);
     return;
   }
   m.b = w.predictedEnd(i, w.startPosition(i), v, w.dt_) - w.startPosition(i);
@@ -36,7 +36,7 @@ void StepState::ExactMotion::start(StepContext& w, std::size_t i, double x, cons
   {
     // free: the parabola the ground gives it, exactly
     m.b = w.dt_ * v0;
-    w.motions_[i].accelerates = true;
+    w.motions_[i].become(MotionType::kPath);
     return;
   }
   // (no pull along the floor: the motion is the line at v0, its energy its start's)
@@ -61,7 +61,7 @@ bool StepState::ExactMotion::drivenMotion(StepContext& w, std::size_t i, const F
   Vec3& v = w.startVelocity(i);
   v = law.along(v);
   w.motions_[i].b = w.dt_ * v;
-  w.motions_[i].accelerates = true;
+  w.motions_[i].become(MotionType::kPhase);
   return false;
 }
 

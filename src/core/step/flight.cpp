@@ -34,7 +34,7 @@ void StepContext::startFlight(std::size_t i)
 {
   Motion& m = motions_[i];
   m.b = dt_ * startVelocity(i);
-  m.accelerates = true;  // (pathTerm(): flight_c_)
+  m.become(MotionType::kFlight);  // (pathTerm(): flight_c_)
   ++flights_;
   if (!chord_ends_.empty())
     chord_ends_[i] = 1.0;
@@ -124,7 +124,7 @@ std::optional<double> StepContext::landingOverCurve(std::size_t i, double rest) 
 
 void StepContext::queueLanding(std::size_t i)
 {
-  if (!balls_[i].flying || motions_[i].frozen || !ground_.floor())
+  if (!balls_[i].flying || motions_[i].frozen() || !ground_.floor())
     return;
   const Motion& m = motions_[i];
   const std::optional<double> s = landingIn(i, 1 - m.x0);

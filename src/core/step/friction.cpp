@@ -16,9 +16,17 @@ using namespace step;
 
 const Vec3& StepContext::pathTerm(std::size_t i) const
 {
-  if (balls_[i].flying)
-    return flight_c_;
-  return friction_ ? spin_motions_[i].c : path_c_;
+  switch (motions_[i].type)
+  {
+    case MotionType::kFlight:
+      return flight_c_;
+    case MotionType::kPhase:
+      return spin_motions_[i].c;
+    case MotionType::kPath:
+      return path_c_;
+    default:
+      return zero_c_;
+  }
 }
 
 Vec3 StepContext::spinOf(const BallDef& def, const Vec3& n)
@@ -135,7 +143,7 @@ Vec3 StepContext::spinAt(std::size_t i, double x) const
 void StepContext::queueTransition(std::size_t i)
 {
   const SpinMotion& sm = spin_motions_[i];
-  if (!sm.phase->ownsMotion() || motions_[i].frozen || !(sm.x_end <= 1))
+  if (!sm.phase->ownsMotion() || motions_[i].frozen() || !(sm.x_end <= 1))
     return;
   queueMotionEnd(i, sm.x_end, MotionEnd::kPhase);
 }
@@ -158,7 +166,7 @@ void StepContext::ballBallFriction(const PairContact& c, double normal_impulse, 
   // the touching points' velocities: a's at ra n from its centre, b's at -rb n from its
   // (a ball without motion, asleep or stopped by the cap, is still: its surface too,
   // else it would drive the other like a belt)
-  const Vec3 spin_a = motions_[c.i].frozen ? Vec3::Zero() : wa, spin_b = motions_[c.j].frozen ? Vec3::Zero() : wb;
+  const Vec3 spin_a = motions_[c.i].frozen() ? Vec3::Zero() : wa, spin_b = motions_[c.j].frozen() ? Vec3::Zero() : wb;
   const double slip = ((va + spin_a.cross(ra * c.n)) - (vb - spin_b.cross(rb * c.n))).dot(e);
   const double inverse_mass = c.inv_a * (1 + 1 / ka) + c.inv_b * (1 + 1 / kb);
   const double jt = tangentialImpulse(slip * e, mu, normal_impulse, inverse_mass);
@@ -178,7 +186,7 @@ void StepContext::ballWallFriction(std::size_t i, const Vec3& n, const Vec3& flo
   // (along the line both along the wall and along the floor, as between balls)
   Vec3 e = floor_normal.cross(n);
   const double e_norm = e.norm();
-  if (!(mu > 0) || motions_[i].frozen || !(e_norm > 0))
+  if (!(mu > 0) || motions_[i].frozen() || !(e_norm > 0))
     return;
   e /= e_norm;
   const double r = balls_[i].radius;

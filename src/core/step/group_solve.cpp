@@ -61,7 +61,7 @@ void StepContext::startMembers(double x)
     const Vec3 fn = floorNormalAt(b, p);
     member_positions_[m] = p;
     member_normals_[m] = fn;
-    const bool still = motions_[b].frozen;
+    const bool still = motions_[b].frozen();
     // Time-stepped (Moreau): each member moves over the group's span with the velocity it
     // has at x plus what gravity along the floor adds by the span's end, less what its
     // contacts take. (A member already on its group's motion has at x its velocity before
@@ -74,7 +74,7 @@ void StepContext::startMembers(double x)
     const bool rolls = rollsInGroup(b, fn);
     const double share = rolls ? 1 / (1 + spins_[b].inertia) : 1.0;
     member_velocities_[m] = still             ? Vec3::Zero()
-                            : group_motion_[b] ? ground_.along(groupVelocityAt(b, x), fn)
+                            : motions_[b].followsGroup() ? ground_.along(groupVelocityAt(b, x), fn)
                                                : onFloorVelocity(b, x, p, fn);
     member_pulls_[m] = still ? Vec3::Zero() : Vec3((share * dt_) * ground_.along(gravity_, fn));
     member_caps_[m] = rolls && !still ? dt_ * dt_ * frictionUnder(fn).rollingResistance() : 0.0;
@@ -209,7 +209,7 @@ void StepContext::solveGroupContacts(ContactGroup& group, double span, double sl
     if (!floor_motion_->endsPutOnFloor())
       return;
     for (std::size_t m = 0; m < count; ++m)
-      if (!motions_[members_[m]].frozen)
+      if (!motions_[members_[m]].frozen())
         u[m] = (onFloor(members_[m], member_positions_[m] + span * u[m]) - member_positions_[m]) / span;
   };
   // On a curved floor the rows are the contacts' distances linearized where the step
@@ -266,7 +266,7 @@ void StepContext::finishGroup(double x, double span)
   for (std::size_t m = 0; m < members_.size(); ++m)
   {
     const std::size_t b = members_[m];
-    if (motions_[b].frozen)
+    if (motions_[b].frozen())
       continue;
     const Vec3 v = group.u[m] / dt_;
     // (a member rolls: its spin along the floor is rolling's, its spin about the normal
@@ -278,7 +278,7 @@ void StepContext::finishGroup(double x, double span)
     if (!chord_ends_.empty())
       chord_ends_[b] = span > 0 ? x + span : 1.0;  // (where the group is solved again)
     group_velocity_[b] = member_velocities_[m];
-    group_motion_[b] = 1;
+    motions_[b].become(MotionType::kGrouped);
     if (member_rolls_[m])
       spin_motions_[b].w0 = n.cross(v) / balls_[b].radius + spin_about_n;
     if (friction_)

@@ -19,7 +19,7 @@ Vec3 StepContext::positionAt(std::size_t i, double x) const
 {
   const Motion& m = motions_[i];
   const Vec3 p = startPosition(i) + (x - m.x0) * m.b;
-  if (!motions_[i].accelerates)
+  if (!motions_[i].accelerates())
     return p;
   const double s = x - m.x0;
   return p + (s * s) * pathTerm(i);
@@ -28,12 +28,12 @@ Vec3 StepContext::positionAt(std::size_t i, double x) const
 Vec3 StepContext::rateAt(std::size_t i, double x) const
 {
   const Motion& m = motions_[i];
-  return motions_[i].accelerates ? Vec3(m.b + (2 * (x - m.x0)) * pathTerm(i)) : m.b;
+  return motions_[i].accelerates() ? Vec3(m.b + (2 * (x - m.x0)) * pathTerm(i)) : m.b;
 }
 
 Vec3 StepContext::parabolaOf(std::size_t i) const
 {
-  return motions_[i].accelerates ? pathTerm(i) : Vec3::Zero();
+  return motions_[i].accelerates() ? pathTerm(i) : Vec3::Zero();
 }
 
 Vec3 StepContext::floorNormalAt(std::size_t i, const Vec3& position) const
@@ -45,7 +45,7 @@ Vec3 StepContext::onFloorVelocity(std::size_t i, double x, const Vec3& position,
 {
   if (balls_[i].flying)
     return flightVelocity(i, x);  // (off the floor)
-  if (!group_motion_.empty() && group_motion_[i])
+  if (motions_[i].followsGroup())
     return ground_.along(groupVelocityAt(i, x), normal);  // (its group's time step)
   if (friction_)
     return spin_motions_[i].phase->velocity(*this, i, x, position, normal);
@@ -92,7 +92,7 @@ double StepContext::pairRestingSpeed(const Vec3& na, const Vec3& pa, double ra, 
 void StepContext::beginMotion(std::size_t i, double x, const Vec3& position, const Vec3& v0)
 {
   Motion& m = motions_[i];
-  m.accelerates = false;
+  m.become(MotionType::kLine);
   m.x0 = x;
   if (step_start_of_[i] == kNoStepStart)
   {
@@ -104,15 +104,13 @@ void StepContext::beginMotion(std::size_t i, double x, const Vec3& position, con
   startVelocity(i) = v0;
   if (!chord_ends_.empty())
     chord_ends_[i] = 1.0;
-  if (!group_motion_.empty())
-    group_motion_[i] = 0;
 }
 
 void StepContext::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact)
 {
   Motion& m = motions_[i];
-  beginMotion(i, x, position, motions_[i].frozen ? Vec3::Zero() : velocity);
-  if (motions_[i].frozen)
+  beginMotion(i, x, position, motions_[i].frozen() ? Vec3::Zero() : velocity);
+  if (motions_[i].frozen())
   {
     m.b = Vec3::Zero();
     if (friction_)
@@ -163,7 +161,7 @@ void StepContext::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)
 void StepContext::queueCut(std::size_t i)
 {
   const double x = chord_ends_[i];
-  if (!(x < 1) || motions_[i].frozen)
+  if (!(x < 1) || motions_[i].frozen())
     return;
   queueMotionEnd(i, x, MotionEnd::kCut);
 }
@@ -198,7 +196,7 @@ void StepContext::resolveMotionEnd(const Event& event)
     }
     sm.w0 = w;
   }
-  if (!group_motion_.empty() && group_motion_[i])
+  if (motions_[i].followsGroup())
   {
     // (a member of a group: the group goes on from here, solved again, the spin it has
     // now kept as it is until then)

@@ -37,7 +37,7 @@ void StepContext::predictMotion(std::size_t i, bool at_step_start)
     floor_uv_[i] = feet_[i];
   if (ball.asleep)
   {
-    motions_[i].frozen = motions_[i].asleep = true;  // where it is, an obstacle, until woken
+    motions_[i].type = MotionType::kAsleep;  // where it is, an obstacle, until woken
     if (friction_)
     {
       spin_motions_[i].w0 = spins_[i].angular_velocity;
@@ -77,7 +77,7 @@ void StepContext::predictMotion(std::size_t i, bool at_step_start)
   floor_motion_->predict(*this, i, ball.velocity);
   // (a chord's box reaches the uncut chord's end)
   grid_.setBox(static_cast<std::uint32_t>(i),
-               motions_[i].accelerates ? currentBox(i) : sweptBox(ball.position, ball.position + m.b, ball.radius));
+               motions_[i].accelerates() ? currentBox(i) : sweptBox(ball.position, ball.position + m.b, ball.radius));
 }
 
 Vec3 StepContext::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span)
@@ -91,7 +91,7 @@ Aabb StepContext::currentBox(std::size_t i) const
 {
   const Motion& m = motions_[i];
   const double rest = 1 - m.x0;
-  if (!motions_[i].accelerates)
+  if (!motions_[i].accelerates())
     return sweptBox(startPosition(i), startPosition(i) + (chordEnd(i) - m.x0) * m.b, balls_[i].radius);
   // the parabola lies within (rest^2 / 4) |c| of its chord, along each axis
   Aabb box = sweptBox(startPosition(i), positionAt(i, 1.0), balls_[i].radius);

@@ -103,8 +103,8 @@ void StepContext::wakeOnImpact(std::size_t i, std::size_t j, double closing, dou
 {
   // An impact on a sleeping ball (not one that would rest on it) wakes its group; the
   // sleeping ball's velocity is zero.
-  if (motions_[i].asleep != motions_[j].asleep && closing > rest_speed)
-    wakeGroup(motions_[j].asleep ? j : i);
+  if (motions_[i].asleep() != motions_[j].asleep() && closing > rest_speed)
+    wakeGroup(motions_[j].asleep() ? j : i);
 }
 
 void StepContext::resolveBallBall(const Event& event)
@@ -116,8 +116,8 @@ void StepContext::resolveBallBall(const Event& event)
   const Vec3 pb = positionAt(j, event.x);
   const Vec3 na = floorNormalAt(i, pa);
   const Vec3 nb = floorNormalAt(j, pb);
-  Vec3 va = motions_[i].frozen ? Vec3::Zero() : onFloorVelocity(i, event.x, pa, na);
-  Vec3 vb = motions_[j].frozen ? Vec3::Zero() : onFloorVelocity(j, event.x, pb, nb);
+  Vec3 va = motions_[i].frozen() ? Vec3::Zero() : onFloorVelocity(i, event.x, pa, na);
+  Vec3 vb = motions_[j].frozen() ? Vec3::Zero() : onFloorVelocity(j, event.x, pb, nb);
 
   Vec3 n = pb - pa;
   const double dist = n.norm();
@@ -222,7 +222,7 @@ void StepContext::takeVelocity(std::size_t i, double x, const Vec3& p, const Vec
     energy_ref_[i] += impulseEnergy(i, x, before, v);
   // (a ball on its group's motion takes the impulse into its free velocity, and its
   // group is solved again after the event)
-  if (!group_motion_.empty() && group_motion_[i])
+  if (motions_[i].followsGroup())
     takeImpulse(i, x, p, v - onFloorVelocity(i, x, p, normal));
   else
     startMotion(i, x, p, v, true);
@@ -245,12 +245,11 @@ void StepContext::countEvent(std::size_t i)
   if (++m.epoch == 0)
     queue_.forget(static_cast<std::uint32_t>(i));
   // (counted up to one past the cap only: a frozen ball can still be hit by many others)
-  if (!m.frozen && ++m.events > settings_.max_events_per_ball_step)
+  if (!m.frozen() && ++m.events > settings_.max_events_per_ball_step)
   {
-    m.frozen = true;
+    m.type = MotionType::kCapped;
     startVelocity(i) = Vec3::Zero();
     motions_[i].b = Vec3::Zero();
-    m.accelerates = false;
     if (friction_)
     {
       keepSpin(i);

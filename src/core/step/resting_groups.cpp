@@ -41,7 +41,6 @@ void StepContext::startGroups()
   group_parent_.assign(n, kNone32);
   group_next_.resize(n);
   first_link_.assign(n, kNone32);
-  group_motion_.assign(n, 0);
   group_velocity_.resize(n);
 }
 
@@ -118,7 +117,7 @@ double StepContext::impulseEnergy(std::size_t i, double x, const Vec3& before, c
 {
   // (a member of a group has at x the velocity the group's spread impulses give it, not
   // its chord's: the impulse's change is added to that)
-  const Vec3 base = !group_motion_.empty() && group_motion_[i] ? groupVelocityAt(i, x) : before;
+  const Vec3 base = motions_[i].followsGroup() ? groupVelocityAt(i, x) : before;
   return 0.5 * balls_[i].mass * ((base + (after - before)).squaredNorm() - base.squaredNorm());
 }
 
@@ -128,7 +127,7 @@ void StepContext::takeImpulse(std::size_t i, double x, const Vec3& position, con
   beginMotion(i, x, position, v);
   motions_[i].b = dt_ * v;
   group_velocity_[i] = v;
-  group_motion_[i] = 1;
+  motions_[i].become(MotionType::kGrouped);
 }
 
 void StepContext::formRestingGroups()
@@ -139,7 +138,6 @@ void StepContext::formRestingGroups()
   group_parent_.clear();
   group_next_.clear();
   first_link_.clear();
-  group_motion_.clear();
   group_velocity_.clear();
   // (the energy each ball may end the step with: its own at the step's start, which its
   // record holds only until its motion starts anew, and what impacts give it)
@@ -184,7 +182,7 @@ void StepContext::linkRestingWalls(double reach)
 {
   const double touch = settings_.touch_slack;
   grid_.forEachNearObstacle([&](std::uint32_t i) {
-    if (motions_[i].frozen || balls_[i].flying)
+    if (motions_[i].frozen() || balls_[i].flying)
       return;
     const Ball& ball = balls_[i];
     for (std::size_t w = 0; w < walls_.size(); ++w)
@@ -216,7 +214,7 @@ void StepContext::linkRestingPairs(double reach)
 {
   const double touch = settings_.touch_slack;
   grid_.forEachPair([&](std::uint32_t i, std::uint32_t j) {
-    if ((motions_[i].frozen && motions_[j].frozen) || balls_[i].flying || balls_[j].flying)
+    if ((motions_[i].frozen() && motions_[j].frozen()) || balls_[i].flying || balls_[j].flying)
       return;
     const Ball& a = balls_[i];
     const Ball& b = balls_[j];

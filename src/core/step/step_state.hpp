@@ -110,6 +110,8 @@ struct StepState
   /// The parabola term of free balls' motions, a dt^2 / 2 with the ground's path
   /// acceleration a [m]; parabolas_ where it is not zero.
   Vec3 path_c_ = Vec3::Zero();
+  /// A line's parabola term [m].
+  Vec3 zero_c_ = Vec3::Zero();
   /// Free balls without friction move on parabolas (path_c_ not zero).
   bool free_parabolas_ = false;
   /// Some motions are parabolas: free_parabolas_, or a world with friction, where each
@@ -161,9 +163,8 @@ struct StepState
   std::vector<std::uint32_t> group_next_;
   std::vector<std::uint32_t> first_link_;
   std::vector<ContactLink> links_;
-  /// per ball: its motion is its group's (a chord at the constant velocity it starts with),
-  /// and its velocity where that motion starts, before the step's impulses
-  std::vector<std::uint8_t> group_motion_;
+  /// per ball following its group (MotionType::kGrouped): its velocity where that motion
+  /// starts, before the step's impulses
   std::vector<Vec3> group_velocity_;
   std::vector<std::uint32_t> row_links_;
   std::vector<std::uint32_t> link_order_;

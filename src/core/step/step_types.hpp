@@ -23,17 +23,41 @@ inline double roundoffAt(const Vec3& p, double r, const StepSettings& settings)
 }
 }  // namespace step
 
-/// A ball's motion inside the current step, in the step fraction x shared by all balls:
-/// centre c(x) = p0 + (x - x0) b for x in [x0, 1], a chord; or, for a free ball where
-/// the ground gives its path an acceleration (a sloped plane, no floor), the parabola
-/// c(x) = p0 + (x - x0) b + (x - x0)^2 c with the world's common c = a dt^2 / 2
-/// (accelerates). A new one starts at every event.
-/// It holds the rest of what detection reads and the ball's counters in the step; the
-/// ball's record holds p0, its velocity at x0 and its radius (startPosition(),
-/// startVelocity()).
+/// The kind of path a ball's motion within the step follows, in the step fraction x
+/// shared by all balls, from its start p0 at x0 with displacement b per unit of x. Each
+/// kind names where the rest of its data is; the step asks a motion through
+/// StepContext's kinematics (positionAt(), rateAt(), parabolaOf(), onFloorVelocity(),
+/// inverseMass(); src/core/step/kinematics.cpp), which alone tell the kinds apart.
+enum class MotionType : std::uint8_t
+{
+  /// c(x) = p0 + (x - x0) b: a line on a plane or without a floor, a chord between
+  /// points of a curved floor (ending at chordEnd()), a still ball
+  kLine,
+  /// a free ball's parabola where the ground gives its path an acceleration a (a sloped
+  /// plane, no floor): c(x) = p0 + (x - x0) b + (x - x0)^2 path_c_, path_c_ = a dt^2 / 2
+  kPath,
+  /// a friction phase's parabola on a plane: as kPath with the phase's own term
+  /// (SpinMotion::c), its spin and end in SpinMotion
+  kPhase,
+  /// in flight: as kPath with gravity's term, flight_c_ = g dt^2 / 2; off the floor
+  kFlight,
+  /// a member of a resting group: the chord its group's solve gave it (kLine's path),
+  /// its velocity the group's spread impulses' (groupVelocityAt())
+  kGrouped,
+  /// no motion for the rest of the step, immovable (inverse mass 0): stopped by the
+  /// event cap
+  kCapped,
+  /// no motion, immovable: the ball sleeps, until an impact or an edit wakes it
+  kAsleep,
+};
+
+/// A ball's motion inside the current step: its start, its displacement and its kind
+/// (MotionType); a new one starts at every event. It holds the rest of what detection
+/// reads and the ball's counters in the step; the ball's record holds p0, its velocity at
+/// x0 and its radius (startPosition(), startVelocity()).
 struct StepState::Motion
 {
-  Motion() : events(0), frozen(0), asleep(0), accelerates(0) {}
+  Motion() : events(0) {}
   double x0 = 0.0;               ///< where this motion starts, fraction of the step
   Vec3 b = Vec3::Zero();         ///< displacement per unit of x [m]; zero while frozen
   /// Bumped at every event of this ball: what was predicted before is stale. It counts
@@ -41,12 +65,24 @@ struct StepState::Motion
   std::uint16_t epoch = 0;
   /// events of this ball in this step, up to one past the cap (kMaxEventCap)
   std::uint16_t events : 12;
-  /// no motion for the rest of the step, immovable (inverse mass 0): stopped by the event
-  /// cap, or asleep
-  std::uint16_t frozen : 1;
-  std::uint16_t asleep : 1;      ///< frozen because the ball sleeps: an impact wakes it
-  /// its motion is the parabola of a free ball (StepContext::path_c_), not a chord
-  std::uint16_t accelerates : 1;
+  MotionType type = MotionType::kLine;
+
+  /// No motion for the rest of the step, immovable: capped or asleep.
+  bool frozen() const { return type == MotionType::kCapped || type == MotionType::kAsleep; }
+  bool asleep() const { return type == MotionType::kAsleep; }
+  /// Its path is a parabola (kPath, kPhase, kFlight), not a line.
+  bool accelerates() const
+  {
+    return type == MotionType::kPath || type == MotionType::kPhase || type == MotionType::kFlight;
+  }
+  /// It moves as its resting group's solve says (kGrouped).
+  bool followsGroup() const { return type == MotionType::kGrouped; }
+  /// Starts a new path of this kind, unless the ball is frozen for the step.
+  void become(MotionType kind)
+  {
+    if (!frozen())
+      type = kind;
+  }
 };
 
 inline step::ExactSettings StepContext::exactSettings() const
@@ -64,11 +100,11 @@ constexpr std::uint32_t kMaxEventCap = (1u << 12) - 2;
 
 inline double StepContext::inverseMass(std::size_t i) const
 {
-  return motions_[i].frozen ? 0.0 : 1.0 / balls_[i].mass;
+  return motions_[i].frozen() ? 0.0 : 1.0 / balls_[i].mass;
 }
 inline double StepContext::groupInverseMass(std::size_t i, bool rolls) const
 {
-  if (motions_[i].frozen)
+  if (motions_[i].frozen())
     return 0.0;
   return rolls ? 1.0 / ((1 + spins_[i].inertia) * balls_[i].mass) : 1.0 / balls_[i].mass;
 }
@@ -113,7 +149,7 @@ struct StepState::SpinMotion
 inline void StepContext::queueTakeOff(std::size_t i)
 {
   const Motion& m = motions_[i];
-  if (balls_[i].flying || m.frozen)
+  if (balls_[i].flying || m.frozen())
     return;
   // (the fastest it can go within the motion, its start speed and all gravity can add,
   // against the least speed that can take off anywhere: (a + b)^2 <= 2 a^2 + 2 b^2)

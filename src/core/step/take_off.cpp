@@ -204,7 +204,7 @@ double StepContext::edgeMargin(std::size_t i, double x) const
 void StepContext::queueEdgeFall(std::size_t i)
 {
   const Motion& m = motions_[i];
-  if (!ground_.floor() || balls_[i].flying || m.frozen || grouped(i))
+  if (!ground_.floor() || balls_[i].flying || m.frozen() || grouped(i))
     return;
   const double end = chordEnd(i);
   if (!(end > m.x0))
