@@ -79,7 +79,7 @@ StepContext::Committed StepContext::commitBall(std::size_t i, bool settle)
   const Vec3 moved = end.centre - (start == kNoStepStart ? ball.position : step_starts_[start]);
   start = kNoStepStart;
   // (a ball frozen by the event cap keeps no speed it does not move with)
-  ball.velocity = motions_[i].frozen() ? Vec3::Zero() : onFloorVelocity(i, 1.0, end.centre, end.normal);
+  ball.velocity = onFloorVelocity(i, 1.0, end.centre, end.normal);
   if (friction_)
   {
     // its own spin at the end, and its turn over the step by the mean of its spins

@@ -27,32 +27,17 @@ void StepContext::findFirstImpacts()
 {
   grid_.forEachNearObstacle([&](std::uint32_t i) { detectWalls(i); });
   grid_.forEachPair([&](std::uint32_t i, std::uint32_t j) { detectBall(i, j); });
-  if (friction_)
+  // (on a level plane without friction only flights end within the step)
+  if (friction_ || !chord_ends_.empty() || flights_ > 0)
     for (std::size_t i = 0; i < motions_.size(); ++i)
-      queueTransition(i);
-  for (std::size_t i = 0; i < chord_ends_.size(); ++i)
-  {
-    queueCut(i);
-    queueTakeOff(i);
-  }
-  for (std::size_t i = 0; i < balls_.size() && flights_ > 0; ++i)
-    if (balls_[i].flying)
-      queueLanding(i);
+      queueMotionEnds(i);
 }
 
 void StepContext::detect(std::size_t i)
 {
   detectWalls(i);
   grid_.query(static_cast<std::uint32_t>(i), [&](std::uint32_t j) { detectBall(i, j); });
-  if (friction_)
-    queueTransition(i);
-  if (!chord_ends_.empty())
-  {
-    queueCut(i);
-    queueTakeOff(i);
-  }
-  if (balls_[i].flying)
-    queueLanding(i);
+  queueMotionEnds(i);
 }
 
 void StepContext::detectWalls(std::size_t i)
@@ -68,8 +53,8 @@ void StepContext::detectWalls(std::size_t i)
     const Wall& wall = walls_[w];
     const Ball& ball = balls_[i];
     const double rest = 1 - m.x0, slop = settings_.closing_slop;
-    const auto hit = parabolas_ || m.accelerates() ? sweepWall(wall, ball.position, m.b, parabolaOf(i), ball.radius, rest, slop)
-                                : sweepWall(wall, ball.position, m.b, ball.radius, rest, slop);
+    const auto hit = m.accelerates() ? sweepWall(wall, ball.position, m.b, parabolaOf(i), ball.radius, rest, slop)
+                                     : sweepWall(wall, ball.position, m.b, ball.radius, rest, slop);
     if (hit)
       queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0, EventKind::kBallWall,
                         hit->feature, MotionEnd::kPhase, hit->normal});
@@ -93,15 +78,15 @@ void StepContext::detectBall(std::size_t i, std::size_t j)
   const double xs = std::max(ma.x0, mb.x0);
   const double reach = balls_[a].radius + balls_[b].radius;
   std::optional<double> t;
-  if (!parabolas_ && (flights_ == 0 || (!ma.accelerates() && !mb.accelerates())))
+  if (!ma.accelerates() && !mb.accelerates())
   {
     const Vec3 d = (balls_[a].position + (xs - ma.x0) * ma.b) - (balls_[b].position + (xs - mb.x0) * mb.b);
     t = sphereSweep(d, ma.b - mb.b, reach, 1 - xs, settings_.closing_slop);
   }
   else
   {
-    // two parabolas: their difference is a straight motion (the same c); a parabola and
-    // a chord: a quartic
+    // a parabola and a line, or two parabolas of different terms: a quartic (of the same
+    // term, their difference is a line, and its quartic's higher terms are zero)
     const Vec3 d = positionAt(a, xs) - positionAt(b, xs);
     t = sphereSweepAccelerated(d, rateAt(a, xs) - rateAt(b, xs), parabolaOf(a) - parabolaOf(b), reach, 1 - xs,
                                settings_.closing_slop);

@@ -1,6 +1,7 @@
-// Motion on a plane or without a floor (StepState::ExactMotion): a free ball's path is exact
-// (a parabola under gravity's part along the plane, a line where it has none); a ball
-// under its contacts moves on its chord in the plane, whose energy is linear along it.
+// Motion on a plane or without a floor (StepState::ExactMotion, and PathMotion where the
+// ground pulls balls along it): a free ball's path is exact (a line, or PathMotion's
+// parabola under gravity's part along the plane); a ball under its contacts moves on its
+// chord in the plane, whose energy is linear along it.
 // Reads and writes motions_ and the start velocities of friction phases.
 #include "spin_phase.hpp"
 
@@ -11,37 +12,34 @@ using namespace step;
 const StepState::FloorMotion& StepState::FloorMotion::of(const Ground& ground)
 {
   static const ExactMotion exact;
+  static const PathMotion path;
   static const ChordMotion chord;
   if (ground.bends())
     return chord;
-  return exact;
+  return ground.pathAcceleration() == Vec3::Zero() ? static_cast<const FloorMotion&>(exact) : path;
 }
 
 void StepState::ExactMotion::predict(StepContext& w, std::size_t i, const Vec3& v) const
 {
-  Motion& m = w.motions_[i];
-  if (w.free_parabolas_)
-  {
-    m.b = w.dt_ * v;  // the parabola the ground gives a free ball
-    w.motions_[i].become(MotionType::kPath);
-    return;
-  }
-  m.b = w.predictedEnd(i, w.startPosition(i), v, w.dt_) - w.startPosition(i);
+  w.motions_[i].b = w.predictedEnd(i, w.startPosition(i), v, w.dt_) - w.startPosition(i);
 }
 
 void StepState::ExactMotion::start(StepContext& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const
 {
-  Motion& m = w.motions_[i];
-  if (w.free_parabolas_)
-  {
-    // free: the parabola the ground gives it, exactly
-    m.b = w.dt_ * v0;
-    w.motions_[i].become(MotionType::kPath);
-    return;
-  }
   // (no pull along the floor: the motion is the line at v0, its energy its start's)
   const double rest = 1 - x;
-  m.b = rest > 0 ? Vec3((w.predictedEnd(i, position, v0, rest * w.dt_) - position) / rest) : Vec3(w.dt_ * v0);
+  w.motions_[i].b = rest > 0 ? Vec3((w.predictedEnd(i, position, v0, rest * w.dt_) - position) / rest) : Vec3(w.dt_ * v0);
+}
+
+void StepState::PathMotion::predict(StepContext& w, std::size_t i, const Vec3& v) const
+{
+  w.motions_[i].b = w.dt_ * v;  // the parabola the ground gives a free ball, exactly
+  w.motions_[i].become(MotionType::kPath);
+}
+
+void StepState::PathMotion::start(StepContext& w, std::size_t i, double, const Vec3&, const Vec3& v0) const
+{
+  predict(w, i, v0);
 }
 
 FrictionLaw StepState::ExactMotion::lawUnder(const StepContext& w, const Vec3&) const

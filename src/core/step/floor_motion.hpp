@@ -1,8 +1,9 @@
 // A ball's motion on the ground within the step, as a type the ground provides: what
-// the step asks of a motion that depends on the kind of floor. Two types:
-// - ExactMotion (a plane, or no floor): a free ball's path is exact, a parabola under
-//   gravity's part along the plane (a line where it has none); a ball under its contacts
-//   moves on a chord in the plane, and its energy is linear along the chord.
+// the step asks of a motion that depends on the kind of floor. Three types:
+// - ExactMotion (a level plane): a free ball's path is exact, a line; a ball under its
+//   contacts moves on a chord in the plane, and its energy is linear along the chord.
+// - PathMotion (a sloped plane, or no floor): the same, but a free ball's exact path is
+//   a parabola under gravity's part along the plane (MotionType::kPath).
 // - ChordMotion (a curved floor): every motion is a chord between points of the floor,
 //   no longer than the floor allows, and kept within the ball's energy (cut where the
 //   energy runs out, or stopped where that is at once); friction laws are taken under the normal
@@ -60,7 +61,7 @@ struct StepState::FloorMotion
                          bool rolling) const = 0;
 };
 
-struct StepState::ExactMotion final : StepState::FloorMotion
+struct StepState::ExactMotion : StepState::FloorMotion
 {
   bool keepsFeet() const override { return false; }
   bool endsPutOnFloor() const override { return false; }
@@ -76,6 +77,12 @@ struct StepState::ExactMotion final : StepState::FloorMotion
   {
     return spin;
   }
+};
+
+struct StepState::PathMotion final : StepState::ExactMotion
+{
+  void predict(StepContext& w, std::size_t i, const Vec3& v) const override;
+  void start(StepContext& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
 };
 
 struct StepState::ChordMotion final : StepState::FloorMotion

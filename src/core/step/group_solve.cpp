@@ -73,9 +73,7 @@ void StepContext::startMembers(double x)
     // most mu_r g_n over the span (solved with its contacts: solveRows()).
     const bool rolls = rollsInGroup(b, fn);
     const double share = rolls ? 1 / (1 + spins_[b].inertia) : 1.0;
-    member_velocities_[m] = still             ? Vec3::Zero()
-                            : motions_[b].followsGroup() ? ground_.along(groupVelocityAt(b, x), fn)
-                                               : onFloorVelocity(b, x, p, fn);
+    member_velocities_[m] = onFloorVelocity(b, x, p, fn);
     member_pulls_[m] = still ? Vec3::Zero() : Vec3((share * dt_) * ground_.along(gravity_, fn));
     member_caps_[m] = rolls && !still ? dt_ * dt_ * frictionUnder(fn).rollingResistance() : 0.0;
     member_rolls_[m] = rolls;

@@ -43,14 +43,20 @@ Vec3 StepContext::floorNormalAt(std::size_t i, const Vec3& position) const
 
 Vec3 StepContext::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
-  if (balls_[i].flying)
-    return flightVelocity(i, x);  // (off the floor)
-  if (motions_[i].followsGroup())
-    return ground_.along(groupVelocityAt(i, x), normal);  // (its group's time step)
-  if (friction_)
-    return spin_motions_[i].phase->velocity(*this, i, x, position, normal);
-  const Motion& m = motions_[i];
-  return ground_.velocityAt(startVelocity(i), (x - m.x0) * dt_, startPosition(i), position, normal);
+  switch (motions_[i].type)
+  {
+    case MotionType::kFlight:
+      return flightVelocity(i, x);  // (off the floor)
+    case MotionType::kGrouped:
+      return ground_.along(groupVelocityAt(i, x), normal);  // (its group's time step)
+    case MotionType::kCapped:
+    case MotionType::kAsleep:
+      return Vec3::Zero();
+    default:
+      if (friction_)
+        return spin_motions_[i].phase->velocity(*this, i, x, position, normal);
+      return ground_.velocityAt(startVelocity(i), (x - motions_[i].x0) * dt_, startPosition(i), position, normal);
+  }
 }
 
 double StepContext::stillSpeed(const Vec3& floor_normal) const
@@ -171,6 +177,27 @@ void StepContext::queueMotionEnd(std::size_t i, double x, MotionEnd end)
   const auto k = static_cast<std::uint32_t>(i);
   const std::uint16_t epoch = motions_[i].epoch;
   queue_.push(Event{x, k, k, epoch, epoch, EventKind::kMotionEnd, WallFeature::kFace, end, Vec3::Zero()});
+}
+
+void StepContext::queueMotionEnds(std::size_t i)
+{
+  switch (motions_[i].type)
+  {
+    case MotionType::kFlight:
+      queueLanding(i);
+      return;
+    case MotionType::kCapped:
+    case MotionType::kAsleep:
+      return;
+    default:  // on the floor: a line, a path, a phase, a group's chord
+      if (friction_)
+        queueTransition(i);
+      if (!chord_ends_.empty())
+      {
+        queueCut(i);
+        queueTakeOff(i);
+      }
+  }
 }
 
 void StepContext::resolveMotionEnd(const Event& event)

@@ -116,8 +116,8 @@ void StepContext::resolveBallBall(const Event& event)
   const Vec3 pb = positionAt(j, event.x);
   const Vec3 na = floorNormalAt(i, pa);
   const Vec3 nb = floorNormalAt(j, pb);
-  Vec3 va = motions_[i].frozen() ? Vec3::Zero() : onFloorVelocity(i, event.x, pa, na);
-  Vec3 vb = motions_[j].frozen() ? Vec3::Zero() : onFloorVelocity(j, event.x, pb, nb);
+  Vec3 va = onFloorVelocity(i, event.x, pa, na);
+  Vec3 vb = onFloorVelocity(j, event.x, pb, nb);
 
   Vec3 n = pb - pa;
   const double dist = n.norm();

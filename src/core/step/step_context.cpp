@@ -27,8 +27,6 @@ StepState::StepState(const Scene& scene, const StepSettings& settings)
     , floor_motion_(&FloorMotion::of(ground_))
     , flight_c_((0.5 * scene.dt * scene.dt) * scene.gravity)
     , path_c_((0.5 * scene.dt * scene.dt) * ground_.pathAcceleration())
-    , free_parabolas_(path_c_ != Vec3::Zero())
-    , parabolas_(free_parabolas_ || scene.friction.has_value())
 {
 }
 

@@ -142,6 +142,9 @@ public:
   /// Queues the end of ball i's motion at x, for why it ends (an EventKind::kMotionEnd
   /// under the motion's epoch).
   void queueMotionEnd(std::size_t i, double x, MotionEnd end);
+  /// Queues what ends ball i's motion within the step, as its kind has it: a flight's
+  /// landing; a friction phase's end; on a curved floor a chord's cut and take-off.
+  void queueMotionEnds(std::size_t i);
   /// Ball i's motion ends within the step (EventKind::kMotionEnd): its friction phase's,
   /// made exact by FrictionLaw::finish(), or its chord at a cut; a new one starts there.
   void resolveMotionEnd(const Event& event);

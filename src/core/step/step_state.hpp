@@ -71,6 +71,7 @@ struct StepState
   /// curved floor.
   struct FloorMotion;
   struct ExactMotion;
+  struct PathMotion;
   struct ChordMotion;
   using Event = StepEvent;
   /// A resting contact as a constraint of the step: balls a and b (visiting indices), or
@@ -107,16 +108,11 @@ struct StepState
   /// there are none, no motion is a flight, so that landings are not looked for and
   /// pairs on a level plane take the straight sweep without asking.
   std::uint32_t flights_ = 0;
-  /// The parabola term of free balls' motions, a dt^2 / 2 with the ground's path
-  /// acceleration a [m]; parabolas_ where it is not zero.
+  /// The parabola term of free balls' motions (MotionType::kPath), a dt^2 / 2 with the
+  /// ground's path acceleration a (PathMotion: where it is not zero) [m].
   Vec3 path_c_ = Vec3::Zero();
   /// A line's parabola term [m].
   Vec3 zero_c_ = Vec3::Zero();
-  /// Free balls without friction move on parabolas (path_c_ not zero).
-  bool free_parabolas_ = false;
-  /// Some motions are parabolas: free_parabolas_, or a world with friction, where each
-  /// ball's phase has its own (SpinMotion::c).
-  bool parabolas_ = false;
   std::vector<Wall> walls_;
   /// The balls' records in the order the step visits them (its work space is indexed the
   /// same way): a recent step's cell order, so that neighbours in space are neighbours in
