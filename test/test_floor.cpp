@@ -482,6 +482,30 @@ TEST(Bowl, LargestCurvatureGivesTheLongestChord)
   EXPECT_EQ(World(plane).floor()->maxCurvature(), 0.0);
 }
 
+// Take-off is looked for only where the floor bends away from its normal: nowhere on the
+// bowl, whose principal curvatures are both toward its normal; as much as the bowl bends
+// on the bowl turned over (a crest of 2/m at its top) and on the saddle z = x^2 - y^2
+// (curvatures +2 and -2 at its centre); on the dome at least its crest's 1/4.
+TEST(Bowl, OnlyABendAwayFromTheNormalCountsForTakeOff)
+{
+  const auto away = [](const FloorDef& f) {
+    Scene scene;
+    scene.floor = f;
+    return World(scene).floor()->awayCurvature();
+  };
+  EXPECT_EQ(away(bowl(1, 0.25)), 0.0);
+  EXPECT_NEAR(away(bowl(1, -0.25)), 2.0, 1e-12);
+  FloorDef saddle = bowl(1, 0.25);
+  for (auto& row : saddle.control_points)
+    for (Vec3& p : row)
+      p.z() = 0.25 * (p.x() == 0 ? -1 : 1) - 0.25 * (p.y() == 0 ? -1 : 1);
+  EXPECT_NEAR(away(saddle), 2.0, 1e-12);
+  EXPECT_GT(away(dome()), 0.25);
+  Scene plane;
+  plane.floor = FloorDef{};
+  EXPECT_EQ(World(plane).floor()->awayCurvature(), 0.0);
+}
+
 // A ball at 100 m/s in that bowl, walled, crosses it once a step. One chord a step would
 // run far off the surface (its end put back on the floor beyond the walls, where the
 // paraboloid rises): it met the walls up to 8.6 cm above where the ball touches the

@@ -61,21 +61,22 @@ Floor::Floor(const FloorDef& def, const Vec3& gravity) : def_(def)
   if (isPlane())
     plane_normal_ = orient(plane_normal_);
   else
-    max_curvature_ = sampledCurvature();
+    sampleCurvatures();
 }
 
-double Floor::sampledCurvature() const
+void Floor::sampleCurvatures()
 {
-  // The larger principal curvature |H| + sqrt(H^2 - K) from the first and second
-  // fundamental forms, at the points of a grid over the floor.
+  // The principal curvatures H -+ sqrt(H^2 - K) from the first and second fundamental
+  // forms under the up-oriented normal, at the points of a grid over the floor: the
+  // larger in magnitude, and the least's negative (a bend away from the normal).
   constexpr int kSamples = 16;
-  double largest = 0.0;
+  double largest = 0.0, away = 0.0;
   for (int a = 0; a <= kSamples; ++a)
     for (int b = 0; b <= kSamples; ++b)
     {
       Vec3 s, su, sv, suu, suv, svv;
       derivatives(Vec2(static_cast<double>(a) / kSamples, static_cast<double>(b) / kSamples), s, su, sv, suu, suv, svv);
-      const Vec3 n = su.cross(sv).normalized();
+      const Vec3 n = orient(su.cross(sv).normalized());
       const double e = su.dot(su), f = su.dot(sv), g = sv.dot(sv);
       const double l = suu.dot(n), m = suv.dot(n), k = svv.dot(n);
       const double det = e * g - f * f;
@@ -83,9 +84,12 @@ double Floor::sampledCurvature() const
         continue;
       const double mean = (l * g - 2 * m * f + k * e) / (2 * det);
       const double gauss = (l * k - m * m) / det;
-      largest = std::max(largest, std::abs(mean) + std::sqrt(std::max(0.0, mean * mean - gauss)));
+      const double spread = std::sqrt(std::max(0.0, mean * mean - gauss));
+      largest = std::max(largest, std::abs(mean) + spread);
+      away = std::max(away, spread - mean);
     }
-  return largest;
+  max_curvature_ = largest;
+  away_curvature_ = away;
 }
 
 Vec3 Floor::orient(Vec3 n) const

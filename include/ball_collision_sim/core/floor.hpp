@@ -58,6 +58,14 @@ public:
   /// The largest principal curvature over the floor, from a grid of points on it (0 for a
   /// plane) [1/m].
   double maxCurvature() const { return max_curvature_; }
+  /// The largest curvature with which the floor bends away from its (up-oriented) normal,
+  /// as over a crest or across a saddle, from the same grid: the least principal
+  /// curvature's negative, or 0 where the floor bends toward its normal everywhere (a
+  /// bowl), where no ball on it ever needs the floor to pull [1/m]. (Where x and y are
+  /// affine in (u, v), as on a floor over a grid of control points, the sign of the
+  /// curvature is that of the height's Hessian, whose entries are affine in each
+  /// parameter: the largest bend away lies at a corner, which the grid holds.)
+  double awayCurvature() const { return away_curvature_; }
   /// Plane only: its unit normal (facing against gravity) and <normal, point on it>.
   const Vec3& planeNormal() const { return plane_normal_; }
   double planeOffset() const { return plane_normal_.dot(def_.point); }
@@ -77,6 +85,8 @@ private:
   /// biquadratic only: S(u, v) = sum of power_[a][b] u^a v^b
   std::array<std::array<Vec3, 3>, 3> power_{};
   double max_curvature_ = 0.0;
-  double sampledCurvature() const;
+  double away_curvature_ = 0.0;
+  /// Sets max_curvature_ and away_curvature_ from a grid of points on the floor.
+  void sampleCurvatures();
 };
 }  // namespace ball_collision_sim::core

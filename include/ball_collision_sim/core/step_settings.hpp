@@ -177,8 +177,8 @@ struct StepSettings
   /// the step's flight over this many is not seen (16: 2.5 cm at 4 m/s and dt = 0.01 s,
   /// where the nine-point floor's bumps span the patch) [samples].
   int landing_samples = 16;
-  /// Take-off is looked for only where this many times the floor's largest curvature
-  /// sampled on a grid, times |v|^2, reaches what gravity gives along the floor's normal
+  /// Take-off is looked for only where this many times the floor's largest bend away from
+  /// its normal sampled on a grid (Floor::awayCurvature(); none on a bowl), times |v|^2, reaches what gravity gives along the floor's normal
   /// (its least over the ground's grid, floor_grid_cells, over this again): the
   /// curvature and the normal between the grids' points differ from theirs, and 2 takes
   /// a biquadratic's changes between neighbouring points with room [ratio].

@@ -27,8 +27,7 @@ void StepContext::findFirstImpacts()
 {
   grid_.forEachNearObstacle([&](std::uint32_t i) { detectWalls(i); });
   grid_.forEachPair([&](std::uint32_t i, std::uint32_t j) { detectBall(i, j); });
-  // (on a level plane without friction only flights end within the step)
-  if (friction_ || !chord_ends_.empty() || flights_ > 0)
+  if (motionsEnd())
     for (std::size_t i = 0; i < motions_.size(); ++i)
       queueMotionEnds(i);
 }
@@ -37,7 +36,8 @@ void StepContext::detect(std::size_t i)
 {
   detectWalls(i);
   grid_.query(static_cast<std::uint32_t>(i), [&](std::uint32_t j) { detectBall(i, j); });
-  queueMotionEnds(i);
+  if (motionsEnd())
+    queueMotionEnds(i);
 }
 
 void StepContext::detectWalls(std::size_t i)

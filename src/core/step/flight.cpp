@@ -124,7 +124,7 @@ std::optional<double> StepContext::landingOverCurve(std::size_t i, double rest) 
 
 void StepContext::queueLanding(std::size_t i)
 {
-  if (!balls_[i].flying || motions_[i].frozen() || !ground_.floor())
+  if (!ground_.floor())
     return;
   const Motion& m = motions_[i];
   const std::optional<double> s = landingIn(i, 1 - m.x0);

@@ -143,7 +143,7 @@ Vec3 StepContext::spinAt(std::size_t i, double x) const
 void StepContext::queueTransition(std::size_t i)
 {
   const SpinMotion& sm = spin_motions_[i];
-  if (!sm.phase->ownsMotion() || motions_[i].frozen() || !(sm.x_end <= 1))
+  if (!sm.phase->ownsMotion() || !(sm.x_end <= 1))
     return;
   queueMotionEnd(i, sm.x_end, MotionEnd::kPhase);
 }

@@ -43,7 +43,10 @@ Vec3 StepContext::floorNormalAt(std::size_t i, const Vec3& position) const
 
 Vec3 StepContext::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
-  switch (motions_[i].type)
+  const MotionType type = motions_[i].type;
+  if (type == MotionType::kLine && !friction_)  // (the most common first)
+    return ground_.velocityAt(startVelocity(i), (x - motions_[i].x0) * dt_, startPosition(i), position, normal);
+  switch (type)
   {
     case MotionType::kFlight:
       return flightVelocity(i, x);  // (off the floor)
@@ -167,7 +170,7 @@ void StepContext::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)
 void StepContext::queueCut(std::size_t i)
 {
   const double x = chord_ends_[i];
-  if (!(x < 1) || motions_[i].frozen())
+  if (!(x < 1))
     return;
   queueMotionEnd(i, x, MotionEnd::kCut);
 }

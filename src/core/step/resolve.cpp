@@ -147,7 +147,8 @@ void StepContext::resolveBallBall(const Event& event)
   }
   const double inv_a = inverseMass(i);
   const double inv_b = inverseMass(j);
-  const Lift lift = pairLift(i, j, n, na, nb, va, vb, ta, tb, closing);
+  // (only a ball in flight lifts one on the floor)
+  const Lift lift = flights_ > 0 ? pairLift(i, j, n, na, nb, va, vb, ta, tb, closing) : Lift{};
   const double impulse = collisionImpulse(closing, inv_a, ta, inv_b, tb, scene_.restitution);
   const bool lifts_a = lift.a, lifts_b = lift.b;
   const Vec3 va_before = va, vb_before = vb;

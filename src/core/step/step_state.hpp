@@ -145,7 +145,8 @@ struct StepState
   std::vector<Aabb> wall_boxes_;
   std::vector<Aabb> edge_boxes_;  ///< floorEdgeBoxes()
   /// A ball slower than this on the floor cannot take off from its bend anywhere
-  /// (takeOffSpeedSquared(); infinite where the ground does not bend) [m^2/s^2].
+  /// (takeOffSpeedSquared(); infinite where the ground does not bend, or bends only
+  /// toward its normal) [m^2/s^2].
   double take_off_speed2_ = 0.0;
   std::vector<Vec3> floor_normals_;
   std::vector<Vec2> floor_uv_;  ///< curved floors: each ball's last foot point, Newton's guess

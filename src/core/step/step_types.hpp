@@ -33,14 +33,6 @@ enum class MotionType : std::uint8_t
   /// c(x) = p0 + (x - x0) b: a line on a plane or without a floor, a chord between
   /// points of a curved floor (ending at chordEnd()), a still ball
   kLine,
-  /// a free ball's parabola where the ground gives its path an acceleration a (a sloped
-  /// plane, no floor): c(x) = p0 + (x - x0) b + (x - x0)^2 path_c_, path_c_ = a dt^2 / 2
-  kPath,
-  /// a friction phase's parabola on a plane: as kPath with the phase's own term
-  /// (SpinMotion::c), its spin and end in SpinMotion
-  kPhase,
-  /// in flight: as kPath with gravity's term, flight_c_ = g dt^2 / 2; off the floor
-  kFlight,
   /// a member of a resting group: the chord its group's solve gave it (kLine's path),
   /// its velocity the group's spread impulses' (groupVelocityAt())
   kGrouped,
@@ -49,6 +41,15 @@ enum class MotionType : std::uint8_t
   kCapped,
   /// no motion, immovable: the ball sleeps, until an impact or an edit wakes it
   kAsleep,
+  // (the parabolas last, so that telling them from lines is one comparison)
+  /// a free ball's parabola where the ground gives its path an acceleration a (a sloped
+  /// plane, no floor): c(x) = p0 + (x - x0) b + (x - x0)^2 path_c_, path_c_ = a dt^2 / 2
+  kPath,
+  /// a friction phase's parabola on a plane: as kPath with the phase's own term
+  /// (SpinMotion::c), its spin and end in SpinMotion
+  kPhase,
+  /// in flight: as kPath with gravity's term, flight_c_ = g dt^2 / 2; off the floor
+  kFlight,
 };
 
 /// A ball's motion inside the current step: its start, its displacement and its kind
@@ -71,10 +72,7 @@ struct StepState::Motion
   bool frozen() const { return type == MotionType::kCapped || type == MotionType::kAsleep; }
   bool asleep() const { return type == MotionType::kAsleep; }
   /// Its path is a parabola (kPath, kPhase, kFlight), not a line.
-  bool accelerates() const
-  {
-    return type == MotionType::kPath || type == MotionType::kPhase || type == MotionType::kFlight;
-  }
+  bool accelerates() const { return type >= MotionType::kPath; }
   /// It moves as its resting group's solve says (kGrouped).
   bool followsGroup() const { return type == MotionType::kGrouped; }
   /// Starts a new path of this kind, unless the ball is frozen for the step.
@@ -149,8 +147,6 @@ struct StepState::SpinMotion
 inline void StepContext::queueTakeOff(std::size_t i)
 {
   const Motion& m = motions_[i];
-  if (balls_[i].flying || m.frozen())
-    return;
   // (the fastest it can go within the motion, its start speed and all gravity can add,
   // against the least speed that can take off anywhere: (a + b)^2 <= 2 a^2 + 2 b^2)
   const double span = (chordEnd(i) - m.x0) * dt_;

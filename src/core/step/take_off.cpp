@@ -36,14 +36,14 @@ void StepContext::liftOff(std::size_t i, double x)
 
 bool StepContext::leavesCurvedFloor(std::size_t i, const Vec3& position, const Vec3& v) const
 {
-  // (where even the floor's largest curvature, take_off_margin times the largest its grid
-  // found, asks less than gravity gives along the normal, the ball stays, without the
+  // (where even the floor's largest bend away from its normal, take_off_margin times the
+  // largest its grid found, asks less than gravity gives along the normal, the ball stays, without the
   // floor's derivatives: first with the least of gravity's part over its grid, over the
   // margin again, before the foot point is looked for, then with the normal there)
   if (!(v.squaredNorm() > take_off_speed2_))
     return false;
   const FloorFoot foot = ground_.floor()->project(position, guessOf(i));
-  if (settings_.take_off_margin * ground_.floor()->maxCurvature() * v.squaredNorm() <= -gravity_.dot(foot.normal))
+  if (settings_.take_off_margin * ground_.floor()->awayCurvature() * v.squaredNorm() <= -gravity_.dot(foot.normal))
     return false;
   return floorPush(i, foot.uv, foot.normal, v) < 0;
 }
@@ -181,12 +181,17 @@ std::vector<Aabb> StepContext::floorEdgeBoxes() const
 
 double StepContext::takeOffSpeedSquared() const
 {
-  // (where even the floor's largest curvature, take_off_margin times what its grid found,
-  // asks less than the least of gravity along its normal over the margin)
+  // (where even the floor's largest bend away from its normal, take_off_margin times what
+  // its grid found, asks less than the least of gravity along its normal over the margin)
   const double margin = settings_.take_off_margin;
-  if (!ground_.bends() || !(ground_.floor()->maxCurvature() > 0))
+  if (!ground_.bends())
     return std::numeric_limits<double>::infinity();
-  return ground_.leastNormalGravity() / (margin * margin * ground_.floor()->maxCurvature());
+  const double g_n = ground_.leastNormalGravity();
+  if (!(g_n > 0))
+    return 0.0;  // (somewhere gravity does not press a ball onto it: every motion is followed)
+  if (!(ground_.floor()->awayCurvature() > 0))
+    return std::numeric_limits<double>::infinity();  // (it bends toward its normal everywhere: a bowl)
+  return g_n / (margin * margin * ground_.floor()->awayCurvature());
 }
 
 double StepContext::edgeMarginOf(const Vec2& uv)
