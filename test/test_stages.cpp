@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace ball_collision_sim::core;
@@ -202,7 +203,11 @@ TEST(Stages, OnlyEdgesNoWallCoversAreObstacles)
   addBox(scene, -1, 1, -1, 1);
   StepContext c(scene);
   EXPECT_TRUE(c.edge_boxes_.empty());
-  ASSERT_TRUE(c.removeWall(4));  // (x = 1)
+  // (as an edit does: the walls changed, the boxes made again)
+  const auto at_x1 = std::find_if(c.walls_.begin(), c.walls_.end(), [](const Wall& w) { return w.id == 4; });
+  ASSERT_NE(at_x1, c.walls_.end());
+  c.walls_.erase(at_x1);
+  c.edge_boxes_ = c.floorEdgeBoxes();
   ASSERT_EQ(c.edge_boxes_.size(), 1u);
   EXPECT_EQ(c.edge_boxes_[0].min.x(), 1);
   EXPECT_EQ(c.edge_boxes_[0].max.x(), 1);
@@ -210,7 +215,8 @@ TEST(Stages, OnlyEdgesNoWallCoversAreObstacles)
   below.point = Vec3(1, -1, 0);
   below.u = Vec3(0, 2, 0);
   below.v = Vec3(0, 0, -0.5);
-  ASSERT_TRUE(c.addWall(below).ok);
+  c.walls_.push_back(Wall(5, below, 1.0));
+  c.edge_boxes_ = c.floorEdgeBoxes();
   EXPECT_EQ(c.edge_boxes_.size(), 1u);
   Scene open = flatScene(-1, 1, -1, 1);
   EXPECT_EQ(StepContext(open).edge_boxes_.size(), 4u);

@@ -35,35 +35,6 @@ std::string StepContext::place(BallDef& def, Landing landing, int ignore_id, Vec
   return "";
 }
 
-AddResult StepContext::addBall(const BallDef& def, Landing landing)
-{
-  AddResult result;
-  BallDef placed = def;
-  Vec2 foot(0.5, 0.5);
-  bool flying = false;
-  result.error = place(placed, landing, -1, foot, flying);
-  if (!result.error.empty())
-    return result;
-  result.ok = true;
-  // (room first, so that the lists stay in step: the last pushes cannot throw)
-  if (balls_.size() == balls_.capacity())
-    balls_.reserve(2 * balls_.size() + 1);
-  if (by_id_.size() == by_id_.capacity())
-    by_id_.reserve(2 * by_id_.size() + 1);
-  if (friction_ && spins_.size() == spins_.capacity())
-    spins_.reserve(2 * spins_.size() + 1);
-  if (floor_motion_->keepsFeet())
-    feet_.push_back(foot);
-  if (friction_)
-    spins_.push_back(makeSpin(placed, foot, flying));
-  by_id_.push_back(static_cast<std::uint32_t>(balls_.size()));  // (the highest id yet)
-  balls_.push_back(makeBall(next_ball_id_, placed));
-  balls_.back().flying = flying;
-  result.id = next_ball_id_++;
-  forgetOrder();
-  return result;
-}
-
 namespace
 {
 AddResult refused(int id, std::string error)
@@ -75,78 +46,110 @@ AddResult refused(int id, std::string error)
 }
 }  // namespace
 
-AddResult StepContext::setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing,
+AddResult World::addBall(const BallDef& def, Landing landing)
+{
+  StepContext& c = *c_;
+  AddResult result;
+  BallDef placed = def;
+  Vec2 foot(0.5, 0.5);
+  bool flying = false;
+  result.error = c.place(placed, landing, -1, foot, flying);
+  if (!result.error.empty())
+    return result;
+  result.ok = true;
+  // (room first, so that the lists stay in step: the last pushes cannot throw)
+  if (c.balls_.size() == c.balls_.capacity())
+    c.balls_.reserve(2 * c.balls_.size() + 1);
+  if (c.by_id_.size() == c.by_id_.capacity())
+    c.by_id_.reserve(2 * c.by_id_.size() + 1);
+  if (c.friction_ && c.spins_.size() == c.spins_.capacity())
+    c.spins_.reserve(2 * c.spins_.size() + 1);
+  if (c.floor_motion_->keepsFeet())
+    c.feet_.push_back(foot);
+  if (c.friction_)
+    c.spins_.push_back(c.makeSpin(placed, foot, flying));
+  c.by_id_.push_back(static_cast<std::uint32_t>(c.balls_.size()));  // (the highest id yet)
+  c.balls_.push_back(c.makeBall(c.next_ball_id_, placed));
+  c.balls_.back().flying = flying;
+  result.id = c.next_ball_id_++;
+  c.forgetOrder();
+  return result;
+}
+
+AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing,
                                const std::optional<Vec3>& angular_velocity, const std::optional<double>& inertia)
 {
+  StepContext& c = *c_;
   const std::size_t k = indexOf(id);
-  if (k == by_id_.size())
+  if (k == c.by_id_.size())
     return refused(id, "id: no ball has id " + std::to_string(id));
-  const std::size_t s = by_id_[k];
+  const std::size_t s = c.by_id_[k];
   AddResult result;
   result.id = id;
   BallDef def;
   def.position = position;
   def.velocity = velocity;
-  def.radius = balls_[s].radius;
-  def.mass = balls_[s].mass;
+  def.radius = c.balls_[s].radius;
+  def.mass = c.balls_[s].mass;
   def.angular_velocity = angular_velocity;
   def.inertia = inertia ? *inertia : this->inertia(k);
   Vec2 foot(0.5, 0.5);
   bool flying = false;
-  result.error = place(def, landing, id, foot, flying);
+  result.error = c.place(def, landing, id, foot, flying);
   if (!result.error.empty())
     return result;
   // (what leaned on it where it was wakes, and what it touches where it is, and itself)
-  wakeTouching(balls_[s].position, balls_[s].radius);
-  wakeTouching(def.position, def.radius);
-  balls_[s].position = def.position;
-  balls_[s].velocity = def.velocity;
-  balls_[s].flying = flying;
-  balls_[s].asleep = false;
-  balls_[s].quiet_steps = 0;  // (the ball the edit moved counts its still steps again)
-  if (friction_)
-    spins_[s] = makeSpin(def, foot, flying);
-  if (floor_motion_->keepsFeet())
-    feet_[s] = foot;
-  forgetOrder();
+  c.wakeTouching(c.balls_[s].position, c.balls_[s].radius);
+  c.wakeTouching(def.position, def.radius);
+  c.balls_[s].position = def.position;
+  c.balls_[s].velocity = def.velocity;
+  c.balls_[s].flying = flying;
+  c.balls_[s].asleep = false;
+  c.balls_[s].quiet_steps = 0;  // (the ball the edit moved counts its still steps again)
+  if (c.friction_)
+    c.spins_[s] = c.makeSpin(def, foot, flying);
+  if (c.floor_motion_->keepsFeet())
+    c.feet_[s] = foot;
+  c.forgetOrder();
   result.ok = true;
   return result;
 }
 
-AddResult StepContext::applyImpulse(int id, const Vec3& impulse)
+AddResult World::applyImpulse(int id, const Vec3& impulse)
 {
   return strike(id, impulse, Vec3::Zero());
 }
 
-AddResult StepContext::strike(int id, const Vec3& impulse, const Vec3& offset)
+AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
 {
-  const std::size_t s = slotOf(id);
-  if (s == balls_.size())
+  StepContext& c = *c_;
+  const std::size_t s = c.slotOf(id);
+  if (s == c.balls_.size())
     return refused(id, "id: no ball has id " + std::to_string(id));
   if (!impulse.allFinite())
     return refused(id, "impulse: must be finite");
   if (!offset.allFinite())
     return refused(id, "offset: must be finite");
   // (within kContactTolerance of the surface is on it)
-  if (offset.norm() > balls_[s].radius + kContactTolerance)
-    return refused(id, "offset: must be at most the ball's radius " + formatNumber(balls_[s].radius) + " m from its centre (got " +
+  if (offset.norm() > c.balls_[s].radius + kContactTolerance)
+    return refused(id, "offset: must be at most the ball's radius " + formatNumber(c.balls_[s].radius) + " m from its centre (got " +
                            formatNumber(offset.norm()) + " m)");
   AddResult result;
   result.id = id;
-  Ball& ball = balls_[s];
+  Ball& ball = c.balls_[s];
   Vec3 velocity = ball.velocity + impulse / ball.mass;
   bool flying = ball.flying;
-  if (ground_.floor() && !flying)
+  if (c.ground_.floor() && !flying)
   {
     // Pressed into the floor, the ball comes back off it at the floor's restitution (a
     // jump shot); lifted enough to stay off it for min_flight_time, it flies; else the
     // floor takes the part along its normal.
-    const Vec3 n = ground_.normalUnder(footOf(s));
+    const Vec3 n = c.ground_.normalUnder(c.footOf(s));
     const double into = velocity.dot(n);
-    const double away = into < 0 ? -floorRestitution() * into : into;
-    const double g_n = -gravity_.dot(n);
-    flying = away > 0 && !(2 * away < settings_.min_flight_time * g_n);
-    velocity = ground_.along(velocity, n);
+    const double away = into < 0 ? -c.floorRestitution() * into : into;
+    const double g_n = -c.gravity_.dot(n);
+    flying = away > 0 && !(2 * away < c.settings_.min_flight_time * g_n);
+    velocity = c.ground_.along(velocity, n);
     if (flying)
       velocity += away * n;
   }
@@ -156,9 +159,9 @@ AddResult StepContext::strike(int id, const Vec3& impulse, const Vec3& offset)
                    formatNumber(velocity.stableNorm()) + " m/s, past the limit of " + formatNumber(kMaxSpeed) + " m/s";
     return result;
   }
-  if (friction_)
+  if (c.friction_)
   {
-    BallSpin& spin = spins_[s];
+    BallSpin& spin = c.spins_[s];
     const Vec3 w = spin.angular_velocity + offset.cross(impulse) / (spin.inertia * ball.mass * ball.radius * ball.radius);
     if (!(w.stableNorm() <= kMaxSpin))
     {
@@ -168,25 +171,26 @@ AddResult StepContext::strike(int id, const Vec3& impulse, const Vec3& offset)
     }
     spin.angular_velocity = w;
     spin.kind = flying ? MotionKind::kFlying
-                       : frictionUnder(ground_.normalUnder(footOf(s))).kindOf(spin.inertia, ball.radius, velocity, w);
+                       : c.frictionUnder(c.ground_.normalUnder(c.footOf(s))).kindOf(spin.inertia, ball.radius, velocity, w);
   }
   ball.velocity = velocity;
   ball.flying = flying;
-  wakeTouching(ball.position, ball.radius);  // (itself, and what it may push)
+  c.wakeTouching(ball.position, ball.radius);  // (itself, and what it may push)
   ball.quiet_steps = 0;  // (the ball the edit set going counts its still steps again)
-  forgetOrder();
+  c.forgetOrder();
   result.ok = true;
   return result;
 }
 
-AddResult StepContext::addWall(const WallDef& def)
+AddResult World::addWall(const WallDef& def)
 {
+  StepContext& c = *c_;
   AddResult result;
   result.error = joinIssues(validateWall(def, ""));
   if (!result.error.empty())
     return result;
-  const Wall wall(next_wall_id_, def, scene_.restitution);
-  for (const Ball& ball : BallList(balls_, by_id_))  // (the first in id order is named)
+  const Wall wall(c.next_wall_id_, def, c.scene_.restitution);
+  for (const Ball& ball : BallList(c.balls_, c.by_id_))  // (the first in id order is named)
   {
     const double depth = ball.radius - wall.distance(ball.position);
     if (depth > kContactTolerance)
@@ -195,40 +199,42 @@ AddResult StepContext::addWall(const WallDef& def)
       return result;
     }
   }
-  ++next_wall_id_;
-  walls_.push_back(wall);
-  edge_boxes_ = floorEdgeBoxes();  // (the floor's edges it covers are none to pass)
-  wakeAll();
+  ++c.next_wall_id_;
+  c.walls_.push_back(wall);
+  c.edge_boxes_ = c.floorEdgeBoxes();  // (the floor's edges it covers are none to pass)
+  c.wakeAll();
   result.ok = true;
   result.id = wall.id;
   return result;
 }
 
-bool StepContext::removeBall(int id)
+bool World::removeBall(int id)
 {
-  if (slotOf(id) == balls_.size())
+  StepContext& c = *c_;
+  if (c.slotOf(id) == c.balls_.size())
     return false;
-  sortById();  // (then its slot is its place in balls())
+  c.sortById();  // (then its slot is its place in balls())
   const std::size_t k = indexOf(id);
-  wakeTouching(balls_[k].position, balls_[k].radius);  // what leaned on it
-  if (!feet_.empty())
-    feet_.erase(feet_.begin() + static_cast<std::ptrdiff_t>(k));
-  if (!spins_.empty())
-    spins_.erase(spins_.begin() + static_cast<std::ptrdiff_t>(k));
-  balls_.erase(balls_.begin() + static_cast<std::ptrdiff_t>(k));
-  by_id_.pop_back();  // (in id order, slot k holds the k-th)
-  forgetOrder();
+  c.wakeTouching(c.balls_[k].position, c.balls_[k].radius);  // what leaned on it
+  if (!c.feet_.empty())
+    c.feet_.erase(c.feet_.begin() + static_cast<std::ptrdiff_t>(k));
+  if (!c.spins_.empty())
+    c.spins_.erase(c.spins_.begin() + static_cast<std::ptrdiff_t>(k));
+  c.balls_.erase(c.balls_.begin() + static_cast<std::ptrdiff_t>(k));
+  c.by_id_.pop_back();  // (in id order, slot k holds the k-th)
+  c.forgetOrder();
   return true;
 }
 
-bool StepContext::removeWall(int id)
+bool World::removeWall(int id)
 {
-  const auto it = std::find_if(walls_.begin(), walls_.end(), [&](const Wall& w) { return w.id == id; });
-  if (it == walls_.end())
+  StepContext& c = *c_;
+  const auto it = std::find_if(c.walls_.begin(), c.walls_.end(), [&](const Wall& w) { return w.id == id; });
+  if (it == c.walls_.end())
     return false;
-  walls_.erase(it);
-  edge_boxes_ = floorEdgeBoxes();  // (an edge it covered can be passed now)
-  wakeAll();  // what leaned on it
+  c.walls_.erase(it);
+  c.edge_boxes_ = c.floorEdgeBoxes();  // (an edge it covered can be passed now)
+  c.wakeAll();  // what leaned on it
   return true;
 }
 }  // namespace ball_collision_sim::core

@@ -29,54 +29,56 @@ std::string StepContext::whyLost(std::size_t s, const Ground::Bounds& bounds) co
   return ground_.whyOff(ball.position, ball.radius, footOf(s), bounds);
 }
 
-int StepContext::lostBalls() const
+int World::lostBalls() const
 {
-  const Ground::Bounds bounds = wallBounds();
+  const StepContext& c = *c_;
+  const Ground::Bounds bounds = c.wallBounds();
   int lost = 0;
-  for (std::size_t s = 0; s < balls_.size(); ++s)
-    lost += whyLost(s, bounds).empty() ? 0 : 1;
+  for (std::size_t s = 0; s < c.balls_.size(); ++s)
+    lost += c.whyLost(s, bounds).empty() ? 0 : 1;
   return lost;
 }
 
-std::vector<LostBall> StepContext::removeLostBalls()
+std::vector<LostBall> World::removeLostBalls()
 {
+  StepContext& c = *c_;
   std::vector<LostBall> lost;
-  const Ground::Bounds bounds = wallBounds();
-  if (!ground_.bounded(bounds))
+  const Ground::Bounds bounds = c.wallBounds();
+  if (!c.ground_.bounded(bounds))
     return lost;
   bool any = false;
-  for (std::size_t s = 0; s < balls_.size() && !any; ++s)
-    any = !whyLost(s, bounds).empty();
+  for (std::size_t s = 0; s < c.balls_.size() && !any; ++s)
+    any = !c.whyLost(s, bounds).empty();
   if (!any)
     return lost;
-  sortById();  // (then a ball's slot is its place in balls(), and the lost come in id order)
+  c.sortById();  // (then a ball's slot is its place in balls(), and the lost come in id order)
   std::size_t kept = 0;
-  for (std::size_t k = 0; k < balls_.size(); ++k)
+  for (std::size_t k = 0; k < c.balls_.size(); ++k)
   {
-    std::string why = whyLost(k, bounds);
+    std::string why = c.whyLost(k, bounds);
     if (!why.empty())
     {
-      lost.push_back({balls_[k], angularVelocity(k), motionKind(k), inertia(k), std::move(why)});
-      wakeTouching(balls_[k].position, balls_[k].radius);  // what leaned on it
+      lost.push_back({c.balls_[k], angularVelocity(k), motionKind(k), inertia(k), std::move(why)});
+      c.wakeTouching(c.balls_[k].position, c.balls_[k].radius);  // what leaned on it
       continue;
     }
     if (kept != k)
     {
-      balls_[kept] = balls_[k];
-      if (!feet_.empty())
-        feet_[kept] = feet_[k];
-      if (!spins_.empty())
-        spins_[kept] = spins_[k];
+      c.balls_[kept] = c.balls_[k];
+      if (!c.feet_.empty())
+        c.feet_[kept] = c.feet_[k];
+      if (!c.spins_.empty())
+        c.spins_[kept] = c.spins_[k];
     }
     ++kept;
   }
-  balls_.resize(kept);
-  by_id_.resize(kept);  // (in id order, slot k holds the k-th)
-  if (!feet_.empty())
-    feet_.resize(kept);
-  if (!spins_.empty())
-    spins_.resize(kept);
-  forgetOrder();
+  c.balls_.resize(kept);
+  c.by_id_.resize(kept);  // (in id order, slot k holds the k-th)
+  if (!c.feet_.empty())
+    c.feet_.resize(kept);
+  if (!c.spins_.empty())
+    c.spins_.resize(kept);
+  c.forgetOrder();
   return lost;
 }
 }  // namespace ball_collision_sim::core

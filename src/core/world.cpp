@@ -1,5 +1,6 @@
 // The public World: its state and the step live in a StepContext
-// (src/core/step/step_context.hpp); every call goes there.
+// (src/core/step/step_context.hpp); here its making, its steps and its accessors. Its
+// queries are in queries.cpp, its edits in edits.cpp, its lost balls in lost_balls.cpp.
 #include "ball_collision_sim/core/world.hpp"
 
 #include "step/step_context.hpp"
@@ -39,33 +40,9 @@ BallList World::balls() const { return BallList(c_->balls_, c_->by_id_); }
 const std::vector<Wall>& World::walls() const { return c_->walls_; }
 const std::optional<Floor>& World::floor() const { return c_->ground_.floor(); }
 const std::vector<CollisionEvent>& World::lastEvents() const { return c_->events_; }
-void World::recordEvents(bool record) { c_->recordEvents(record); }
 bool World::recordsEvents() const { return c_->record_events_; }
 const WorldStats& World::stats() const { return c_->stats_; }
 const std::optional<FrictionDef>& World::friction() const { return c_->scene_.friction; }
 const std::vector<MotionTransition>& World::lastTransitions() const { return c_->transitions_; }
-Energy World::energy() const { return c_->energy(); }
-Vec3 World::momentum() const { return c_->momentum(); }
-int World::lostBalls() const { return c_->lostBalls(); }
-std::vector<LostBall> World::removeLostBalls() { return c_->removeLostBalls(); }
-std::uint64_t World::stateHash() const { return c_->stateHash(); }
-const Ball* World::findBall(int id) const { return c_->findBall(id); }
-std::size_t World::indexOf(int id) const { return c_->indexOf(id); }
-Vec3 World::angularVelocity(std::size_t k) const { return c_->angularVelocity(k); }
-MotionKind World::motionKind(std::size_t k) const { return c_->motionKind(k); }
-double World::inertia(std::size_t k) const { return c_->inertia(k); }
-
-AddResult World::addBall(const BallDef& def, Landing landing) { return c_->addBall(def, landing); }
-
-AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing,
-                              const std::optional<Vec3>& angular_velocity, const std::optional<double>& inertia)
-{
-  return c_->setBallState(id, position, velocity, landing, angular_velocity, inertia);
-}
-
-AddResult World::applyImpulse(int id, const Vec3& impulse) { return c_->applyImpulse(id, impulse); }
-AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset) { return c_->strike(id, impulse, offset); }
-AddResult World::addWall(const WallDef& def) { return c_->addWall(def); }
-bool World::removeBall(int id) { return c_->removeBall(id); }
-bool World::removeWall(int id) { return c_->removeWall(id); }
+std::size_t World::indexOf(int id) const { return c_->rankOf(id); }
 }  // namespace ball_collision_sim::core

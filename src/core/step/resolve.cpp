@@ -284,10 +284,4 @@ void StepContext::recordEvent(CollisionEvent::Kind kind, int ball, int other, co
   events_.push_back(out);
 }
 
-void StepContext::recordEvents(bool record)
-{
-  record_events_ = record;
-  if (!record)
-    std::vector<CollisionEvent>().swap(events_);
-}
 }  // namespace ball_collision_sim::core

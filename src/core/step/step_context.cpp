@@ -175,60 +175,7 @@ void StepContext::step()
 
 // ---- queries -------------------------------------------------------------------------
 
-Energy StepContext::energy() const
-{
-  // (summed in id order: the same sums whatever order the records are in)
-  Energy e;
-  for (const std::uint32_t s : by_id_)
-  {
-    const Ball& ball = balls_[s];
-    e.kinetic += 0.5 * ball.mass * ball.velocity.squaredNorm();
-    e.potential -= ball.mass * gravity_.dot(ball.position);
-  }
-  if (!spins_.empty())
-    for (const std::uint32_t s : by_id_)
-    {
-      const Ball& ball = balls_[s];
-      e.rotational +=
-          0.5 * spins_[s].inertia * ball.mass * ball.radius * ball.radius * spins_[s].angular_velocity.squaredNorm();
-    }
-  return e;
-}
-
-Vec3 StepContext::momentum() const
-{
-  Vec3 p = Vec3::Zero();
-  for (const std::uint32_t s : by_id_)
-    p += balls_[s].mass * balls_[s].velocity;
-  return p;
-}
-
-std::uint64_t StepContext::stateHash() const
-{
-  Fnv1a h;
-  h.add(stats_.steps);
-  h.add(balls_.size());
-  for (const std::uint32_t s : by_id_)
-  {
-    const Ball& ball = balls_[s];
-    h.add(ball.id);
-    h.add(ball.radius);
-    h.add(ball.mass);
-    h.add(ball.position.data(), 3 * sizeof(double));
-    h.add(ball.velocity.data(), 3 * sizeof(double));
-    h.add(ball.orientation.coeffs().data(), 4 * sizeof(double));
-  }
-  for (std::size_t k = 0; k < spins_.size(); ++k)
-  {
-    const BallSpin& spin = spins_[by_id_[k]];
-    h.add(spin.angular_velocity.data(), 3 * sizeof(double));
-    h.add(spin.inertia);
-    h.add(spin.kind);
-  }
-  return h.value();
-}
-
-std::size_t StepContext::indexOf(int id) const
+std::size_t StepContext::rankOf(int id) const
 {
   // by_id_ lists the records in id order.
   const auto it = std::lower_bound(by_id_.begin(), by_id_.end(), id,
@@ -238,41 +185,8 @@ std::size_t StepContext::indexOf(int id) const
 
 std::size_t StepContext::slotOf(int id) const
 {
-  const std::size_t k = indexOf(id);
+  const std::size_t k = rankOf(id);
   return k < by_id_.size() ? by_id_[k] : balls_.size();
 }
 
-const Ball* StepContext::findBall(int id) const
-{
-  const std::size_t s = slotOf(id);
-  return s < balls_.size() ? &balls_[s] : nullptr;
-}
-
-Vec3 StepContext::angularVelocity(std::size_t k) const
-{
-  const std::size_t s = by_id_.at(k);
-  if (friction_)
-    return spins_[s].angular_velocity;
-  const Ball& ball = balls_[s];
-  if (ball.flying)
-    return Vec3::Zero();  // (without friction a ball turns only by rolling)
-  const Vec3 normal = ground_.normalUnder(footOf(s));
-  return normal.cross(ball.velocity) / ball.radius;
-}
-
-MotionKind StepContext::motionKind(std::size_t k) const
-{
-  const std::size_t s = by_id_.at(k);
-  if (balls_[s].flying)
-    return MotionKind::kFlying;
-  if (friction_)
-    return spins_[s].kind;
-  return balls_[s].velocity == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling;
-}
-
-double StepContext::inertia(std::size_t k) const
-{
-  const std::size_t s = by_id_.at(k);
-  return friction_ ? spins_[s].inertia : kSolidInertia;
-}
 }  // namespace ball_collision_sim::core

@@ -17,8 +17,8 @@ namespace ball_collision_sim::core
 class StepContext : public StepState
 {
 public:
-  // World's API (world.hpp, where each call is documented), which forwards here; its
-  // accessors read StepState's members themselves.
+  // World (world.hpp) steps and resets it here; its queries and edits (src/core/world.cpp,
+  // queries.cpp, edits.cpp, lost_balls.cpp) read and write StepState's members themselves.
   explicit StepContext(const Scene& scene, const StepSettings& settings = StepSettings());
   StepContext(const Scene& scene, SceneCheck checked, const StepSettings& settings = StepSettings());
   StepContext(const StepContext&);
@@ -29,30 +29,6 @@ public:
 
   void step();
   void reset();
-
-  void recordEvents(bool record);
-
-  Energy energy() const;
-  Vec3 momentum() const;
-  int lostBalls() const;
-  std::vector<LostBall> removeLostBalls();
-  std::uint64_t stateHash() const;
-  const Ball* findBall(int id) const;
-  std::size_t indexOf(int id) const;
-  Vec3 angularVelocity(std::size_t k) const;
-  MotionKind motionKind(std::size_t k) const;
-  double inertia(std::size_t k) const;
-
-  AddResult addBall(const BallDef& def, Landing landing = Landing::kNearest);
-  AddResult setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing = Landing::kUnder,
-                         const std::optional<Vec3>& angular_velocity = std::nullopt,
-                         const std::optional<double>& inertia = std::nullopt);
-  AddResult applyImpulse(int id, const Vec3& impulse);
-  AddResult strike(int id, const Vec3& impulse, const Vec3& offset);
-  AddResult addWall(const WallDef& def);
-  bool removeBall(int id);
-  bool removeWall(int id);
-
 
   void load(PlacedBalls placed);
   /// After an edit: the next step visits the balls in id order and predicts afresh.
@@ -72,6 +48,8 @@ public:
   std::string whyLost(std::size_t s, const Ground::Bounds& bounds) const;
   /// The record of the ball with this id in balls_, or balls_.size().
   std::size_t slotOf(int id) const;
+  /// The ball with this id's place in id order (by_id_), or by_id_.size().
+  std::size_t rankOf(int id) const;
   /// The records in id order again, as an edit leaves them (the next step visits them so).
   void sortById();
   /// Moves the records (balls_, feet_, spins_) so that slot k holds the one that was in
