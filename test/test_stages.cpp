@@ -6,6 +6,7 @@
 // and commit (every ball at its closed-form end, the next step's motions predicted).
 #include "fixtures.hpp"
 
+#include "core/step/flight.hpp"
 #include "core/step/floor_motion.hpp"
 
 #include <gtest/gtest.h>
@@ -160,7 +161,7 @@ TEST(Stages, DetectionQueuesATakeOffWhereTheFloorsPushFallsToZero)
     const Floor& floor = *c.ground_.floor();
     const auto push = [&](double s) {
       const FloorFoot foot = floor.project(c.positionAt(0, s), c.guessOf(0));
-      return c.floorPush(0, foot.uv, foot.normal,
+      return step::floorPush(c, 0, foot.uv, foot.normal,
                          c.onFloorVelocity(0, s, floor.ballCentre(foot, 0.1), foot.normal));
     };
     EXPECT_GT(e.x, 0);
@@ -207,7 +208,7 @@ TEST(Stages, OnlyEdgesNoWallCoversAreObstacles)
   const auto at_x1 = std::find_if(c.walls_.begin(), c.walls_.end(), [](const Wall& w) { return w.id == 4; });
   ASSERT_NE(at_x1, c.walls_.end());
   c.walls_.erase(at_x1);
-  c.edge_boxes_ = c.floorEdgeBoxes();
+  c.edge_boxes_ = step::floorEdgeBoxes(c);
   ASSERT_EQ(c.edge_boxes_.size(), 1u);
   EXPECT_EQ(c.edge_boxes_[0].min.x(), 1);
   EXPECT_EQ(c.edge_boxes_[0].max.x(), 1);
@@ -216,7 +217,7 @@ TEST(Stages, OnlyEdgesNoWallCoversAreObstacles)
   below.u = Vec3(0, 2, 0);
   below.v = Vec3(0, 0, -0.5);
   c.walls_.push_back(Wall(5, below, 1.0));
-  c.edge_boxes_ = c.floorEdgeBoxes();
+  c.edge_boxes_ = step::floorEdgeBoxes(c);
   EXPECT_EQ(c.edge_boxes_.size(), 1u);
   Scene open = flatScene(-1, 1, -1, 1);
   EXPECT_EQ(StepContext(open).edge_boxes_.size(), 4u);

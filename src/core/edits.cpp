@@ -4,6 +4,7 @@
 // wakes the sleeping balls it touches (a wall's, all: what held them may have changed).
 #include "step/step_context.hpp"
 
+#include "step/flight.hpp"
 #include "step/floor_motion.hpp"
 
 #include "ball_collision_sim/core/format.hpp"
@@ -146,7 +147,7 @@ AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
     // floor takes the part along its normal.
     const Vec3 n = c.ground_.normalUnder(c.footOf(s));
     const double into = velocity.dot(n);
-    const double away = into < 0 ? -c.floorRestitution() * into : into;
+    const double away = into < 0 ? -step::floorRestitution(c) * into : into;
     const double g_n = -c.gravity_.dot(n);
     flying = away > 0 && !(2 * away < c.settings_.min_flight_time * g_n);
     velocity = c.ground_.along(velocity, n);
@@ -201,7 +202,7 @@ AddResult World::addWall(const WallDef& def)
   }
   ++c.next_wall_id_;
   c.walls_.push_back(wall);
-  c.edge_boxes_ = c.floorEdgeBoxes();  // (the floor's edges it covers are none to pass)
+  c.edge_boxes_ = step::floorEdgeBoxes(c);  // (the floor's edges it covers are none to pass)
   c.wakeAll();
   result.ok = true;
   result.id = wall.id;
@@ -233,7 +234,7 @@ bool World::removeWall(int id)
   if (it == c.walls_.end())
     return false;
   c.walls_.erase(it);
-  c.edge_boxes_ = c.floorEdgeBoxes();  // (an edge it covered can be passed now)
+  c.edge_boxes_ = step::floorEdgeBoxes(c);  // (an edge it covered can be passed now)
   c.wakeAll();  // what leaned on it
   return true;
 }

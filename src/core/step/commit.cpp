@@ -4,6 +4,7 @@
 // motions_, step_starts_, the resting groups' links; writes balls_, feet_, the contact solver's
 // work space.
 #include "contact_group.hpp"
+#include "flight.hpp"
 #include "rolling.hpp"
 #include "spin_phase.hpp"
 

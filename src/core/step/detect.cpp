@@ -3,6 +3,7 @@
 // Reads motions_, the start positions, walls_, the grid; writes wall_boxes_ (the grid's
 // obstacles), queue_.
 #include "step_types.hpp"
+#include "flight.hpp"
 
 #include "ball_collision_sim/core/time_of_impact.hpp"
 
@@ -62,7 +63,7 @@ void StepContext::detectWalls(std::size_t i)
   // (near an edge of the floor, where it may pass it)
   for (std::size_t e = 0; e < edge_boxes_.size(); ++e)
     if (grid_.reaches(static_cast<std::uint32_t>(i), walls_.size() + e))
-      return queueEdgeFall(i);
+      return queueEdgeFall(*this, i);
 }
 
 void StepContext::detectBall(std::size_t i, std::size_t j)

@@ -6,6 +6,8 @@
 // leaves the floor: take_off.cpp.)
 // Reads and writes motions_, spin_motions_, the start positions and velocities, the
 // balls' flying flags; writes the queue, events_, transitions_ and stats_.
+#include "flight.hpp"
+
 #include "floor_motion.hpp"
 
 #include "../bracketed_root.hpp"
@@ -15,56 +17,55 @@
 #include <limits>
 #include <utility>
 
-namespace ball_collision_sim::core
+namespace ball_collision_sim::core::step
 {
-using namespace step;
 
-double StepContext::floorRestitution() const
+double floorRestitution(const StepContext& c)
 {
-  return scene_.floor && scene_.floor->restitution ? *scene_.floor->restitution : scene_.restitution;
+  return c.scene_.floor && c.scene_.floor->restitution ? *c.scene_.floor->restitution : c.scene_.restitution;
 }
 
-void StepContext::recordFlightChange(std::size_t i, double x, MotionKind from, MotionKind to)
+void recordFlightChange(StepContext& c, std::size_t i, double x, MotionKind from, MotionKind to)
 {
-  ++stats_.transitions;
-  transitions_.push_back({(static_cast<double>(stats_.steps) + x) * dt_, balls_[i].id, from, to});
+  ++c.stats_.transitions;
+  c.transitions_.push_back({(static_cast<double>(c.stats_.steps) + x) * c.dt_, c.balls_[i].id, from, to});
 }
 
-void StepContext::startFlight(std::size_t i)
+void startFlight(StepContext& c, std::size_t i)
 {
-  Motion& m = motions_[i];
-  m.b = dt_ * startVelocity(i);
+  Motion& m = c.motions_[i];
+  m.b = c.dt_ * c.startVelocity(i);
   m.become(MotionType::kFlight);  // (pathTerm(): flight_c_)
-  ++flights_;
-  if (!chord_ends_.empty())
-    chord_ends_[i] = 1.0;
-  if (friction_)
+  ++c.flights_;
+  if (!c.chord_ends_.empty())
+    c.chord_ends_[i] = 1.0;
+  if (c.friction_)
   {
-    keepSpin(i);
-    spin_motions_[i].kind = MotionKind::kFlying;
+    c.keepSpin(i);
+    c.spin_motions_[i].kind = MotionKind::kFlying;
   }
 }
 
-Vec3 StepContext::flightVelocity(std::size_t i, double x) const
+Vec3 flightVelocity(const StepContext& c, std::size_t i, double x)
 {
-  return startVelocity(i) + ((x - motions_[i].x0) * dt_) * gravity_;
+  return c.startVelocity(i) + ((x - c.motions_[i].x0) * c.dt_) * c.gravity_;
 }
 
-std::optional<double> StepContext::landingIn(std::size_t i, double rest) const
+std::optional<double> landingIn(const StepContext& c, std::size_t i, double rest)
 {
-  return ground_.bends() ? landingOverCurve(i, rest) : landingOverPlane(i, rest);
+  return c.ground_.bends() ? landingOverCurve(c, i, rest) : landingOverPlane(c, i, rest);
 }
 
-std::optional<double> StepContext::landingOverPlane(std::size_t i, double rest) const
+std::optional<double> landingOverPlane(const StepContext& c, std::size_t i, double rest)
 {
   // The height is the quadratic h(s) = h0 + B s + A s^2 in s = x - x0: its root where it
   // falls.
-  const Ball& ball = balls_[i];
-  const Vec3& p0 = startPosition(i);
-  const double tolerance = roundoffAt(p0, ball.radius, settings_);
-  const Vec3& n = ground_.floor()->planeNormal();
-  const double h0 = n.dot(p0) - ground_.floor()->planeOffset() - ball.radius;
-  const double B = n.dot(motions_[i].b), A = n.dot(flight_c_);
+  const Ball& ball = c.balls_[i];
+  const Vec3& p0 = c.startPosition(i);
+  const double tolerance = roundoffAt(p0, ball.radius, c.settings_);
+  const Vec3& n = c.ground_.floor()->planeNormal();
+  const double h0 = n.dot(p0) - c.ground_.floor()->planeOffset() - ball.radius;
+  const double B = n.dot(c.motions_[i].b), A = n.dot(c.flight_c_);
   if (h0 < -tolerance)
     return std::nullopt;  // (under the floor: fallen past its edge, it meets it no more)
   if (!(h0 > tolerance) && B <= 0)
@@ -88,24 +89,24 @@ std::optional<double> StepContext::landingOverPlane(std::size_t i, double rest) 
   return std::max(s, 0.0);
 }
 
-std::optional<double> StepContext::landingOverCurve(std::size_t i, double rest) const
+std::optional<double> landingOverCurve(const StepContext& c, std::size_t i, double rest)
 {
   // The height sampled along the flight: the first sample more than round-off below the
   // floor closes a bracket, whose root is then found to neighbouring doubles. (A flight
   // that dips below and out again between two samples, a graze on a bump narrower than
   // the step's flight over StepSettings::landing_samples, is not seen.)
-  const Ball& ball = balls_[i];
-  const Vec3& p0 = startPosition(i);
-  const double tolerance = roundoffAt(p0, ball.radius, settings_);
-  Vec2 guess = guessOf(i);
+  const Ball& ball = c.balls_[i];
+  const Vec3& p0 = c.startPosition(i);
+  const double tolerance = roundoffAt(p0, ball.radius, c.settings_);
+  Vec2 guess = c.guessOf(i);
   const auto height = [&](double s) {
-    const Vec3 p = p0 + s * motions_[i].b + (s * s) * flight_c_;
-    return ground_.heightAbove(p, ball.radius, guess);
+    const Vec3 p = p0 + s * c.motions_[i].b + (s * s) * c.flight_c_;
+    return c.ground_.heightAbove(p, ball.radius, guess);
   };
   const double h0 = height(0.0);
   if (h0 < -tolerance)
     return std::nullopt;  // (under the floor: fallen past its edge, it meets it no more)
-  const int samples = settings_.landing_samples;
+  const int samples = c.settings_.landing_samples;
   double lo = 0.0, h_lo = std::max(h0, 0.0);
   for (int k = 1; k <= samples; ++k)
   {
@@ -122,73 +123,73 @@ std::optional<double> StepContext::landingOverCurve(std::size_t i, double rest) 
   return std::nullopt;
 }
 
-void StepContext::queueLanding(std::size_t i)
+void queueLanding(StepContext& c, std::size_t i)
 {
-  if (!ground_.floor())
+  if (!c.ground_.floor())
     return;
-  const Motion& m = motions_[i];
-  const std::optional<double> s = landingIn(i, 1 - m.x0);
+  const Motion& m = c.motions_[i];
+  const std::optional<double> s = landingIn(c, i, 1 - m.x0);
   if (!s)
     return;
   // (where it lands off the floor's patch, it does not: it falls past the edge; the
   // patch's margin of Floor::inside() less its tolerance, so that a ball that has just
   // passed the edge, where it took off, is never taken for one landing there)
-  if (!(edgeMargin(i, m.x0 + *s) >= Floor::kInsideTolerance))
+  if (!(edgeMargin(c, i, m.x0 + *s) >= Floor::kInsideTolerance))
     return;
-  queueMotionEnd(i, std::min(m.x0 + *s, 1.0), MotionEnd::kLanding);
+  c.queueMotionEnd(i, std::min(m.x0 + *s, 1.0), MotionEnd::kLanding);
 }
 
-void StepContext::resolveLanding(const Event& event)
+void resolveLanding(StepContext& c, const Event& event)
 {
   const std::size_t i = event.i;
   const double x = event.x;
-  Ball& ball = balls_[i];
+  Ball& ball = c.balls_[i];
   const double r = ball.radius;
   // where it meets the floor, put on it, and the normal there
-  const Ground::End at = ground_.airEnd(positionAt(i, x), guessOf(i));
-  guessOf(i) = at.foot;
+  const Ground::End at = c.ground_.airEnd(c.positionAt(i, x), c.guessOf(i));
+  c.guessOf(i) = at.foot;
   const Vec3 n = at.normal;
-  const Vec3 p = ground_.land(at.centre, r, at.foot);
-  Vec3 v = flightVelocity(i, x);
+  const Vec3 p = c.ground_.land(at.centre, r, at.foot);
+  Vec3 v = flightVelocity(c, i, x);
   const double closing = std::max(0.0, -v.dot(n));
-  const double e = floorRestitution();
+  const double e = floorRestitution(c);
   const double normal_impulse = (1 + e) * ball.mass * closing;
   v += ((1 + e) * closing) * n;  // v_n -> -e v_n
-  if (friction_)
+  if (c.friction_)
   {
     // Friction's impulse at the contact point against its slip u = v + r n x w, at most
     // mu_s times the normal impulse: it stops the slip where that is enough (an impulse J
     // along the floor changes u by J (1 + 1/k) / m).
-    SpinMotion& sm = spin_motions_[i];
-    Vec3 w = spinAt(i, x);
-    const double k = spins_[i].inertia;
+    SpinMotion& sm = c.spin_motions_[i];
+    Vec3 w = c.spinAt(i, x);
+    const double k = c.spins_[i].inertia;
     Vec3 u = v + r * n.cross(w);
     u -= u.dot(n) * n;
     const double slip = u.norm();
     if (slip > 0)
     {
       const double stop = slip * ball.mass * k / (1 + k);
-      const Vec3 j = -(std::min(scene_.friction->sliding * normal_impulse, stop) / slip) * u;
+      const Vec3 j = -(std::min(c.scene_.friction->sliding * normal_impulse, stop) / slip) * u;
       v += j / ball.mass;
       w -= n.cross(j) / (k * ball.mass * r);
     }
     sm.w0 = w;
   }
   const double away = v.dot(n);
-  const double g_n = -gravity_.dot(n);
-  const bool lands = !(away > 0) || 2 * away < settings_.min_flight_time * g_n;
+  const double g_n = -c.gravity_.dot(n);
+  const bool lands = !(away > 0) || 2 * away < c.settings_.min_flight_time * g_n;
   if (lands)
   {
     v -= away * n;  // (on the floor: what is left along its normal is the floor's)
     ball.flying = false;
     // (with friction the phase it lands in reports its kind: startMotion())
-    if (!friction_)
-      recordFlightChange(i, x, MotionKind::kFlying, v == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling);
+    if (!c.friction_)
+      recordFlightChange(c, i, x, MotionKind::kFlying, v == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling);
   }
-  ++stats_.floor_impacts;
-  recordEvent(CollisionEvent::Kind::kBallFloor, ball.id, 0, p - r * n, -n, normal_impulse, closing, lands, event);
-  startMotion(i, x, p, v, true);
-  countEvent(i);
-  detect(i);
+  ++c.stats_.floor_impacts;
+  c.recordEvent(CollisionEvent::Kind::kBallFloor, ball.id, 0, p - r * n, -n, normal_impulse, closing, lands, event);
+  c.startMotion(i, x, p, v, true);
+  c.countEvent(i);
+  c.detect(i);
 }
-}  // namespace ball_collision_sim::core
+}  // namespace ball_collision_sim::core::step

@@ -4,6 +4,7 @@
 // Reads motions_, the floor; writes motions_, chord_ends_, the start position and
 // velocity (step_starts_ keeping where the step started a ball), and, at a cut, the queue.
 #include "spin_phase.hpp"
+#include "flight.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
 
@@ -49,7 +50,7 @@ Vec3 StepContext::onFloorVelocity(std::size_t i, double x, const Vec3& position,
   switch (type)
   {
     case MotionType::kFlight:
-      return flightVelocity(i, x);  // (off the floor)
+      return flightVelocity(*this, i, x);  // (off the floor)
     case MotionType::kGrouped:
       return ground_.along(groupVelocityAt(i, x), normal);  // (its group's time step)
     case MotionType::kCapped:
@@ -126,11 +127,11 @@ void StepContext::startMotion(std::size_t i, double x, const Vec3& position, con
       keepSpin(i);
     return;
   }
-  if (!balls_[i].flying && leavesFloor(i, position, startVelocity(i)) && !grouped(i))
+  if (!balls_[i].flying && leavesFloor(*this, i, position, startVelocity(i)) && !grouped(i))
   {
     // The floor cannot hold it on its bend: it flies from the floor (a chord's point can
     // lie off it), its speed what its energy gives there.
-    liftOff(i, x);
+    liftOff(*this, i, x);
     const Vec3 q = onFloor(i, position);
     const double speed2 = std::max(0.0, startVelocity(i).squaredNorm() + 2 * gravity_.dot(q - position));
     startVelocity(i) = ground_.withSpeedSquared(startVelocity(i), speed2);
@@ -138,7 +139,7 @@ void StepContext::startMotion(std::size_t i, double x, const Vec3& position, con
   }
   if (balls_[i].flying)
   {
-    startFlight(i);
+    startFlight(*this, i);
     return;
   }
   if (friction_)
@@ -187,7 +188,7 @@ void StepContext::queueMotionEnds(std::size_t i)
   switch (motions_[i].type)
   {
     case MotionType::kFlight:
-      queueLanding(i);
+      queueLanding(*this, i);
       return;
     case MotionType::kCapped:
     case MotionType::kAsleep:
@@ -198,7 +199,7 @@ void StepContext::queueMotionEnds(std::size_t i)
       if (!chord_ends_.empty())
       {
         queueCut(i);
-        queueTakeOff(i);
+        queueTakeOff(*this, i);
       }
   }
 }

@@ -3,6 +3,7 @@
 // Reads balls_, feet_, spins_; writes motions_, spin_motions_, floor_uv_,
 // chord_ends_ and the grid's boxes.
 #include "floor_motion.hpp"
+#include "flight.hpp"
 
 #include <utility>
 
@@ -47,7 +48,7 @@ void StepContext::predictMotion(std::size_t i, bool at_step_start)
     grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(ball.position, ball.position, ball.radius));
     return;
   }
-  const bool takes_off = at_step_start && !ball.flying && leavesFloor(i, ball.position, ball.velocity);
+  const bool takes_off = at_step_start && !ball.flying && leavesFloor(*this, i, ball.position, ball.velocity);
   if (ball.flying || takes_off)
   {
     if (friction_)
@@ -56,8 +57,8 @@ void StepContext::predictMotion(std::size_t i, bool at_step_start)
       sm.w0 = spins_[i].angular_velocity;
       sm.reported = spins_[i].kind;
     }
-    liftOff(i, 0.0);  // (its kind recorded where it leaves the floor, or left it just now)
-    startFlight(i);
+    liftOff(*this, i, 0.0);  // (its kind recorded where it leaves the floor, or left it just now)
+    startFlight(*this, i);
     grid_.setBox(static_cast<std::uint32_t>(i), currentBox(i));
     return;
   }

@@ -3,6 +3,7 @@
 // detected again. Reads and writes motions_, the queue, the start positions and velocities;
 // writes events_ and stats_.
 #include "floor_motion.hpp"
+#include "flight.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
 #include "ball_collision_sim/core/time_of_impact.hpp"
@@ -53,9 +54,9 @@ void StepContext::resolve(const Event& event)
   switch (event.end)
   {
     case MotionEnd::kLanding:
-      return resolveLanding(event);
+      return resolveLanding(*this, event);
     case MotionEnd::kTakeOff:
-      return resolveTakeOff(event);
+      return resolveTakeOff(*this, event);
     case MotionEnd::kPhase:
     case MotionEnd::kCut:
       return resolveMotionEnd(event);
@@ -160,9 +161,9 @@ void StepContext::resolveBallBall(const Event& event)
     ballBallFriction(pair, impulse, va, vb);
   // (a ball lifted flies from where it is on the floor)
   if (lifts_a)
-    liftOff(i, event.x);
+    liftOff(*this, i, event.x);
   if (lifts_b)
-    liftOff(j, event.x);
+    liftOff(*this, j, event.x);
   takeVelocity(i, event.x, lifts_a ? onFloor(i, pa) : pa, na, va_before, va);
   takeVelocity(j, event.x, lifts_b ? onFloor(j, pb) : pb, nb, vb_before, vb);
   recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, impulse, closing, false, event);

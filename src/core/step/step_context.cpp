@@ -1,6 +1,7 @@
 // The world's lifecycle, the step as its named stages (each in src/core/step/) and
 // the queries; the edits between steps are in edits.cpp.
 #include "step_context.hpp"
+#include "flight.hpp"
 
 #include "contact_group.hpp"
 #include "floor_motion.hpp"
@@ -48,7 +49,7 @@ StepContext::StepContext(const Scene& scene, SceneCheck checked, const StepSetti
     throw std::invalid_argument("chord_turn: must be > 0");
   if (!(settings_.chord_sag > 0))
     throw std::invalid_argument("chord_sag: must be > 0");
-  take_off_speed2_ = takeOffSpeedSquared();
+  take_off_speed2_ = step::takeOffSpeedSquared(*this);
   sleep_steps_ = static_cast<std::uint16_t>(std::clamp(std::ceil(settings_.sleep_time / dt_), 1.0, 65535.0));
   load(std::move(checked.balls));
 }
@@ -65,7 +66,7 @@ void StepContext::load(PlacedBalls placed)
   next_wall_id_ = kFirstId;
   for (const WallDef& def : scene_.walls)
     walls_.emplace_back(next_wall_id_++, def, scene_.restitution);
-  edge_boxes_ = floorEdgeBoxes();
+  edge_boxes_ = step::floorEdgeBoxes(*this);
   balls_.clear();
   by_id_.clear();
   feet_.clear();

@@ -11,9 +11,9 @@
 namespace ball_collision_sim::core
 {
 /// The world's state and the step's work space (StepState), with what reads and writes
-/// them: the stages of the step, one file each under src/core/step/, the edits
-/// (src/core/edits.cpp) and the queries. World (world.hpp) is its public API and
-/// forwards here; nothing here is public beyond the core.
+/// them: the stages of the step, one file each under src/core/step/, and the helpers
+/// World's edits share. Flight and take-off are functions over it (flight.hpp). World
+/// (world.hpp) is its public API; nothing here is public beyond the core.
 class StepContext : public StepState
 {
 public:
@@ -129,68 +129,6 @@ public:
   /// Ball i's motion ends within the step (EventKind::kMotionEnd): its friction phase's,
   /// made exact by FrictionLaw::finish(), or its chord at a cut; a new one starts there.
   void resolveMotionEnd(const Event& event);
-  // Flight (src/core/step/flight.cpp).
-  /// Ball i's motion from its start is a flight: the parabola of gravity (flight_c_),
-  /// its spin kept.
-  void startFlight(std::size_t i);
-  /// Ball i's velocity at x in flight [m/s].
-  Vec3 flightVelocity(std::size_t i, double x) const;
-  /// Queues where ball i's flight reaches the floor within the step, if it does there
-  /// over the floor.
-  void queueLanding(std::size_t i);
-  /// Where ball i's flight first reaches the floor after its motion's start, as a part of
-  /// the rest of the step (at most `rest`), or none.
-  std::optional<double> landingIn(std::size_t i, double rest) const;
-  /// ... over a plane: the root of a quadratic.
-  std::optional<double> landingOverPlane(std::size_t i, double rest) const;
-  /// ... over a curved floor: a bracket from samples of the height, refined.
-  std::optional<double> landingOverCurve(std::size_t i, double rest) const;
-  /// Ball i's flight meets the floor (StepEvent::end kLanding): it bounces at the floor's
-  /// restitution, with friction's impulse against the slip of its contact point; a
-  /// bounce too low to fly for StepSettings::min_flight_time puts it on the floor.
-  void resolveLanding(const Event& event);
-  /// A ball on a curved floor at `position` with velocity v leaves it: the floor would
-  /// have to pull it to keep it on its bend (the normal force m (kappa |v|^2 + g_n) below
-  /// zero, kappa the curvature of the centre's path along v).
-  bool leavesFloor(std::size_t i, const Vec3& position, const Vec3& v) const
-  {
-    return ground_.bends() && leavesCurvedFloor(i, position, v);  // (a plane holds whatever moves along it)
-  }
-  bool leavesCurvedFloor(std::size_t i, const Vec3& position, const Vec3& v) const;
-  /// The normal force per unit mass the floor gives ball i with foot point uv, normal n
-  /// there and velocity v, kappa |v|^2 + g_n [m/s^2]: below zero it would have to pull.
-  double floorPush(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const;
-  /// Queues the exact time at which ball i's motion on a curved floor reaches where the
-  /// floor's push on it falls to zero, if that is within the motion.
-  void queueTakeOff(std::size_t i);  // (inline: step_types.hpp)
-  /// ... past the check of its speed: the floor's push followed along the motion.
-  void searchTakeOff(std::size_t i);
-  /// Ball i takes off (StepEvent::end kTakeOff): it flies from where it is on the floor,
-  /// with its velocity there.
-  void resolveTakeOff(const Event& event);
-  /// Queues where ball i's foot point passes the floor's edge within its motion, the
-  /// first double past it, as a take-off: past the edge no floor holds it.
-  void queueEdgeFall(std::size_t i);
-  /// How far the foot point uv lies inside the floor's patch [0, 1]^2 (below zero past
-  /// its edge; Floor::inside() takes up to kInsideTolerance past it for round-off).
-  static double edgeMarginOf(const Vec2& uv);
-  /// ... that of ball i's foot point at x.
-  double edgeMargin(std::size_t i, double x) const;
-  /// The boxes of the floor's edges that no wall covers (none without a floor): obstacles
-  /// of the grid, so that only the balls near such an edge look for passing it. (Made
-  /// again as walls come and go.)
-  std::vector<Aabb> floorEdgeBoxes() const;
-  /// The speed squared below which no ball takes off from the floor's bend: where even
-  /// take_off_margin times its largest curvature asks less of it than the least of
-  /// gravity along the floor's normal over the margin [m^2/s^2].
-  double takeOffSpeedSquared() const;
-  /// Ball i leaves the floor at x: in flight from there, its kind recorded.
-  void liftOff(std::size_t i, double x);
-  /// Records ball i's change of kind at x where no friction phase reports it (a world
-  /// without friction: its take-offs and landings).
-  void recordFlightChange(std::size_t i, double x, MotionKind from, MotionKind to);
-  /// The restitution of impacts on the floor: the floor's own, else the scene's.
-  double floorRestitution() const;
   // Resting groups (src/core/step/resting_groups.cpp).
   /// The step's resting contacts at its start: touching pairs and walls that close no
   /// faster than they rest, each group of balls they join solved together.

@@ -143,15 +143,4 @@ struct StepState::SpinMotion
   /// curved floors, rolling: mu_r g_n [m/s^2]
   double roll_resistance = 0.0;
 };
-
-inline void StepContext::queueTakeOff(std::size_t i)
-{
-  const Motion& m = motions_[i];
-  // (the fastest it can go within the motion, its start speed and all gravity can add,
-  // against the least speed that can take off anywhere: (a + b)^2 <= 2 a^2 + 2 b^2)
-  const double span = (chordEnd(i) - m.x0) * dt_;
-  if (2 * (startVelocity(i).squaredNorm() + span * span * gravity_.squaredNorm()) <= take_off_speed2_)
-    return;
-  searchTakeOff(i);
-}
 }  // namespace ball_collision_sim::core

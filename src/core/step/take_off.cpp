@@ -4,6 +4,8 @@
 // foot point passes the floor's edge: from there it flies (flight.cpp).
 // Reads motions_, the start positions and velocities, the floor; writes the queue, the
 // balls' flying flags, transitions_.
+#include "flight.hpp"
+
 #include "floor_motion.hpp"
 
 #include "../bracketed_root.hpp"
@@ -14,43 +16,42 @@
 #include <limits>
 #include <utility>
 
-namespace ball_collision_sim::core
+namespace ball_collision_sim::core::step
 {
-using namespace step;
 
-void StepContext::liftOff(std::size_t i, double x)
+void liftOff(StepContext& c, std::size_t i, double x)
 {
-  const bool flew = std::exchange(balls_[i].flying, true);
-  if (!friction_)
+  const bool flew = std::exchange(c.balls_[i].flying, true);
+  if (!c.friction_)
   {
     // (without friction a ball on the floor is rolling while it moves)
     if (!flew)
-      recordFlightChange(i, x, startVelocity(i) == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling,
+      recordFlightChange(c, i, x, c.startVelocity(i) == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling,
                          MotionKind::kFlying);
     return;
   }
-  spin_motions_[i].kind = MotionKind::kFlying;
-  recordKind(i, x);
-  spins_[i].kind = MotionKind::kFlying;
+  c.spin_motions_[i].kind = MotionKind::kFlying;
+  c.recordKind(i, x);
+  c.spins_[i].kind = MotionKind::kFlying;
 }
 
-bool StepContext::leavesCurvedFloor(std::size_t i, const Vec3& position, const Vec3& v) const
+bool leavesCurvedFloor(const StepContext& c, std::size_t i, const Vec3& position, const Vec3& v)
 {
   // (where even the floor's largest bend away from its normal, take_off_margin times the
   // largest its grid found, asks less than gravity gives along the normal, the ball stays, without the
   // floor's derivatives: first with the least of gravity's part over its grid, over the
   // margin again, before the foot point is looked for, then with the normal there)
-  if (!(v.squaredNorm() > take_off_speed2_))
+  if (!(v.squaredNorm() > c.take_off_speed2_))
     return false;
-  const FloorFoot foot = ground_.floor()->project(position, guessOf(i));
-  if (settings_.take_off_margin * ground_.floor()->awayCurvature() * v.squaredNorm() <= -gravity_.dot(foot.normal))
+  const FloorFoot foot = c.ground_.floor()->project(position, c.guessOf(i));
+  if (c.settings_.take_off_margin * c.ground_.floor()->awayCurvature() * v.squaredNorm() <= -c.gravity_.dot(foot.normal))
     return false;
-  return floorPush(i, foot.uv, foot.normal, v) < 0;
+  return floorPush(c, i, foot.uv, foot.normal, v) < 0;
 }
 
-double StepContext::floorPush(std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v) const
+double floorPush(const StepContext& c, std::size_t i, const Vec2& uv, const Vec3& n, const Vec3& v)
 {
-  const double g_n = -gravity_.dot(n);
+  const double g_n = -c.gravity_.dot(n);
   const Vec3 t = v - v.dot(n) * n;
   const double speed2 = t.squaredNorm();
   if (!(speed2 > 0))
@@ -58,7 +59,7 @@ double StepContext::floorPush(std::size_t i, const Vec2& uv, const Vec3& n, cons
   // The floor's normal curvature along t, kappa_s = <n, S''> / |t|^2 with t = a S_u + b S_v
   // (negative where it bends away from its normal, as over a crest); the centre, r off it,
   // moves on a path of curvature kappa_s / (1 - r kappa_s).
-  const Floor& floor = *ground_.floor();
+  const Floor& floor = *c.ground_.floor();
   Vec3 s, su, sv, suu, suv, svv;
   floor.derivatives(uv, s, su, sv, suu, suv, svv);
   const double e = su.dot(su), f = su.dot(sv), g = sv.dot(sv);
@@ -68,26 +69,26 @@ double StepContext::floorPush(std::size_t i, const Vec2& uv, const Vec3& n, cons
   const double tu = su.dot(t), tv = sv.dot(t);
   const double a = (g * tu - f * tv) / det, b = (e * tv - f * tu) / det;
   const double kappa_s = n.dot(a * a * suu + 2 * a * b * suv + b * b * svv) / speed2;
-  const double bend = 1 - balls_[i].radius * kappa_s;
+  const double bend = 1 - c.balls_[i].radius * kappa_s;
   if (!(bend > 0))
     return std::numeric_limits<double>::max();  // (a hollow tighter than the ball: it rests on its rim)
   return kappa_s / bend * v.squaredNorm() + g_n;
 }
 
-void StepContext::searchTakeOff(std::size_t i)
+void searchTakeOff(StepContext& c, std::size_t i)
 {
-  const Motion& m = motions_[i];
-  const double end = chordEnd(i);
-  if (!(end > m.x0) || grouped(i))
+  const Motion& m = c.motions_[i];
+  const double end = c.chordEnd(i);
+  if (!(end > m.x0) || c.grouped(i))
     return;
   // The floor's push where the motion is at x, on the floor under it, with the velocity
   // it has there: where it falls below zero within the motion, found to neighbouring
   // doubles, the ball takes off.
-  const Floor& floor = *ground_.floor();
-  const double r = balls_[i].radius;
+  const Floor& floor = *c.ground_.floor();
+  const double r = c.balls_[i].radius;
   const auto push = [&](double x) {
-    const FloorFoot foot = floor.project(positionAt(i, x), guessOf(i));
-    return floorPush(i, foot.uv, foot.normal, onFloorVelocity(i, x, floor.ballCentre(foot, r), foot.normal));
+    const FloorFoot foot = floor.project(c.positionAt(i, x), c.guessOf(i));
+    return floorPush(c, i, foot.uv, foot.normal, c.onFloorVelocity(i, x, floor.ballCentre(foot, r), foot.normal));
   };
   const double at_end = push(end);
   if (!(at_end < 0))
@@ -96,39 +97,39 @@ void StepContext::searchTakeOff(std::size_t i)
   if (!(at_start >= 0))
     return;  // (it leaves where the motion starts: startMotion() lifts it off there)
   const double x = bracketedRoot(push, [](double f) { return f >= 0 ? 1 : -1; }, m.x0, end, at_start, at_end);
-  queueMotionEnd(i, x, MotionEnd::kTakeOff);
+  c.queueMotionEnd(i, x, MotionEnd::kTakeOff);
 }
 
-void StepContext::resolveTakeOff(const Event& event)
+void resolveTakeOff(StepContext& c, const Event& event)
 {
   const std::size_t i = event.i;
   const double x = event.x;
   // from where it is, on the floor (or on its surface just past the edge), with the
   // velocity and spin it has there
-  const FloorFoot foot = ground_.floor()->project(positionAt(i, x), guessOf(i));
-  if (!feet_.empty())
-    guessOf(i) = foot.uv;
-  const Vec3 p = ground_.floor()->ballCentre(foot, balls_[i].radius);
-  const Vec3 v = onFloorVelocity(i, x, p, foot.normal);
-  if (friction_)
-    spin_motions_[i].w0 = spinAtEvent(i, x, foot.normal, v);
-  liftOff(i, x);
-  startMotion(i, x, p, v, false);
-  countEvent(i);
-  detect(i);
+  const FloorFoot foot = c.ground_.floor()->project(c.positionAt(i, x), c.guessOf(i));
+  if (!c.feet_.empty())
+    c.guessOf(i) = foot.uv;
+  const Vec3 p = c.ground_.floor()->ballCentre(foot, c.balls_[i].radius);
+  const Vec3 v = c.onFloorVelocity(i, x, p, foot.normal);
+  if (c.friction_)
+    c.spin_motions_[i].w0 = c.spinAtEvent(i, x, foot.normal, v);
+  liftOff(c, i, x);
+  c.startMotion(i, x, p, v, false);
+  c.countEvent(i);
+  c.detect(i);
 }
 
-std::vector<Aabb> StepContext::floorEdgeBoxes() const
+std::vector<Aabb> floorEdgeBoxes(const StepContext& c)
 {
   // Each edge lies in the box of its control points (a Bezier curve keeps to their hull),
   // and where a wall holds them all (within round-off of its plane and inside it), the
   // edge is in the wall: a ball on the floor meets the wall before its foot passes there.
   std::vector<Aabb> boxes;
-  if (!ground_.floor())
+  if (!c.ground_.floor())
     return boxes;
-  const FloorDef& def = ground_.floor()->def();
+  const FloorDef& def = c.ground_.floor()->def();
   std::vector<std::vector<Vec3>> edges;
-  if (ground_.floor()->isPlane())
+  if (c.ground_.floor()->isPlane())
   {
     const Vec3 a = def.point, b = def.point + def.u, c = def.point + def.v, d = def.point + def.u + def.v;
     edges = {{a, b}, {c, d}, {a, c}, {b, d}};
@@ -151,7 +152,7 @@ std::vector<Aabb> StepContext::floorEdgeBoxes() const
   };
   // (and the wall rises above the floor there: one that only hangs below the edge, as a
   // table's side, lets a ball roll off over it)
-  const Vec3& up = ground_.up();
+  const Vec3& up = c.ground_.up();
   const auto rises = [&](const Wall& wall, const std::vector<Vec3>& edge) {
     double top = -std::numeric_limits<double>::infinity(), highest = top;
     for (const Vec3& c : wall.corners)
@@ -162,7 +163,7 @@ std::vector<Aabb> StepContext::floorEdgeBoxes() const
   };
   for (const std::vector<Vec3>& edge : edges)
   {
-    const bool walled = std::any_of(walls_.begin(), walls_.end(), [&](const Wall& wall) {
+    const bool walled = std::any_of(c.walls_.begin(), c.walls_.end(), [&](const Wall& wall) {
       return rises(wall, edge) &&
              std::all_of(edge.begin(), edge.end(), [&](const Vec3& p) { return inWall(wall, p); });
     });
@@ -179,51 +180,51 @@ std::vector<Aabb> StepContext::floorEdgeBoxes() const
   return boxes;
 }
 
-double StepContext::takeOffSpeedSquared() const
+double takeOffSpeedSquared(const StepContext& c)
 {
   // (where even the floor's largest bend away from its normal, take_off_margin times what
   // its grid found, asks less than the least of gravity along its normal over the margin)
-  const double margin = settings_.take_off_margin;
-  if (!ground_.bends())
+  const double margin = c.settings_.take_off_margin;
+  if (!c.ground_.bends())
     return std::numeric_limits<double>::infinity();
-  const double g_n = ground_.leastNormalGravity();
+  const double g_n = c.ground_.leastNormalGravity();
   if (!(g_n > 0))
     return 0.0;  // (somewhere gravity does not press a ball onto it: every motion is followed)
-  if (!(ground_.floor()->awayCurvature() > 0))
+  if (!(c.ground_.floor()->awayCurvature() > 0))
     return std::numeric_limits<double>::infinity();  // (it bends toward its normal everywhere: a bowl)
-  return g_n / (margin * margin * ground_.floor()->awayCurvature());
+  return g_n / (margin * margin * c.ground_.floor()->awayCurvature());
 }
 
-double StepContext::edgeMarginOf(const Vec2& uv)
+double edgeMarginOf(const Vec2& uv)
 {
   return std::min({uv.x(), 1 - uv.x(), uv.y(), 1 - uv.y()});
 }
 
-double StepContext::edgeMargin(std::size_t i, double x) const
+double edgeMargin(const StepContext& c, std::size_t i, double x)
 {
-  const Floor& floor = *ground_.floor();
-  const Vec3 p = positionAt(i, x);
-  return edgeMarginOf(floor.isPlane() ? floor.planeParameters(p) : floor.project(p, guessOf(i)).uv);
+  const Floor& floor = *c.ground_.floor();
+  const Vec3 p = c.positionAt(i, x);
+  return edgeMarginOf(floor.isPlane() ? floor.planeParameters(p) : floor.project(p, c.guessOf(i)).uv);
 }
 
-void StepContext::queueEdgeFall(std::size_t i)
+void queueEdgeFall(StepContext& c, std::size_t i)
 {
-  const Motion& m = motions_[i];
-  if (!ground_.floor() || balls_[i].flying || m.frozen() || grouped(i))
+  const Motion& m = c.motions_[i];
+  if (!c.ground_.floor() || c.balls_[i].flying || m.frozen() || c.grouped(i))
     return;
-  const double end = chordEnd(i);
+  const double end = c.chordEnd(i);
   if (!(end > m.x0))
     return;
-  const double at_end = edgeMargin(i, end);
+  const double at_end = edgeMargin(c, i, end);
   if (!(at_end < 0))
     return;
-  const double at_start = edgeMargin(i, m.x0);
+  const double at_start = edgeMargin(c, i, m.x0);
   if (!(at_start >= 0))
     return;  // (past the edge where the motion starts: an edit put it there, and it is lost)
   // the first double past the edge: where it flies from, off the floor
-  const double lo = bracketedRoot([&](double x) { return edgeMargin(i, x); },
+  const double lo = bracketedRoot([&](double x) { return edgeMargin(c, i, x); },
                                   [](double f) { return f >= 0 ? 1 : -1; }, m.x0, end, at_start, at_end);
   const double x = std::nextafter(lo, end);
-  queueMotionEnd(i, x, MotionEnd::kTakeOff);
+  c.queueMotionEnd(i, x, MotionEnd::kTakeOff);
 }
-}  // namespace ball_collision_sim::core
+}  // namespace ball_collision_sim::core::step
