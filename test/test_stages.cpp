@@ -7,6 +7,7 @@
 #include "fixtures.hpp"
 
 #include "core/step/flight.hpp"
+#include "core/step/stages.hpp"
 #include "core/step/floor_motion.hpp"
 
 #include <gtest/gtest.h>
@@ -25,7 +26,7 @@ constexpr double kDt = 0.01;
 StepContext started(const Scene& scene)
 {
   StepContext c(scene);
-  c.startStep();
+  step::startStep(c);
   return c;
 }
 
@@ -34,10 +35,10 @@ StepContext started(const Scene& scene)
 StepContext detected(const Scene& scene)
 {
   StepContext c = started(scene);
-  c.predictMotions();
-  c.buildBroadPhase();
-  c.formRestingGroups();
-  c.findFirstImpacts();
+  step::predictMotions(c);
+  step::buildBroadPhase(c);
+  step::formRestingGroups(c);
+  step::findFirstImpacts(c);
   return c;
 }
 
@@ -62,7 +63,7 @@ TEST(Stages, PredictGivesEachBallsMotionOverTheStep)
   up.placement = BallPlacement::kAsGiven;
   level.balls.push_back(up);
   StepContext c = started(level);
-  c.predictMotions();
+  step::predictMotions(c);
   EXPECT_EQ(c.motions_[0].b, Vec3(kDt * 1, kDt * 0.5, 0));
   EXPECT_EQ(c.motions_[0].type, MotionType::kLine);
   EXPECT_EQ(c.motions_[1].b, Vec3::Zero());
@@ -83,7 +84,7 @@ TEST(Stages, PredictGivesEachBallsMotionOverTheStep)
   slope.floor = f;
   slope.balls = {ball(0, 0, 0, 1)};
   StepContext s = started(slope);
-  s.predictMotions();
+  step::predictMotions(s);
   const Vec3 d = s.positionAt(0, 1.0) - s.balls_[0].position;
   const double along = 0.5 * 9.81 * std::sin(a) * kDt * kDt;  // down the fall line
   EXPECT_NEAR(d.x(), along * std::cos(a), 1e-15);
@@ -179,13 +180,13 @@ TEST(Stages, ResolveExchangesAndCommitEndsTheStep)
 {
   const double r = 0.1, v = 10;
   StepContext c = detected(headOn(r, v));
-  c.resolveEventsInTimeOrder();
+  step::resolveEventsInTimeOrder(c);
   ASSERT_EQ(c.events_.size(), 1u);
   const double t = (0.4 - 2 * r) / (2 * v);
   EXPECT_NEAR(c.events_[0].time, t, 1e-15);
   EXPECT_NEAR(c.startVelocity(0).x(), -v, 1e-12);
   EXPECT_NEAR(c.startVelocity(1).x(), v, 1e-12);
-  c.commitToFloor(true);
+  step::commitToFloor(c, true);
   const double after = kDt - t;
   EXPECT_NEAR(c.balls_[0].position.x(), -0.2 + v * t - v * after, 1e-12);
   EXPECT_NEAR(c.balls_[1].position.x(), 0.2 - v * t + v * after, 1e-12);

@@ -4,6 +4,7 @@
 // motions_, step_starts_, the resting groups' links; writes balls_, feet_, the contact solver's
 // work space.
 #include "contact_group.hpp"
+#include "stages.hpp"
 #include "flight.hpp"
 #include "rolling.hpp"
 #include "spin_phase.hpp"
@@ -16,50 +17,50 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-void StepContext::commitToFloor(bool predict_next)
+void step::commitToFloor(StepContext& c, bool predict_next)
 {
   // Without resting contacts every ball is finished in one pass; with them, velocities
   // are settled across the contacts first.
-  const bool settle = !links_.empty();
+  const bool settle = !c.links_.empty();
   if (predict_next)
-    flights_ = 0;  // (counted again as the next step's motions are predicted)
-  stats_.resting_contacts += links_.size();
+    c.flights_ = 0;  // (counted again as the next step's motions are predicted)
+  c.stats_.resting_contacts += c.links_.size();
   std::uint64_t asleep = 0;
   if (settle)
-    floor_normals_.resize(balls_.size());
-  for (std::size_t i = 0; i < balls_.size(); ++i)
+    c.floor_normals_.resize(c.balls_.size());
+  for (std::size_t i = 0; i < c.balls_.size(); ++i)
   {
-    const Committed done = commitBall(i, settle);
+    const StepContext::Committed done = c.commitBall(i, settle);
     if (!settle)
     {
-      Ball& ball = balls_[i];
+      Ball& ball = c.balls_[i];
       ball.quiet_steps = 0;  // it leaned on nothing
       asleep += ball.asleep ? 1 : 0;
-      roll(i, done.normal, done.moved);
+      c.roll(i, done.normal, done.moved);
       if (predict_next)
-        predictMotion(i);
+        c.predictMotion(i);
     }
     else
-      motions_[i].b = done.moved;  // the motion is done with: b keeps the step's move for roll()
+      c.motions_[i].b = done.moved;  // the motion is done with: b keeps the step's move for roll()
   }
-  step_starts_.clear();  // (each ball's was taken back by its commit)
+  c.step_starts_.clear();  // (each ball's was taken back by its commit)
   if (!settle)
   {
-    stats_.sleeping_balls = asleep;
+    c.stats_.sleeping_balls = asleep;
     return;
   }
-  separateAtEnd();
-  settleRestingVelocities();
-  boundGroupEnergies();
-  for (std::size_t i = 0; i < balls_.size(); ++i)
-    roll(i, floor_normals_[i], motions_[i].b);
+  c.separateAtEnd();
+  c.settleRestingVelocities();
+  c.boundGroupEnergies();
+  for (std::size_t i = 0; i < c.balls_.size(); ++i)
+    c.roll(i, c.floor_normals_[i], c.motions_[i].b);
   // Groups at rest sleep; where gravity does not pull along the floor, nothing gathers
   // balls into groups, and none does.
-  if (FloorMotion::gathers(*this))
-    sleepStillGroups();
+  if (StepState::FloorMotion::gathers(c))
+    c.sleepStillGroups();
   if (predict_next)
-    for (std::size_t i = 0; i < balls_.size(); ++i)
-      predictMotion(i);
+    for (std::size_t i = 0; i < c.balls_.size(); ++i)
+      c.predictMotion(i);
 }
 
 StepContext::Committed StepContext::commitBall(std::size_t i, bool settle)

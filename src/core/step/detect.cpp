@@ -3,6 +3,7 @@
 // Reads motions_, the start positions, walls_, the grid; writes wall_boxes_ (the grid's
 // obstacles), queue_.
 #include "step_types.hpp"
+#include "stages.hpp"
 #include "flight.hpp"
 
 #include "ball_collision_sim/core/time_of_impact.hpp"
@@ -13,24 +14,24 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-void StepContext::buildBroadPhase()
+void step::buildBroadPhase(StepContext& c)
 {
-  queue_.start(&balls_);
-  grid_.build();  // on the swept boxes of the predicted motions
-  wall_boxes_.resize(walls_.size());
-  for (std::size_t w = 0; w < walls_.size(); ++w)
-    wall_boxes_[w] = Aabb{walls_[w].box_min, walls_[w].box_max};
-  wall_boxes_.insert(wall_boxes_.end(), edge_boxes_.begin(), edge_boxes_.end());
-  grid_.markObstacles(wall_boxes_);
+  c.queue_.start(&c.balls_);
+  c.grid_.build();  // on the swept boxes of the predicted motions
+  c.wall_boxes_.resize(c.walls_.size());
+  for (std::size_t w = 0; w < c.walls_.size(); ++w)
+    c.wall_boxes_[w] = Aabb{c.walls_[w].box_min, c.walls_[w].box_max};
+  c.wall_boxes_.insert(c.wall_boxes_.end(), c.edge_boxes_.begin(), c.edge_boxes_.end());
+  c.grid_.markObstacles(c.wall_boxes_);
 }
 
-void StepContext::findFirstImpacts()
+void step::findFirstImpacts(StepContext& c)
 {
-  grid_.forEachNearObstacle([&](std::uint32_t i) { detectWalls(i); });
-  grid_.forEachPair([&](std::uint32_t i, std::uint32_t j) { detectBall(i, j); });
-  if (motionsEnd())
-    for (std::size_t i = 0; i < motions_.size(); ++i)
-      queueMotionEnds(i);
+  c.grid_.forEachNearObstacle([&](std::uint32_t i) { c.detectWalls(i); });
+  c.grid_.forEachPair([&](std::uint32_t i, std::uint32_t j) { c.detectBall(i, j); });
+  if (c.motionsEnd())
+    for (std::size_t i = 0; i < c.motions_.size(); ++i)
+      c.queueMotionEnds(i);
 }
 
 void StepContext::detect(std::size_t i)

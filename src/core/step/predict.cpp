@@ -3,6 +3,7 @@
 // Reads balls_, feet_, spins_; writes motions_, spin_motions_, floor_uv_,
 // chord_ends_ and the grid's boxes.
 #include "floor_motion.hpp"
+#include "stages.hpp"
 #include "flight.hpp"
 
 #include <utility>
@@ -11,20 +12,20 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-void StepContext::predictMotions()
+void step::predictMotions(StepContext& c)
 {
   static_assert(sizeof(Motion) == 40, "a Motion is its start, its displacement and its counters");
-  grid_.start(balls_.size(), ground_.up(), settings_, ground_.spreadsAlongUp());
+  c.grid_.start(c.balls_.size(), c.ground_.up(), c.settings_, c.ground_.spreadsAlongUp());
   // (taken back at once, so that a step cut short by an exception leaves none ready)
-  if (std::exchange(motions_ready_, false))
+  if (std::exchange(c.motions_ready_, false))
     return;  // the last step's commit predicted them
-  motions_.resize(balls_.size());
-  spin_motions_.resize(friction_ ? balls_.size() : 0);
-  floor_uv_.resize(feet_.empty() ? 0 : balls_.size());  // where balls keep foot points
-  chord_ends_.assign(feet_.empty() ? 0 : balls_.size(), 1.0);
-  flights_ = 0;
-  for (std::size_t i = 0; i < balls_.size(); ++i)
-    predictMotion(i, true);
+  c.motions_.resize(c.balls_.size());
+  c.spin_motions_.resize(c.friction_ ? c.balls_.size() : 0);
+  c.floor_uv_.resize(c.feet_.empty() ? 0 : c.balls_.size());  // where balls keep foot points
+  c.chord_ends_.assign(c.feet_.empty() ? 0 : c.balls_.size(), 1.0);
+  c.flights_ = 0;
+  for (std::size_t i = 0; i < c.balls_.size(); ++i)
+    c.predictMotion(i, true);
 }
 
 void StepContext::predictMotion(std::size_t i, bool at_step_start)

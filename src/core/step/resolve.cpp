@@ -3,6 +3,7 @@
 // detected again. Reads and writes motions_, the queue, the start positions and velocities;
 // writes events_ and stats_.
 #include "floor_motion.hpp"
+#include "stages.hpp"
 #include "flight.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
@@ -14,29 +15,29 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-void StepContext::resolveEventsInTimeOrder()
+void step::resolveEventsInTimeOrder(StepContext& c)
 {
-  while (!queue_.empty())
+  while (!c.queue_.empty())
   {
     {
       // the first event's balls' data are fetched while the queue is put in order
       const auto fetch = [&](std::uint32_t k) {
-        __builtin_prefetch(&motions_[k]);
-        __builtin_prefetch(&balls_[k]);
+        __builtin_prefetch(&c.motions_[k]);
+        __builtin_prefetch(&c.balls_[k]);
       };
-      const auto& next = queue_.top();
+      const auto& next = c.queue_.top();
       fetch(next.i);
       if (next.kind != EventKind::kBallWall)
         fetch(next.j);
     }
-    const Event event = queue_.pop();
-    if (motions_[event.i].epoch != event.epoch_i ||
-        (event.kind != EventKind::kBallWall && motions_[event.j].epoch != event.epoch_j))
+    const Event event = c.queue_.pop();
+    if (c.motions_[event.i].epoch != event.epoch_i ||
+        (event.kind != EventKind::kBallWall && c.motions_[event.j].epoch != event.epoch_j))
     {
-      ++stats_.stale_events;  // a ball involved has had an event since this was found
+      ++c.stats_.stale_events;  // a ball involved has had an event since this was found
       continue;
     }
-    resolve(event);
+    c.resolve(event);
   }
 }
 

@@ -11,6 +11,7 @@
 // Reads the start positions and velocities, walls_, the grid; writes the groups
 // (group_parent_, group_next_, first_link_, links_) and what impacts give their members.
 #include "contact_group.hpp"
+#include "stages.hpp"
 #include "floor_motion.hpp"
 #include "spin_phase.hpp"
 
@@ -130,43 +131,43 @@ void StepContext::takeImpulse(std::size_t i, double x, const Vec3& position, con
   motions_[i].become(MotionType::kGrouped);
 }
 
-void StepContext::formRestingGroups()
+void step::formRestingGroups(StepContext& c)
 {
-  const std::size_t n = balls_.size();
+  const std::size_t n = c.balls_.size();
   // (the groups' per-ball data is made when the step links its first contact: a step
   // without resting contacts reads none, and a world that never had one keeps none)
-  group_parent_.clear();
-  group_next_.clear();
-  first_link_.clear();
-  group_velocity_.clear();
+  c.group_parent_.clear();
+  c.group_next_.clear();
+  c.first_link_.clear();
+  c.group_velocity_.clear();
   // (the energy each ball may end the step with: its own at the step's start, which its
   // record holds only until its motion starts anew, and what impacts give it)
-  energy_ref_.resize(n);
+  c.energy_ref_.resize(n);
   for (std::size_t i = 0; i < n; ++i)
-    energy_ref_[i] = energyOf(i, balls_[i].position, balls_[i].velocity);
-  links_.clear();
-  link_order_.clear();
+    c.energy_ref_[i] = c.energyOf(i, c.balls_[i].position, c.balls_[i].velocity);
+  c.links_.clear();
+  c.link_order_.clear();
   // Where gravity does not pull along the floor (a plane square to it), nothing brings
   // balls together: a resting contact there is met within the step, as an event, and
   // linked then; no search at the step's start.
-  if (!FloorMotion::gathers(*this))
+  if (!StepState::FloorMotion::gathers(c))
     return;
   // (the farthest any contact can be linked from, a first filter: gravity itself for its
   // part along the floor, and a margin for the round-off of speeds)
-  const double g = gravity_.norm();
+  const double g = c.gravity_.norm();
   const auto bound = [&](double e) {
-    const double least = settings_.reach_least_restitution;
-    const double bounces = e < 1 ? settings_.resting_steps * dt_ * g * (1 - e) / (2 * std::max(e, least)) : 0.0;
-    return dt_ * (bounces + settings_.reach_speed_margin + dt_ * g);
+    const double least = c.settings_.reach_least_restitution;
+    const double bounces = e < 1 ? c.settings_.resting_steps * c.dt_ * g * (1 - e) / (2 * std::max(e, least)) : 0.0;
+    return c.dt_ * (bounces + c.settings_.reach_speed_margin + c.dt_ * g);
   };
-  double reach = bound(scene_.restitution);
-  for (const Wall& wall : walls_)
+  double reach = bound(c.scene_.restitution);
+  for (const Wall& wall : c.walls_)
     reach = std::max(reach, bound(wall.restitution));
-  linkRestingWalls(reach);
-  linkRestingPairs(reach);
-  for (std::size_t i = 0; i < n && !group_parent_.empty(); ++i)
-    if (group_parent_[i] == i)
-      solveGroup(i, 0.0);
+  c.linkRestingWalls(reach);
+  c.linkRestingPairs(reach);
+  for (std::size_t i = 0; i < n && !c.group_parent_.empty(); ++i)
+    if (c.group_parent_[i] == i)
+      c.solveGroup(i, 0.0);
 }
 
 double StepContext::speculativeReach(double rest_speed, double pull) const

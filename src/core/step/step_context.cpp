@@ -1,6 +1,7 @@
 // The world's lifecycle, the step as its named stages (each in src/core/step/) and
 // the queries; the edits between steps are in edits.cpp.
 #include "step_context.hpp"
+#include "stages.hpp"
 #include "flight.hpp"
 
 #include "contact_group.hpp"
@@ -14,6 +15,7 @@
 
 namespace ball_collision_sim::core
 {
+using namespace step;
 
 StepContext::StepContext(const Scene& scene, const StepSettings& settings) : StepContext(scene, check(scene), settings)
 {
@@ -138,31 +140,32 @@ BallSpin StepContext::makeSpin(const BallDef& placed, const Vec2& foot, bool fly
 
 // ---- the step ------------------------------------------------------------------------
 
-void StepContext::startStep()
+void step::startStep(StepContext& c)
 {
-  events_.clear();
-  transitions_.clear();
+  c.events_.clear();
+  c.transitions_.clear();
   // (each commit takes back what it kept of where balls started; a step cut short, or
   // balls added or removed since, leave that to do here)
-  if (!step_starts_.empty() || step_start_of_.size() != balls_.size())
-    step_start_of_.assign(balls_.size(), kNoStepStart);
-  step_starts_.clear();
+  if (!c.step_starts_.empty() || c.step_start_of_.size() != c.balls_.size())
+    c.step_start_of_.assign(c.balls_.size(), StepState::kNoStepStart);
+  c.step_starts_.clear();
 }
 
 void StepContext::step()
 {
-  startStep();
-  predictMotions();            // each ball's free motion over the step, on the floor, and its swept box
-  buildBroadPhase();           // the swept boxes into a uniform grid
-  formRestingGroups();         // resting contacts as constraints, each group's motions solved
-  findFirstImpacts();          // exact times of impact of nearby pairs and walls
-  resolveEventsInTimeOrder();  // earliest first; re-detect only the balls involved
+  // (the stages: stages.hpp)
+  startStep(*this);
+  predictMotions(*this);            // each ball's free motion over the step, on the floor, and its swept box
+  buildBroadPhase(*this);           // the swept boxes into a uniform grid
+  formRestingGroups(*this);         // resting contacts as constraints, each group's motions solved
+  findFirstImpacts(*this);          // exact times of impact of nearby pairs and walls
+  resolveEventsInTimeOrder(*this);  // earliest first; re-detect only the balls involved
   // The next step visits the balls in this step's cell order, so that neighbours in
   // space are neighbours in memory too; not after every step, as balls move less than a
   // cell in one: while the order stays, the commit predicts the next step's motions, with
   // each ball's record at hand.
   const bool reorder = grid_.inCellOrder() && (order_age_ == 0 || order_age_ >= settings_.reorder_steps);
-  commitToFloor(!reorder);     // every ball to the step's end, back on the floor
+  commitToFloor(*this, !reorder);  // every ball to the step's end, back on the floor
   if (reorder)
   {
     std::vector<std::uint32_t> from;

@@ -62,20 +62,11 @@ public:
   /// The foot point of the record in slot s (curved floors), or a value the ground does not read.
   const Vec2& footOf(std::size_t s) const { return feet_.empty() ? no_foot_ : feet_[s]; }
 
-  // The stages of a step, in order.
-  /// The step's lists emptied and its record of where balls started made ready.
-  void startStep();
-  void predictMotions();
+  // What the stages of a step (stages.hpp) share, in their order.
   /// Ball i's free motion over the next step from its record, and its swept box; at the
   /// step's start (not at the last one's commit, which saw to it) a ball that the floor
   /// cannot hold on its bend leaves it.
   void predictMotion(std::size_t i, bool at_step_start = false);
-  void buildBroadPhase();
-  void findFirstImpacts();
-  void resolveEventsInTimeOrder();
-  /// With predict_next, also predicts each ball's motion for the next step (which keeps
-  /// this step's visiting order).
-  void commitToFloor(bool predict_next);
   /// Ball i to the step's end, on the floor, with its velocity there (the normal kept in
   /// floor_normals_ when `settle`): its move over the step and the normal there.
   struct Committed
@@ -130,9 +121,6 @@ public:
   /// made exact by FrictionLaw::finish(), or its chord at a cut; a new one starts there.
   void resolveMotionEnd(const Event& event);
   // Resting groups (src/core/step/resting_groups.cpp).
-  /// The step's resting contacts at its start: touching pairs and walls that close no
-  /// faster than they rest, each group of balls they join solved together.
-  void formRestingGroups();
   /// The group of ball i (its union-find root), or kNone32.
   std::uint32_t groupOf(std::size_t i);
   /// The groups' per-ball data, made for the step at its first contact.
