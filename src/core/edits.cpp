@@ -3,6 +3,7 @@
 // writes balls_, spins_, feet_, walls_; an edit forgets the step's visiting order and
 // wakes the sleeping balls it touches (a wall's, all: what held them may have changed).
 #include "step/step_context.hpp"
+#include "step/spin_model.hpp"
 
 #include "step/flight.hpp"
 #include "step/floor_motion.hpp"
@@ -63,12 +64,10 @@ AddResult World::addBall(const BallDef& def, Landing landing)
     c.balls_.reserve(2 * c.balls_.size() + 1);
   if (c.by_id_.size() == c.by_id_.capacity())
     c.by_id_.reserve(2 * c.by_id_.size() + 1);
-  if (c.friction_ && c.spins_.size() == c.spins_.capacity())
-    c.spins_.reserve(2 * c.spins_.size() + 1);
+  c.spin_->reserveOne(c);
   if (c.floor_motion_->keepsFeet())
     c.feet_.push_back(foot);
-  if (c.friction_)
-    c.spins_.push_back(c.makeSpin(placed, foot, flying));
+  c.spin_->addSpin(c, placed, foot, flying);
   c.by_id_.push_back(static_cast<std::uint32_t>(c.balls_.size()));  // (the highest id yet)
   c.balls_.push_back(c.makeBall(c.next_ball_id_, placed));
   c.balls_.back().flying = flying;
@@ -107,8 +106,7 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
   c.balls_[s].flying = flying;
   c.balls_[s].asleep = false;
   c.balls_[s].quiet_steps = 0;  // (the ball the edit moved counts its still steps again)
-  if (c.friction_)
-    c.spins_[s] = c.makeSpin(def, foot, flying);
+  c.spin_->setSpin(c, s, def, foot, flying);
   if (c.floor_motion_->keepsFeet())
     c.feet_[s] = foot;
   c.forgetOrder();
@@ -160,20 +158,9 @@ AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
                    formatNumber(velocity.stableNorm()) + " m/s, past the limit of " + formatNumber(kMaxSpeed) + " m/s";
     return result;
   }
-  if (c.friction_)
-  {
-    BallSpin& spin = c.spins_[s];
-    const Vec3 w = spin.angular_velocity + offset.cross(impulse) / (spin.inertia * ball.mass * ball.radius * ball.radius);
-    if (!(w.stableNorm() <= kMaxSpin))
-    {
-      result.error = "impulse: would give ball " + std::to_string(id) + " a spin of " + formatNumber(w.stableNorm()) +
-                     " rad/s, past the limit of " + formatNumber(kMaxSpin) + " rad/s";
-      return result;
-    }
-    spin.angular_velocity = w;
-    spin.kind = flying ? MotionKind::kFlying
-                       : c.frictionUnder(c.ground_.normalUnder(c.footOf(s))).kindOf(spin.inertia, ball.radius, velocity, w);
-  }
+  result.error = c.spin_->strike(c, s, impulse, offset, velocity, flying);
+  if (!result.error.empty())
+    return result;
   ball.velocity = velocity;
   ball.flying = flying;
   c.wakeTouching(ball.position, ball.radius);  // (itself, and what it may push)

@@ -4,6 +4,7 @@
 #include "ball_collision_sim/core/world.hpp"
 
 #include "step/step_context.hpp"
+#include "step/spin_model.hpp"
 
 #include "ball_collision_sim/core/state_hash.hpp"
 
@@ -76,14 +77,7 @@ const Ball* World::findBall(int id) const
 Vec3 World::angularVelocity(std::size_t k) const
 {
   const StepContext& c = *c_;
-  const std::size_t s = c.by_id_.at(k);
-  if (c.friction_)
-    return c.spins_[s].angular_velocity;
-  const Ball& ball = c.balls_[s];
-  if (ball.flying)
-    return Vec3::Zero();  // (without friction a ball turns only by rolling)
-  const Vec3 normal = c.ground_.normalUnder(c.footOf(s));
-  return normal.cross(ball.velocity) / ball.radius;
+  return c.spin_->angularVelocity(c, c.by_id_.at(k));
 }
 
 MotionKind World::motionKind(std::size_t k) const
@@ -92,16 +86,13 @@ MotionKind World::motionKind(std::size_t k) const
   const std::size_t s = c.by_id_.at(k);
   if (c.balls_[s].flying)
     return MotionKind::kFlying;
-  if (c.friction_)
-    return c.spins_[s].kind;
-  return c.balls_[s].velocity == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling;
+  return c.spin_->kindOnFloor(c, s);
 }
 
 double World::inertia(std::size_t k) const
 {
   const StepContext& c = *c_;
-  const std::size_t s = c.by_id_.at(k);
-  return c.friction_ ? c.spins_[s].inertia : kSolidInertia;
+  return c.spin_->inertia(c, c.by_id_.at(k));
 }
 
 void World::recordEvents(bool record)

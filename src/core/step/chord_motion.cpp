@@ -155,7 +155,7 @@ bool StepState::ChordMotion::stillMotion(StepContext& w, std::size_t i, const Fr
   // It stays where it is, with no speed (a chord's point below the floor, where a
   // phase ended mid-step, is not lifted onto it for nothing).
   w.startVelocity(i) = w.motions_[i].b = Vec3::Zero();
-  w.motions_[i].become(MotionType::kLine);
+  w.motions_[i].become(MotionType::kPhaseChord);
   return false;
 }
 

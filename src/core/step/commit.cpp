@@ -3,11 +3,11 @@
 // rolling; and, while the visiting order stays, the next step's prediction. Reads
 // motions_, step_starts_, the resting groups' links; writes balls_, feet_, the contact solver's
 // work space.
+#include "spin_model.hpp"
+#include "floor_motion.hpp"
 #include "contact_group.hpp"
 #include "stages.hpp"
 #include "flight.hpp"
-#include "rolling.hpp"
-#include "spin_phase.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
 
@@ -82,21 +82,7 @@ StepContext::Committed StepContext::commitBall(std::size_t i, bool settle)
   start = kNoStepStart;
   // (a ball frozen by the event cap keeps no speed it does not move with)
   ball.velocity = onFloorVelocity(i, 1.0, end.centre, end.normal);
-  if (friction_)
-  {
-    // its own spin at the end, and its turn over the step by the mean of its spins
-    SpinMotion& sm = spin_motions_[i];
-    BallSpin& spin = spins_[i];
-    // (a rolling ball rolls under the normal where it ends)
-    const Vec3 w = ball.flying ? spinAt(i, 1.0)
-                               : floor_motion_->spinThere(*this, i, end.normal, ball.velocity, spinAt(i, 1.0),
-                                                          sm.phase->rollsAtCommit(sm));
-    sm.turn = (0.5 * dt_) * (spin.angular_velocity + w);
-    spin.angular_velocity = w;
-    sm.kind = ball.flying ? MotionKind::kFlying : sm.phase->kindAtEnd(*this, i, sm, end.normal, ball.velocity, w);
-    recordKind(i, motions_[i].x0);  // (a kind the step's events did not report)
-    spin.kind = sm.kind;
-  }
+  spin_->commit(*this, i, end);
   ball.position = end.centre;
   // (a ball the floor cannot hold on its bend took off within the step: queueTakeOff())
   return {moved, end.normal};
@@ -126,15 +112,6 @@ void StepContext::settleRestingVelocities()
 
 void StepContext::roll(std::size_t i, const Vec3& normal, const Vec3& d)
 {
-  if (friction_)
-  {
-    turn(i, spin_motions_[i].turn);  // by its own spin
-    return;
-  }
-  if (balls_[i].flying)
-    return;  // (without friction a ball turns only by rolling)
-  // rolling without slip, by the move along the floor (step::rolled())
-  Ball& ball = balls_[i];
-  ball.orientation = rolled(ball.orientation, normal, d, ball.radius);
+  spin_->roll(*this, i, normal, d);
 }
 }  // namespace ball_collision_sim::core

@@ -3,6 +3,7 @@
 // the floor's motion type saying where its motion ends and how it is cut short).
 // Reads and writes motions_, balls_' sleep, and a stopped ball's spin_motions_; reads the
 // contact solver's work space (the step's resting contacts at its end).
+#include "spin_model.hpp"
 #include "contact_group.hpp"
 #include "spin_phase.hpp"
 
@@ -133,8 +134,7 @@ void StepContext::stop(std::size_t i)
   motions_[i].b = startVelocity(i) = Vec3::Zero();
   // (with friction its spin then follows from its contacts, not from a phase whose motion
   // it does not make: FrictionLaw::constrained())
-  if (friction_ && spin_motions_[i].phase->ownsMotion())
-    constrainSpin(i);
+  spin_->followContacts(*this, i, true);
 }
 
 double StepContext::EnergyCheck::speedSquaredWith(const Vec3& b) const
@@ -150,8 +150,6 @@ double StepContext::EnergyCheck::speedSquared(double s) const
 double StepContext::EnergyCheck::chordSpeedSquared(const Vec3& b) const
 {
   // (a chord's: its end is off the floor)
-  if (world->friction_)
-    return world->spin_motions_[i].phase->chordSpeedSquared(*world, i, rest, b);
-  return world->linearChordSpeedSquared(i, rest, b);
+  return world->spin_->chordSpeedSquared(*world, i, rest, b);
 }
 }  // namespace ball_collision_sim::core

@@ -21,14 +21,16 @@ const StepState::FloorMotion& StepState::FloorMotion::of(const Ground& ground)
 
 void StepState::ExactMotion::predict(StepContext& w, std::size_t i, const Vec3& v) const
 {
-  w.motions_[i].b = w.predictedEnd(i, w.startPosition(i), v, w.dt_) - w.startPosition(i);
+  // (on a plane gravity alone pulls the paths the floor's type makes: a phase that pulls
+  // a ball itself makes its path itself, SpinPhase::startMotion())
+  w.motions_[i].b = w.predictedEnd(i, w.startPosition(i), v, w.dt_, w.gravity_) - w.startPosition(i);
 }
 
 void StepState::ExactMotion::start(StepContext& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const
 {
   // (no pull along the floor: the motion is the line at v0, its energy its start's)
   const double rest = 1 - x;
-  w.motions_[i].b = rest > 0 ? Vec3((w.predictedEnd(i, position, v0, rest * w.dt_) - position) / rest) : Vec3(w.dt_ * v0);
+  w.motions_[i].b = rest > 0 ? Vec3((w.predictedEnd(i, position, v0, rest * w.dt_, w.gravity_) - position) / rest) : Vec3(w.dt_ * v0);
 }
 
 void StepState::PathMotion::predict(StepContext& w, std::size_t i, const Vec3& v) const

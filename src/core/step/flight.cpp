@@ -6,6 +6,7 @@
 // leaves the floor: take_off.cpp.)
 // Reads and writes motions_, spin_motions_, the start positions and velocities, the
 // balls' flying flags; writes the queue, events_, transitions_ and stats_.
+#include "spin_model.hpp"
 #include "flight.hpp"
 
 #include "floor_motion.hpp"
@@ -39,11 +40,7 @@ void startFlight(StepContext& c, std::size_t i)
   ++c.flights_;
   if (!c.chord_ends_.empty())
     c.chord_ends_[i] = 1.0;
-  if (c.friction_)
-  {
-    c.keepSpin(i);
-    c.spin_motions_[i].kind = MotionKind::kFlying;
-  }
+  c.spin_->startFlight(c, i);
 }
 
 Vec3 flightVelocity(const StepContext& c, std::size_t i, double x)
@@ -155,26 +152,7 @@ void resolveLanding(StepContext& c, const Event& event)
   const double e = floorRestitution(c);
   const double normal_impulse = (1 + e) * ball.mass * closing;
   v += ((1 + e) * closing) * n;  // v_n -> -e v_n
-  if (c.friction_)
-  {
-    // Friction's impulse at the contact point against its slip u = v + r n x w, at most
-    // mu_s times the normal impulse: it stops the slip where that is enough (an impulse J
-    // along the floor changes u by J (1 + 1/k) / m).
-    SpinMotion& sm = c.spin_motions_[i];
-    Vec3 w = c.spinAt(i, x);
-    const double k = c.spins_[i].inertia;
-    Vec3 u = v + r * n.cross(w);
-    u -= u.dot(n) * n;
-    const double slip = u.norm();
-    if (slip > 0)
-    {
-      const double stop = slip * ball.mass * k / (1 + k);
-      const Vec3 j = -(std::min(c.scene_.friction->sliding * normal_impulse, stop) / slip) * u;
-      v += j / ball.mass;
-      w -= n.cross(j) / (k * ball.mass * r);
-    }
-    sm.w0 = w;
-  }
+  c.spin_->landingImpact(c, i, x, n, normal_impulse, v);
   const double away = v.dot(n);
   const double g_n = -c.gravity_.dot(n);
   const bool lands = !(away > 0) || 2 * away < c.settings_.min_flight_time * g_n;
@@ -182,9 +160,7 @@ void resolveLanding(StepContext& c, const Event& event)
   {
     v -= away * n;  // (on the floor: what is left along its normal is the floor's)
     ball.flying = false;
-    // (with friction the phase it lands in reports its kind: startMotion())
-    if (!c.friction_)
-      recordFlightChange(c, i, x, MotionKind::kFlying, v == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling);
+    c.spin_->landed(c, i, x, v);
   }
   ++c.stats_.floor_impacts;
   c.recordEvent(CollisionEvent::Kind::kBallFloor, ball.id, 0, p - r * n, -n, normal_impulse, closing, lands, event);

@@ -3,6 +3,7 @@
 // end of a phase (slip, speed or spin about the normal reaching zero) is an event at its
 // exact time, and impacts add tangential impulses. Reads and writes motions_,
 // spin_motions_, the start velocities and the queue; writes transitions_ and stats_.
+#include "spin_model.hpp"
 #include "spin_phase.hpp"
 
 #include "ball_collision_sim/core/response.hpp"
@@ -51,9 +52,7 @@ FrictionLaw StepContext::frictionUnder(const Vec3& n) const
 
 double StepContext::speedSquaredAt(std::size_t i, double x, const Vec3& p) const
 {
-  if (friction_)
-    return spin_motions_[i].phase->speedSquaredAt(*this, i, x, p);
-  return pulledSpeedSquared(i, p);
+  return spin_->speedSquaredAt(*this, i, x, p);
 }
 
 double StepContext::pulledSpeedSquared(std::size_t i, const Vec3& p) const
@@ -63,9 +62,7 @@ double StepContext::pulledSpeedSquared(std::size_t i, const Vec3& p) const
 
 const Vec3& StepContext::pullOf(std::size_t i) const
 {
-  if (friction_)
-    return spin_motions_[i].phase->pull(*this, spin_motions_[i]);
-  return gravity_;
+  return spin_->pull(*this, i);
 }
 
 bool StepContext::startFriction(std::size_t i, double x, bool record, bool impact)

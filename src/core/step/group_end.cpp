@@ -3,6 +3,7 @@
 // contacts that ended the step overlapping. Reads the groups' links and the committed
 // positions; writes the balls' end velocities and positions, the contact solver's work
 // space.
+#include "spin_model.hpp"
 #include "contact_group.hpp"
 #include "floor_motion.hpp"
 #include "spin_phase.hpp"
@@ -84,9 +85,7 @@ void StepContext::boundGroupEnergies()
     const Ball& ball = balls_[i];
     now[root] += energyOf(i, ball.position, ball.velocity);
     kinetic[root] += 0.5 * ball.mass * ball.velocity.squaredNorm();
-    if (friction_ && friction_->grips())
-      kinetic[root] +=
-          0.5 * spins_[i].inertia * ball.mass * ball.radius * ball.radius * spins_[i].angular_velocity.squaredNorm();
+    kinetic[root] += spinEnergy(i);
   }
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -96,8 +95,7 @@ void StepContext::boundGroupEnergies()
     const double left = kinetic[root] - (now[root] - allowed[root]);
     const double scale = left > 0 ? std::sqrt(left / kinetic[root]) : 0.0;
     balls_[i].velocity *= scale;
-    if (friction_ && friction_->grips())
-      spins_[i].angular_velocity *= scale;
+    spin_->scaleSpin(*this, i, scale);
   }
 }
 

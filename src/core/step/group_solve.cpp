@@ -3,6 +3,7 @@
 // (the contact solver), and each member's motion over the rest of the step set from the
 // solution. Reads the groups' links, the start positions and velocities; writes motions_,
 // the members' work space, the grid's boxes.
+#include "spin_model.hpp"
 #include "contact_group.hpp"
 #include "floor_motion.hpp"
 #include "spin_phase.hpp"
@@ -176,7 +177,7 @@ void StepContext::solveRows(double span)
   // pushes, up to its cap, and stops it where that is enough (a box constraint on a
   // friction impulse, as in Box2D's solver); then the contacts are solved exactly, with
   // the resistance found.
-  if (friction_ && std::any_of(member_caps_.begin(), member_caps_.end(), [](double c) { return c > 0; }))
+  if (std::any_of(member_caps_.begin(), member_caps_.end(), [](double c) { return c > 0; }))
   {
     group.u = base_u_;
     const auto resist = [&](std::vector<Vec3>& u) {
@@ -255,7 +256,7 @@ void StepContext::solveGroupContacts(ContactGroup& group, double span, double sl
 
 bool StepContext::rollsInGroup(std::size_t i, const Vec3& n) const
 {
-  return friction_ && frictionUnder(n).holdsRolling(spins_[i].inertia);
+  return spin_->rollsInGroup(*this, i, n);
 }
 
 void StepContext::finishGroup(double x, double span)
@@ -279,8 +280,7 @@ void StepContext::finishGroup(double x, double span)
     motions_[b].become(MotionType::kGrouped);
     if (member_rolls_[m])
       spin_motions_[b].w0 = n.cross(v) / balls_[b].radius + spin_about_n;
-    if (friction_)
-      constrainSpin(b);
+    spin_->followContacts(*this, b, false);
     if (x > 0)
     {
       renewMotion(b);

@@ -3,6 +3,7 @@
 // curved floor's chords cut to the longest it allows (an event at the cut).
 // Reads motions_, the floor; writes motions_, chord_ends_, the start position and
 // velocity (step_starts_ keeping where the step started a ball), and, at a cut, the queue.
+#include "spin_model.hpp"
 #include "spin_phase.hpp"
 #include "flight.hpp"
 
@@ -44,10 +45,7 @@ Vec3 StepContext::floorNormalAt(std::size_t i, const Vec3& position) const
 
 Vec3 StepContext::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
-  const MotionType type = motions_[i].type;
-  if (type == MotionType::kLine && !friction_)  // (the most common first)
-    return ground_.velocityAt(startVelocity(i), (x - motions_[i].x0) * dt_, startPosition(i), position, normal);
-  switch (type)
+  switch (motions_[i].type)
   {
     case MotionType::kFlight:
       return flightVelocity(*this, i, x);  // (off the floor)
@@ -56,9 +54,10 @@ Vec3 StepContext::onFloorVelocity(std::size_t i, double x, const Vec3& position,
     case MotionType::kCapped:
     case MotionType::kAsleep:
       return Vec3::Zero();
-    default:
-      if (friction_)
-        return spin_motions_[i].phase->velocity(*this, i, x, position, normal);
+    case MotionType::kPhase:
+    case MotionType::kPhaseChord:
+      return spin_motions_[i].phase->velocity(*this, i, x, position, normal);  // (its friction phase's)
+    default:  // (a free line or path on the floor: the ground's)
       return ground_.velocityAt(startVelocity(i), (x - motions_[i].x0) * dt_, startPosition(i), position, normal);
   }
 }
@@ -123,8 +122,7 @@ void StepContext::startMotion(std::size_t i, double x, const Vec3& position, con
   if (motions_[i].frozen())
   {
     m.b = Vec3::Zero();
-    if (friction_)
-      keepSpin(i);
+    spin_->hold(*this, i, false);
     return;
   }
   if (!balls_[i].flying && leavesFloor(*this, i, position, startVelocity(i)) && !grouped(i))
@@ -142,12 +140,7 @@ void StepContext::startMotion(std::size_t i, double x, const Vec3& position, con
     startFlight(*this, i);
     return;
   }
-  if (friction_)
-  {
-    if (!startFriction(i, x, true, impact))  // the phase its velocity and spin give it
-      return;                                // (else the chord below, under the phase's pull)
-  }
-  floor_motion_->start(*this, i, x, position, startVelocity(i));
+  spin_->startOnFloor(*this, i, x, position, impact);
 }
 
 void StepContext::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)
@@ -194,8 +187,7 @@ void StepContext::queueMotionEnds(std::size_t i)
     case MotionType::kAsleep:
       return;
     default:  // on the floor: a line, a path, a phase, a group's chord
-      if (friction_)
-        queueTransition(i);
+      spin_->queueEnd(*this, i);
       if (!chord_ends_.empty())
       {
         queueCut(i);
@@ -212,27 +204,12 @@ void StepContext::resolveMotionEnd(const Event& event)
   const Vec3 p = positionAt(i, event.x);
   const Vec3 normal = floorNormalAt(i, p);
   Vec3 v = onFloorVelocity(i, event.x, p, normal);
-  if (friction_)
-  {
-    SpinMotion& sm = spin_motions_[i];
-    Vec3 w = spinAtEvent(i, event.x, normal, v);
-    if (event.end == MotionEnd::kPhase)
-    {
-      // (under the normal where it is now: its velocity there lies along that floor)
-      const FrictionLaw law = frictionUnder(normal);
-      const double speeds = law.speeds(balls_[i].radius, startVelocity(i), sm.w0);
-      law.finish(sm.ends, spins_[i].inertia, balls_[i].radius, speeds, v, w);
-      if (sm.ends & kSlipStops)
-        sm.kind = MotionKind::kRolling;  // (its slip is gone: it rolls, or finds it cannot)
-    }
-    sm.w0 = w;
-  }
+  spin_->endMotion(*this, event, normal, v);
   if (motions_[i].followsGroup())
   {
     // (a member of a group: the group goes on from here, solved again, the spin it has
     // now kept as it is until then)
-    if (friction_)
-      keepSpin(i);
+    spin_->hold(*this, i, false);
     solveGroup(i, event.x);
     return;
   }

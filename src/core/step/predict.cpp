@@ -2,6 +2,7 @@
 // velocity) and the floor, and its swept box in the grid.
 // Reads balls_, feet_, spins_; writes motions_, spin_motions_, floor_uv_,
 // chord_ends_ and the grid's boxes.
+#include "spin_model.hpp"
 #include "floor_motion.hpp"
 #include "stages.hpp"
 #include "flight.hpp"
@@ -20,7 +21,7 @@ void step::predictMotions(StepContext& c)
   if (std::exchange(c.motions_ready_, false))
     return;  // the last step's commit predicted them
   c.motions_.resize(c.balls_.size());
-  c.spin_motions_.resize(c.friction_ ? c.balls_.size() : 0);
+  c.spin_->startStep(c);
   c.floor_uv_.resize(c.feet_.empty() ? 0 : c.balls_.size());  // where balls keep foot points
   c.chord_ends_.assign(c.feet_.empty() ? 0 : c.balls_.size(), 1.0);
   c.flights_ = 0;
@@ -40,52 +41,33 @@ void StepContext::predictMotion(std::size_t i, bool at_step_start)
   if (ball.asleep)
   {
     motions_[i].type = MotionType::kAsleep;  // where it is, an obstacle, until woken
-    if (friction_)
-    {
-      spin_motions_[i].w0 = spins_[i].angular_velocity;
-      spin_motions_[i].kind = spin_motions_[i].reported = spins_[i].kind;
-      keepSpin(i);
-    }
+    spin_->predictAsleep(*this, i);
     grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(ball.position, ball.position, ball.radius));
     return;
   }
   const bool takes_off = at_step_start && !ball.flying && leavesFloor(*this, i, ball.position, ball.velocity);
   if (ball.flying || takes_off)
   {
-    if (friction_)
-    {
-      SpinMotion& sm = spin_motions_[i];
-      sm.w0 = spins_[i].angular_velocity;
-      sm.reported = spins_[i].kind;
-    }
+    spin_->predictFlight(*this, i);
     liftOff(*this, i, 0.0);  // (its kind recorded where it leaves the floor, or left it just now)
     startFlight(*this, i);
     grid_.setBox(static_cast<std::uint32_t>(i), currentBox(i));
     return;
   }
-  if (friction_)
+  if (!spin_->predictOnFloor(*this, i))  // (its friction phase made its motion)
   {
-    SpinMotion& sm = spin_motions_[i];
-    sm.w0 = spins_[i].angular_velocity;
-    sm.kind = sm.reported = spins_[i].kind;
-    sm.normal = floorNormalAt(i, ball.position);  // (where its last step put it)
-    // (a change of kind was recorded where the last phase ended)
-    if (!startFriction(i, 0.0, false, false))
-    {
-      grid_.setBox(static_cast<std::uint32_t>(i), currentBox(i));
-      return;
-    }
+    grid_.setBox(static_cast<std::uint32_t>(i), currentBox(i));
+    return;
   }
-  floor_motion_->predict(*this, i, ball.velocity);
   // (a chord's box reaches the uncut chord's end)
   grid_.setBox(static_cast<std::uint32_t>(i),
                motions_[i].accelerates() ? currentBox(i) : sweptBox(ball.position, ball.position + m.b, ball.radius));
 }
 
-Vec3 StepContext::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span)
+Vec3 StepContext::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span, const Vec3& pull)
 {
   // seed (1): ds = dt v + dt^2 g / 2, then back onto the floor, seed (2)-(4)
-  const Vec3 q = p + span * v + (0.5 * span * span) * pullOf(i);
+  const Vec3 q = p + span * v + (0.5 * span * span) * pull;
   return ground_.landKeepingFoot(q, balls_[i].radius, guessOf(i));
 }
 

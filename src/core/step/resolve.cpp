@@ -2,6 +2,7 @@
 // enough, becomes a resting contact), and the balls involved get new motions and are
 // detected again. Reads and writes motions_, the queue, the start positions and velocities;
 // writes events_ and stats_.
+#include "spin_model.hpp"
 #include "floor_motion.hpp"
 #include "stages.hpp"
 #include "flight.hpp"
@@ -87,14 +88,11 @@ void StepContext::resolveBallWall(const Event& event)
     solveGroup(i, event.x);
     return;
   }
-  if (friction_)
-    spin_motions_[i].w0 = spinAtEvent(i, event.x, floor_normal, v);
   const double inv_mass = inverseMass(i);
   const double impulse = collisionImpulse(closing, inv_mass, dir, 0.0, dir, wall.restitution);
   const Vec3 before = v;
   v -= (impulse * inv_mass) * dir;
-  if (friction_)
-    ballWallFriction(i, n, floor_normal, impulse, v);
+  spin_->wallImpact(*this, i, event.x, n, floor_normal, impulse, before, v);
   takeVelocity(i, event.x, p, floor_normal, before, v);
   recordEvent(CollisionEvent::Kind::kBallWall, ball.id, wall.id, p + ball.radius * n, n, impulse, closing, false, event);
   countEvent(i);
@@ -141,12 +139,6 @@ void StepContext::resolveBallBall(const Event& event)
     solveGroup(i, event.x);
     return;
   }
-  if (friction_)
-  {
-    // (the spins there, before the impact changes the velocities: the new motions' w0)
-    spin_motions_[i].w0 = spinAtEvent(i, event.x, na, va);
-    spin_motions_[j].w0 = spinAtEvent(j, event.x, nb, vb);
-  }
   const double inv_a = inverseMass(i);
   const double inv_b = inverseMass(j);
   // (only a ball in flight lifts one on the floor)
@@ -158,8 +150,7 @@ void StepContext::resolveBallBall(const Event& event)
   vb += (impulse * inv_b) * tb;
 
   const PairContact pair{i, j, n, na, nb, ta, tb, ta, tb, inv_a, inv_b};
-  if (friction_)
-    ballBallFriction(pair, impulse, va, vb);
+  spin_->pairImpact(*this, pair, event.x, impulse, va_before, vb_before, va, vb);
   // (a ball lifted flies from where it is on the floor)
   if (lifts_a)
     liftOff(*this, i, event.x);
@@ -253,11 +244,7 @@ void StepContext::countEvent(std::size_t i)
     m.type = MotionType::kCapped;
     startVelocity(i) = Vec3::Zero();
     motions_[i].b = Vec3::Zero();
-    if (friction_)
-    {
-      keepSpin(i);
-      spin_motions_[i].w0 = Vec3::Zero();  // (its spin too: no motion at all, and no energy made)
-    }
+    spin_->hold(*this, i, true);  // (its spin too: no motion at all, and no energy made)
     ++stats_.frozen_balls;
   }
   // its new motion may reach beyond where the grid has it

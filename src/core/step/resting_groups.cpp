@@ -10,6 +10,7 @@
 // step's groups.
 // Reads the start positions and velocities, walls_, the grid; writes the groups
 // (group_parent_, group_next_, first_link_, links_) and what impacts give their members.
+#include "spin_model.hpp"
 #include "contact_group.hpp"
 #include "stages.hpp"
 #include "floor_motion.hpp"
@@ -144,7 +145,8 @@ void step::formRestingGroups(StepContext& c)
   // record holds only until its motion starts anew, and what impacts give it)
   c.energy_ref_.resize(n);
   for (std::size_t i = 0; i < n; ++i)
-    c.energy_ref_[i] = c.energyOf(i, c.balls_[i].position, c.balls_[i].velocity);
+    c.energy_ref_[i] = c.motionEnergyOf(i, c.balls_[i].position, c.balls_[i].velocity);
+  c.spin_->addSpinEnergies(c, c.energy_ref_);
   c.links_.clear();
   c.link_order_.clear();
   // Where gravity does not pull along the floor (a plane square to it), nothing brings

@@ -58,6 +58,7 @@ struct StepState::SpinPhase::Frictionless final : StepState::SpinPhase
 struct StepState::SpinPhase::Forced : StepState::SpinPhase
 {
   bool ownsMotion() const override { return true; }
+  bool givesVelocity() const override { return true; }
   const Vec3& pull(const StepContext&, const SpinMotion& sm) const override { return sm.pull; }
   double chordSpeedSquared(const StepContext& w, std::size_t i, double rest, const Vec3& b) const override
   {

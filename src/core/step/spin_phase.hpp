@@ -38,6 +38,9 @@ struct StepState::SpinPhase
   /// where the caller is to give it a frictionless ball's motion, or the chord under
   /// SpinMotion::pull on a curved floor.
   virtual bool startMotion(StepContext&, std::size_t, const FrictionLaw&) const { return true; }
+  /// Its velocity (and pull) are the phase's own, not a free ball's: a chord the floor's
+  /// type makes for it is a MotionType::kPhaseChord.
+  virtual bool givesVelocity() const { return false; }
   /// What pulls the ball's motion [m/s^2]: gravity, or with friction acting on the
   /// motion the phase's pull (gravity's share and the friction force).
   virtual const Vec3& pull(const StepContext& w, const SpinMotion&) const { return w.gravity_; }

@@ -6,6 +6,7 @@
 
 #include "contact_group.hpp"
 #include "floor_motion.hpp"
+#include "spin_model.hpp"
 
 #include "ball_collision_sim/core/state_hash.hpp"
 
@@ -28,6 +29,8 @@ StepState::StepState(const Scene& scene, const StepSettings& settings)
     , gravity_(scene.gravity)
     , ground_(scene.floor, scene.gravity, settings)
     , floor_motion_(&FloorMotion::of(ground_))
+    , spin_(&SpinModel::of(scene.friction.has_value()))
+    , phases_end_(spin_->phasesEnd())
     , flight_c_((0.5 * scene.dt * scene.dt) * scene.gravity)
     , path_c_((0.5 * scene.dt * scene.dt) * ground_.pathAcceleration())
 {
@@ -82,18 +85,7 @@ void StepContext::load(PlacedBalls placed)
     by_id_[k] = static_cast<std::uint32_t>(k);
     balls_[k].id = next_ball_id_++;
   }
-  if (friction_)
-  {
-    spins_.reserve(balls_.size());
-    for (std::size_t k = 0; k < balls_.size(); ++k)
-    {
-      // (its definition: the scene's own ball, or a random one's, where the record has it now)
-      BallDef def = k < scene_.balls.size() ? scene_.balls[k] : randomBallDef(scene_, balls_[k]);
-      def.position = balls_[k].position;
-      def.velocity = balls_[k].velocity;
-      spins_.push_back(makeSpin(def, placed.feet[k], balls_[k].flying));
-    }
-  }
+  spin_->makeSpins(*this, placed.feet);
   if (floor_motion_->keepsFeet())
     feet_ = std::move(placed.feet);
   stats_ = WorldStats{};

@@ -83,7 +83,13 @@ public:
   /// from its velocity when asked for: angularVelocity()).
   void roll(std::size_t i, const Vec3& floor_normal, const Vec3& d);
 
-  Vec3 predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span);
+  /// Where ball i's chord from p at velocity v ends `span` seconds on, under `pull`
+  /// (pullOf(i) where its phase pulls it), put back on the floor.
+  Vec3 predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span, const Vec3& pull);
+  Vec3 predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span)
+  {
+    return predictedEnd(i, p, v, span, pullOf(i));
+  }
   Aabb currentBox(std::size_t i) const;
   void detect(std::size_t i);
   void detectWalls(std::size_t i);
@@ -116,7 +122,7 @@ public:
   void queueMotionEnds(std::size_t i);
   /// Some motion may end within the step: on a level plane without friction only flights
   /// end there.
-  bool motionsEnd() const { return friction_ || !chord_ends_.empty() || flights_ > 0; }
+  bool motionsEnd() const { return phases_end_ || !chord_ends_.empty() || flights_ > 0; }
   /// Ball i's motion ends within the step (EventKind::kMotionEnd): its friction phase's,
   /// made exact by FrictionLaw::finish(), or its chord at a cut; a new one starts there.
   void resolveMotionEnd(const Event& event);
@@ -197,15 +203,15 @@ public:
   /// what impacts gave them: where the time step gives more, its velocities are scaled down.
   void boundGroupEnergies();
   /// Ball i's energy [J], kinetic with velocity v at position p (and where friction
-  /// grips, its spin's, the spin it has now), and potential.
-  double energyOf(std::size_t i, const Vec3& p, const Vec3& v) const
+  /// grips, its spin's, the spin it has now: spinEnergy()), and potential; motionEnergyOf()
+  /// leaves the spin's out.
+  double motionEnergyOf(std::size_t i, const Vec3& p, const Vec3& v) const
   {
-    const Ball& ball = balls_[i];
-    double e = ball.mass * (0.5 * v.squaredNorm() - gravity_.dot(p));
-    if (friction_ && friction_->grips())
-      e += 0.5 * spins_[i].inertia * ball.mass * ball.radius * ball.radius * spins_[i].angular_velocity.squaredNorm();
-    return e;
+    return balls_[i].mass * (0.5 * v.squaredNorm() - gravity_.dot(p));
   }
+  double energyOf(std::size_t i, const Vec3& p, const Vec3& v) const { return motionEnergyOf(i, p, v) + spinEnergy(i); }
+  /// The kinetic energy of ball i's spin that counts as its own (SpinModel::spinEnergy()) [J].
+  double spinEnergy(std::size_t i) const;
   /// After an impact: its balls' groups solved again from its time on, or the balls
   /// detected again.
   void goOnAfter(const Event& event);

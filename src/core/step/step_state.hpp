@@ -66,6 +66,9 @@ struct StepState
   /// How a ball's motion and spin go within the step with friction
   /// (src/core/step/spin_phase.hpp): a type per phase, not a branch in the step.
   struct SpinPhase;
+  /// What a ball's spin is in the step, by whether friction acts (src/core/step/spin_model.hpp):
+  /// a type the scene provides, not a branch in the step.
+  struct SpinModel;
   /// How balls move on this world's ground within a step (src/core/step/floor_motion.hpp):
   /// a type the ground provides, exact paths on a plane or without a floor, chords on a
   /// curved floor.
@@ -102,6 +105,10 @@ struct StepState
   /// The ground's motion type (FloorMotion::of(ground_)); the step asks it whatever
   /// depends on the kind of floor.
   const FloorMotion* floor_motion_ = nullptr;
+  /// The scene's spin type (SpinModel::of()); the step asks it whatever depends on friction.
+  const SpinModel* spin_ = nullptr;
+  /// Friction phases end within steps (spin_->phasesEnd(), kept for the step's detection).
+  bool phases_end_ = false;
   /// The parabola term of flights, g dt^2 / 2 [m].
   Vec3 flight_c_ = Vec3::Zero();
   /// Flights started since the step's motions were predicted (startFlight()): while

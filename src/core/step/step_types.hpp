@@ -41,6 +41,9 @@ enum class MotionType : std::uint8_t
   kCapped,
   /// no motion, immovable: the ball sleeps, until an impact or an edit wakes it
   kAsleep,
+  /// a friction phase's chord on a curved floor, or a still phase's stay there: kLine's
+  /// path, its velocity its phase's (SpinPhase::velocity()), not the free motion's
+  kPhaseChord,
   // (the parabolas last, so that telling them from lines is one comparison)
   /// a free ball's parabola where the ground gives its path an acceleration a (a sloped
   /// plane, no floor): c(x) = p0 + (x - x0) b + (x - x0)^2 path_c_, path_c_ = a dt^2 / 2

@@ -4,6 +4,7 @@
 // foot point passes the floor's edge: from there it flies (flight.cpp).
 // Reads motions_, the start positions and velocities, the floor; writes the queue, the
 // balls' flying flags, transitions_.
+#include "spin_model.hpp"
 #include "flight.hpp"
 
 #include "floor_motion.hpp"
@@ -22,17 +23,7 @@ namespace ball_collision_sim::core::step
 void liftOff(StepContext& c, std::size_t i, double x)
 {
   const bool flew = std::exchange(c.balls_[i].flying, true);
-  if (!c.friction_)
-  {
-    // (without friction a ball on the floor is rolling while it moves)
-    if (!flew)
-      recordFlightChange(c, i, x, c.startVelocity(i) == Vec3::Zero() ? MotionKind::kStationary : MotionKind::kRolling,
-                         MotionKind::kFlying);
-    return;
-  }
-  c.spin_motions_[i].kind = MotionKind::kFlying;
-  c.recordKind(i, x);
-  c.spins_[i].kind = MotionKind::kFlying;
+  c.spin_->liftOff(c, i, x, flew);
 }
 
 bool leavesCurvedFloor(const StepContext& c, std::size_t i, const Vec3& position, const Vec3& v)
@@ -111,8 +102,7 @@ void resolveTakeOff(StepContext& c, const Event& event)
     c.guessOf(i) = foot.uv;
   const Vec3 p = c.ground_.floor()->ballCentre(foot, c.balls_[i].radius);
   const Vec3 v = c.onFloorVelocity(i, x, p, foot.normal);
-  if (c.friction_)
-    c.spin_motions_[i].w0 = c.spinAtEvent(i, x, foot.normal, v);
+  c.spin_->takeOff(c, i, x, foot.normal, v);
   liftOff(c, i, x);
   c.startMotion(i, x, p, v, false);
   c.countEvent(i);
