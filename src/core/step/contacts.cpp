@@ -134,7 +134,7 @@ void StepContext::stop(std::size_t i)
   motions_[i].b = startVelocity(i) = Vec3::Zero();
   // (with friction its spin then follows from its contacts, not from a phase whose motion
   // it does not make: FrictionLaw::constrained())
-  spin_->followContacts(*this, i, true);
+  spin_->stop(*this, i);
 }
 
 double StepContext::EnergyCheck::speedSquaredWith(const Vec3& b) const

@@ -122,7 +122,7 @@ void StepContext::startMotion(std::size_t i, double x, const Vec3& position, con
   if (motions_[i].frozen())
   {
     m.b = Vec3::Zero();
-    spin_->hold(*this, i, false);
+    spin_->hold(*this, i);
     return;
   }
   if (!balls_[i].flying && leavesFloor(*this, i, position, startVelocity(i)) && !grouped(i))
@@ -209,7 +209,7 @@ void StepContext::resolveMotionEnd(const Event& event)
   {
     // (a member of a group: the group goes on from here, solved again, the spin it has
     // now kept as it is until then)
-    spin_->hold(*this, i, false);
+    spin_->hold(*this, i);
     solveGroup(i, event.x);
     return;
   }

@@ -244,7 +244,7 @@ void StepContext::countEvent(std::size_t i)
     m.type = MotionType::kCapped;
     startVelocity(i) = Vec3::Zero();
     motions_[i].b = Vec3::Zero();
-    spin_->hold(*this, i, true);  // (its spin too: no motion at all, and no energy made)
+    spin_->cap(*this, i);  // (its spin too)
     ++stats_.frozen_balls;
   }
   // its new motion may reach beyond where the grid has it

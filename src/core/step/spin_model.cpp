@@ -60,8 +60,10 @@ struct RollingSpin final : StepState::SpinModel
   {
     c.floor_motion_->start(c, i, x, position, c.startVelocity(i));
   }
-  void hold(StepContext&, std::size_t, bool) const override {}
-  void followContacts(StepContext&, std::size_t, bool) const override {}
+  void hold(StepContext&, std::size_t) const override {}
+  void cap(StepContext&, std::size_t) const override {}
+  void followGroup(StepContext&, std::size_t) const override {}
+  void stop(StepContext&, std::size_t) const override {}
   void startFlight(StepContext&, std::size_t) const override {}
   void liftOff(StepContext& c, std::size_t i, double x, bool flew) const override
   {
@@ -79,7 +81,6 @@ struct RollingSpin final : StepState::SpinModel
   {
     return c.linearChordSpeedSquared(i, rest, b);
   }
-  bool phasesEnd() const override { return false; }
   void queueEnd(StepContext&, std::size_t) const override {}
   void endMotion(StepContext&, const Event&, const Vec3&, Vec3&) const override {}
   void takeOff(StepContext&, std::size_t, double, const Vec3&, const Vec3&) const override {}
@@ -197,16 +198,17 @@ struct FrictionSpin final : StepState::SpinModel
     if (m.type == MotionType::kLine && c.spin_motions_[i].phase->givesVelocity())
       m.type = MotionType::kPhaseChord;
   }
-  void hold(StepContext& c, std::size_t i, bool capped) const override
+  void hold(StepContext& c, std::size_t i) const override { c.keepSpin(i); }
+  void cap(StepContext& c, std::size_t i) const override
   {
     c.keepSpin(i);
-    if (capped)
-      c.spin_motions_[i].w0 = Vec3::Zero();  // (its spin too: no motion at all, and no energy made)
+    c.spin_motions_[i].w0 = Vec3::Zero();  // (no motion at all, and no energy made)
   }
-  void followContacts(StepContext& c, std::size_t i, bool stopped) const override
+  void followGroup(StepContext& c, std::size_t i) const override { c.constrainSpin(i); }
+  void stop(StepContext& c, std::size_t i) const override
   {
-    // (a ball stopped where its phase does not make its motion keeps what spin it has)
-    if (!stopped || c.spin_motions_[i].phase->ownsMotion())
+    // (a ball whose phase does not make its motion keeps what spin it has)
+    if (c.spin_motions_[i].phase->ownsMotion())
       c.constrainSpin(i);
   }
   void startFlight(StepContext& c, std::size_t i) const override
@@ -232,7 +234,6 @@ struct FrictionSpin final : StepState::SpinModel
   {
     return c.spin_motions_[i].phase->chordSpeedSquared(c, i, rest, b);
   }
-  bool phasesEnd() const override { return true; }
   void queueEnd(StepContext& c, std::size_t i) const override { c.queueTransition(i); }
   void endMotion(StepContext& c, const Event& event, const Vec3& normal, Vec3& v) const override
   {

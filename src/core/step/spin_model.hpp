@@ -58,10 +58,13 @@ struct StepState::SpinModel
   /// where a phase gives its velocity, is a MotionType::kPhaseChord).
   virtual void startOnFloor(StepContext& c, std::size_t i, double x, const Vec3& position, bool impact) const = 0;
   /// Ball i has no motion of its own from now in the step (frozen, or its group's to
-  /// come): its spin stays as it is. `capped`: the event cap stopped it, spin and all.
-  virtual void hold(StepContext& c, std::size_t i, bool capped) const = 0;
-  /// Ball i's motion is its contacts' (its group's, or stopped where its energy ran out).
-  virtual void followContacts(StepContext& c, std::size_t i, bool stopped) const = 0;
+  /// come): its spin stays as it is.
+  virtual void hold(StepContext& c, std::size_t i) const = 0;
+  /// The event cap stopped ball i for the rest of the step, spin and all.
+  virtual void cap(StepContext& c, std::size_t i) const = 0;
+  /// Ball i's motion is its resting group's; or it stopped where its energy ran out.
+  virtual void followGroup(StepContext& c, std::size_t i) const = 0;
+  virtual void stop(StepContext& c, std::size_t i) const = 0;
   /// Ball i flies from now in the step (startFlight()), or leaves the floor at x (liftOff(),
   /// `flew`: it was in flight already).
   virtual void startFlight(StepContext& c, std::size_t i) const = 0;
@@ -71,8 +74,7 @@ struct StepState::SpinModel
   virtual double speedSquaredAt(const StepContext& c, std::size_t i, double x, const Vec3& p) const = 0;
   virtual const Vec3& pull(const StepContext& c, std::size_t i) const = 0;
   virtual double chordSpeedSquared(const StepContext& c, std::size_t i, double rest, const Vec3& b) const = 0;
-  /// Motions end within a step where their phases do; queues ball i's phase's end.
-  virtual bool phasesEnd() const = 0;
+  /// Queues the end of ball i's phase where it falls within the step.
   virtual void queueEnd(StepContext& c, std::size_t i) const = 0;
   /// At ball i's motion's end at the event, where it has velocity v on the floor with
   /// this normal: its spin there, and at its phase's end the phase's end made exact.

@@ -30,7 +30,6 @@ StepState::StepState(const Scene& scene, const StepSettings& settings)
     , ground_(scene.floor, scene.gravity, settings)
     , floor_motion_(&FloorMotion::of(ground_))
     , spin_(&SpinModel::of(scene.friction.has_value()))
-    , phases_end_(spin_->phasesEnd())
     , flight_c_((0.5 * scene.dt * scene.dt) * scene.gravity)
     , path_c_((0.5 * scene.dt * scene.dt) * ground_.pathAcceleration())
 {

@@ -120,9 +120,9 @@ public:
   /// Queues what ends ball i's motion within the step, as its kind has it: a flight's
   /// landing; a friction phase's end; on a curved floor a chord's cut and take-off.
   void queueMotionEnds(std::size_t i);
-  /// Some motion may end within the step: on a level plane without friction only flights
-  /// end there.
-  bool motionsEnd() const { return phases_end_ || !chord_ends_.empty() || flights_ > 0; }
+  /// Some motion may end within the step: a friction phase (balls have them), a chord on
+  /// a curved floor, a flight; on a level plane without friction only flights end there.
+  bool motionsEnd() const { return !spin_motions_.empty() || !chord_ends_.empty() || flights_ > 0; }
   /// Ball i's motion ends within the step (EventKind::kMotionEnd): its friction phase's,
   /// made exact by FrictionLaw::finish(), or its chord at a cut; a new one starts there.
   void resolveMotionEnd(const Event& event);

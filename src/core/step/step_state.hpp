@@ -107,8 +107,6 @@ struct StepState
   const FloorMotion* floor_motion_ = nullptr;
   /// The scene's spin type (SpinModel::of()); the step asks it whatever depends on friction.
   const SpinModel* spin_ = nullptr;
-  /// Friction phases end within steps (spin_->phasesEnd(), kept for the step's detection).
-  bool phases_end_ = false;
   /// The parabola term of flights, g dt^2 / 2 [m].
   Vec3 flight_c_ = Vec3::Zero();
   /// Flights started since the step's motions were predicted (startFlight()): while
