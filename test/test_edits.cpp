@@ -219,7 +219,7 @@ TEST(ApplyImpulse, ChangesTheVelocityByImpulseOverMass)
     bouncy.step();
     const Vec3 v0 = bouncy.findBall(1)->velocity;
     ASSERT_TRUE(bouncy.applyImpulse(1, Vec3(1.0, -0.5, -4.0)).ok);
-    EXPECT_TRUE(bouncy.findBall(1)->flying);
+    EXPECT_TRUE(bouncy.findBall(1)->flying());
     EXPECT_NEAR((bouncy.findBall(1)->velocity - (v0 + Vec3(0.4, -0.2, 1.6))).norm(), 0, 1e-15);
   }
   scene.floor->restitution = 0.0;

@@ -77,7 +77,7 @@ TEST(Flight, DropBouncesAtTheClosedFormTimesAndComesToRest)
   Scene scene = level(e);
   scene.balls.push_back(given(0, r + h, 0, 0, r));
   World world(scene);
-  ASSERT_TRUE(world.balls()[0].flying);
+  ASSERT_TRUE(world.balls()[0].flying());
   EXPECT_EQ(world.motionKind(0), MotionKind::kFlying);
   const double t1 = std::sqrt(2 * h / kG);
   const double rest = t1 * (1 + e) / (1 - e);
@@ -112,7 +112,7 @@ TEST(Flight, DropBouncesAtTheClosedFormTimesAndComesToRest)
   EXPECT_NEAR(impacts.back().time, rest, 1e-6 / (1 - e) + 1e-9);
   EXPECT_LE(impacts.back().time, rest + 1e-12);
   const Ball& b = world.balls()[0];
-  EXPECT_FALSE(b.flying);
+  EXPECT_FALSE(b.flying());
   EXPECT_EQ(b.position.z(), r);
   EXPECT_EQ(b.velocity, Vec3::Zero());
   EXPECT_EQ(world.stats().floor_impacts, impacts.size());
@@ -155,7 +155,7 @@ TEST(Flight, LaunchLandsAtItsRangeAndSlidesOn)
   Scene scene = level(0.0);
   scene.balls.push_back(given(-5, r, vx, vz, r));
   World world(scene);
-  ASSERT_TRUE(world.balls()[0].flying);
+  ASSERT_TRUE(world.balls()[0].flying());
   const std::vector<CollisionEvent> impacts = runUntil(world, 1.0);
   ASSERT_EQ(impacts.size(), 1u);
   const double t = 2 * vz / kG;
@@ -165,7 +165,7 @@ TEST(Flight, LaunchLandsAtItsRangeAndSlidesOn)
   EXPECT_NEAR(impacts[0].impulse, vz * 1.0, 1e-12);  // m (1 + e) v_n, m = 1
   EXPECT_TRUE(impacts[0].resting);
   const Ball& b = world.balls()[0];
-  EXPECT_FALSE(b.flying);
+  EXPECT_FALSE(b.flying());
   EXPECT_EQ(b.position.z(), r);
   EXPECT_NEAR(b.position.x(), -5 + vx * world.time(), 1e-12);
   EXPECT_NEAR(b.velocity.x(), vx, 1e-13);
@@ -287,10 +287,10 @@ TEST(Flight, JumpShotOffTheFloorsRestitution)
   Scene scene = level(e);
   scene.balls.push_back(ball(0, 0, 0, 0, r));
   World world(scene);
-  ASSERT_FALSE(world.balls()[0].flying);
+  ASSERT_FALSE(world.balls()[0].flying());
   const AddResult hit = world.applyImpulse(world.balls()[0].id, Vec3(2.0, 0, -2.0));
   ASSERT_TRUE(hit.ok) << hit.error;
-  ASSERT_TRUE(world.balls()[0].flying);
+  ASSERT_TRUE(world.balls()[0].flying());
   EXPECT_EQ(world.balls()[0].velocity, Vec3(2.0, 0, 1.0));
   // lifted straight up: flies; sideways only: stays on the floor
   const std::vector<CollisionEvent> impacts = runUntil(world, 2 * 1.0 / kG + 0.005);
@@ -300,9 +300,9 @@ TEST(Flight, JumpShotOffTheFloorsRestitution)
 
   World flat(scene);
   ASSERT_TRUE(flat.applyImpulse(flat.balls()[0].id, Vec3(1.0, 0, 0)).ok);
-  EXPECT_FALSE(flat.balls()[0].flying);
+  EXPECT_FALSE(flat.balls()[0].flying());
   ASSERT_TRUE(flat.applyImpulse(flat.balls()[0].id, Vec3(0, 0, 1e-9)).ok);
-  EXPECT_FALSE(flat.balls()[0].flying) << "a flight shorter than min_flight_time stays on the floor";
+  EXPECT_FALSE(flat.balls()[0].flying()) << "a flight shorter than min_flight_time stays on the floor";
   EXPECT_EQ(flat.balls()[0].velocity.z(), 0.0);
 }
 
@@ -316,7 +316,7 @@ TEST(Flight, PlacedAsGiven)
   BallDef up = given(0, 0.6, 0, 3.0, r);
   const AddResult a = world.addBall(up, Landing::kAsGiven);
   ASSERT_TRUE(a.ok) << a.error;
-  EXPECT_TRUE(world.findBall(a.id)->flying);
+  EXPECT_TRUE(world.findBall(a.id)->flying());
   EXPECT_EQ(world.findBall(a.id)->position, Vec3(0, 0, 0.6));
   EXPECT_EQ(world.findBall(a.id)->velocity, Vec3(0, 0, 3.0));
   const AddResult below = world.addBall(given(1, 0.05, 0, 0, r), Landing::kAsGiven);
@@ -325,7 +325,7 @@ TEST(Flight, PlacedAsGiven)
   EXPECT_EQ(world.balls().size(), 1u);
   const AddResult on = world.addBall(given(2, r, 1.0, 0, r), Landing::kAsGiven);
   ASSERT_TRUE(on.ok) << on.error;
-  EXPECT_FALSE(world.findBall(on.id)->flying);
+  EXPECT_FALSE(world.findBall(on.id)->flying());
   // the flying one rises to 0.6 + 9 / (2 g) and lands at 0.6 - r + ... : its first impact
   // when 0.5 + 3 t - g t^2 / 2 = 0
   const double t = (3 + std::sqrt(9 + 2 * kG * 0.5)) / kG;
@@ -356,7 +356,7 @@ TEST(Flight, LeavesACrestWhereItsBendAsksMoreThanGravity)
     const double t = world.time();
     if (v == 5.0)
     {
-      ASSERT_TRUE(out.flying);
+      ASSERT_TRUE(out.flying());
       EXPECT_NEAR(out.position.x(), v * t, 1e-12);
       EXPECT_NEAR(out.position.z(), r - 0.5 * kG * t * t, 1e-12);
       // 13 cm and more above where the floor would have held it
@@ -364,7 +364,7 @@ TEST(Flight, LeavesACrestWhereItsBendAsksMoreThanGravity)
     }
     else
     {
-      EXPECT_FALSE(out.flying);
+      EXPECT_FALSE(out.flying());
       EXPECT_EQ(world.stats().floor_impacts, 0u);
     }
   }
@@ -440,15 +440,15 @@ TEST(Flight, LeavesADomeWhereTheFloorsPushFallsToZero)
     const TakeOff off = domeTakeOff(v0, r);
     ASSERT_NEAR(world.balls()[0].position.z(), 6 + r, 1e-12);
     int steps = 0;
-    while (!world.balls()[0].flying && steps < 200)
+    while (!world.balls()[0].flying() && steps < 200)
     {
       world.step();
       ++steps;
     }
-    ASSERT_TRUE(world.balls()[0].flying) << "v0 " << v0;
+    ASSERT_TRUE(world.balls()[0].flying()) << "v0 " << v0;
     world.step();  // (a whole step in flight)
     const Ball& out = world.balls()[0];
-    ASSERT_TRUE(out.flying);
+    ASSERT_TRUE(out.flying());
     // on the diagonal, by symmetry
     EXPECT_NEAR(out.position.x(), out.position.y(), 1e-9);
     // its level speed is that of the closed form's take-off, constant in flight
@@ -502,12 +502,12 @@ TEST(Flight, TakeOffsAndLandingsAreTransitionsWithoutFriction)
   scene.balls.push_back(b);
   World over(scene);
   changes.clear();
-  while (!over.balls()[0].flying && over.time() < 2.0)
+  while (!over.balls()[0].flying() && over.time() < 2.0)
   {
     over.step();
     changes.insert(changes.end(), over.lastTransitions().begin(), over.lastTransitions().end());
   }
-  ASSERT_TRUE(over.balls()[0].flying);
+  ASSERT_TRUE(over.balls()[0].flying());
   ASSERT_EQ(changes.size(), 1u);
   EXPECT_EQ(changes[0].from, MotionKind::kRolling);
   EXPECT_EQ(changes[0].to, MotionKind::kFlying);
@@ -538,7 +538,7 @@ TEST(Flight, FallsOffTheFloorsEdgeAndIsLostBelowIt)
   EXPECT_EQ(changes[0].to, MotionKind::kFlying);
   EXPECT_NEAR(changes[0].time, te, 1e-12);
   const Ball& b = world.balls()[0];
-  ASSERT_TRUE(b.flying);
+  ASSERT_TRUE(b.flying());
   const double s = world.time() - te;
   EXPECT_NEAR(b.position.x(), 1 + v * s, 1e-12);
   EXPECT_NEAR(b.position.z(), r - 0.5 * kG * s * s, 1e-12);
@@ -573,12 +573,12 @@ TEST(Flight, FliesOffTheRimOfABowlFromItsEdge)
   b.position.z() = r;
   scene.balls.push_back(b);
   World world(scene);
-  while (!world.balls()[0].flying && world.time() < 3)
+  while (!world.balls()[0].flying() && world.time() < 3)
     world.step();
-  ASSERT_TRUE(world.balls()[0].flying);
+  ASSERT_TRUE(world.balls()[0].flying());
   world.step();
   const Ball& out = world.balls()[0];
-  ASSERT_TRUE(out.flying);
+  ASSERT_TRUE(out.flying());
   // the centre over the rim's point (2, 0, 0.5), r along the normal (-1/2, 0, 1) / |.|
   const double slope = std::atan(0.5), len = std::sqrt(1.25);
   const double xe = 2 - r * 0.5 / len, ze = 0.5 + r / len;
@@ -625,7 +625,7 @@ TEST(Flight, ABallStruckBelowItsCentreLeavesTheFloor)
   const double after = world.time() - t;
   const Ball& a = *world.findBall(1);
   const Ball& b = *world.findBall(2);
-  ASSERT_TRUE(b.flying);
+  ASSERT_TRUE(b.flying());
   EXPECT_EQ(world.motionKind(1), MotionKind::kFlying);
   const Vec3 gz(0, 0, -g);
   EXPECT_NEAR((b.velocity - (J / M * n + after * gz)).norm(), 0, 1e-12);

@@ -469,7 +469,7 @@ TEST(Sleep, AnImpactWakesTheGroupItHits)
       if ((b.position.y() > 0) == positive && b.position.x() > 0)
       {
         ++all;
-        asleep += b.asleep ? 1 : 0;
+        asleep += b.asleep() ? 1 : 0;
       }
     return std::pair{asleep, all};
   };

@@ -413,7 +413,7 @@ TEST(RestingContact, JamOfThreeInTheBowl)
   {
     EXPECT_NEAR(std::hypot(b.position.x(), b.position.y()), rho, 1e-9) << b.id;
     EXPECT_LT(b.velocity.norm(), 1e-9) << b.id;
-    EXPECT_TRUE(b.asleep) << b.id;
+    EXPECT_TRUE(b.asleep()) << b.id;
   }
   const auto& b = world.balls();
   for (std::size_t i = 0; i < 3; ++i)

@@ -70,7 +70,7 @@ AddResult World::addBall(const BallDef& def, Landing landing)
   c.spin_->addSpin(c, placed, foot, flying);
   c.by_id_.push_back(static_cast<std::uint32_t>(c.balls_.size()));  // (the highest id yet)
   c.balls_.push_back(c.makeBall(c.next_ball_id_, placed));
-  c.balls_.back().flying = flying;
+  c.balls_.back().support = flying ? Ball::Support::kAir : Ball::Support::kFloor;
   result.id = c.next_ball_id_++;
   c.forgetOrder();
   return result;
@@ -103,8 +103,7 @@ AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity
   c.wakeTouching(def.position, def.radius);
   c.balls_[s].position = def.position;
   c.balls_[s].velocity = def.velocity;
-  c.balls_[s].flying = flying;
-  c.balls_[s].asleep = false;
+  c.balls_[s].support = flying ? Ball::Support::kAir : Ball::Support::kFloor;
   c.balls_[s].quiet_steps = 0;  // (the ball the edit moved counts its still steps again)
   c.spin_->setSpin(c, s, def, foot, flying);
   if (c.floor_motion_->keepsFeet())
@@ -137,7 +136,7 @@ AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
   result.id = id;
   Ball& ball = c.balls_[s];
   Vec3 velocity = ball.velocity + impulse / ball.mass;
-  bool flying = ball.flying;
+  bool flying = ball.flying();
   if (c.ground_.floor() && !flying)
   {
     // Pressed into the floor, the ball comes back off it at the floor's restitution (a
@@ -162,8 +161,9 @@ AddResult World::strike(int id, const Vec3& impulse, const Vec3& offset)
   if (!result.error.empty())
     return result;
   ball.velocity = velocity;
-  ball.flying = flying;
   c.wakeTouching(ball.position, ball.radius);  // (itself, and what it may push)
+  if (flying)
+    ball.support = Ball::Support::kAir;
   ball.quiet_steps = 0;  // (the ball the edit set going counts its still steps again)
   c.forgetOrder();
   result.ok = true;

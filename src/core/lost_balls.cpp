@@ -24,7 +24,7 @@ std::string StepContext::whyLost(std::size_t s, const Ground::Bounds& bounds) co
   const Ball& ball = balls_[s];
   // (a ball in flight is in the world whatever lies under it, until it has fallen past the
   // floor's edge: near a wall the floor's nearest point to it can lie past that edge)
-  if (ball.flying)
+  if (ball.flying())
     return ground_.whyFallen(ball.position, ball.radius, bounds);
   return ground_.whyOff(ball.position, ball.radius, footOf(s), bounds);
 }

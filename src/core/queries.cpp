@@ -84,7 +84,7 @@ MotionKind World::motionKind(std::size_t k) const
 {
   const StepContext& c = *c_;
   const std::size_t s = c.by_id_.at(k);
-  if (c.balls_[s].flying)
+  if (c.balls_[s].flying())
     return MotionKind::kFlying;
   return c.spin_->kindOnFloor(c, s);
 }

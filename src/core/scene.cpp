@@ -227,7 +227,7 @@ PlacedBalls land(const Scene& scene, std::vector<Ball> random)
     bool flying = false;
     placeOnFloor(def, floor, &foot, landingOf(def.placement), &flying);
     ball = ballRecord(def);
-    ball.flying = flying;
+    ball.support = flying ? Ball::Support::kAir : Ball::Support::kFloor;
   };
   for (std::size_t k = 0; k < random.size(); ++k)
     put(randomBallDef(scene, random[k]), random[k], out.feet[own + k]);

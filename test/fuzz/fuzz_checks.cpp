@@ -362,7 +362,7 @@ std::string checkStepping(const std::uint8_t* data, std::size_t size)
     for (std::size_t i = 0; i < balls.size(); ++i)
     {
       const core::Ball& a = balls[i];
-      if (a.flying)
+      if (a.flying())
         flown.insert(a.id);
       const bool may_leave = flown.count(a.id) > 0;
       for (std::size_t j = i + 1; j < balls.size(); ++j)

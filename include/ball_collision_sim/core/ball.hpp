@@ -11,13 +11,22 @@ namespace ball_collision_sim::core
 struct Ball
 {
   int id = 0;
-  /// At rest in a group that leans on walls or the floor's slope: the step leaves it
-  /// where it is, without motion or events, until an impact or an edit wakes it.
-  bool asleep = false;
-  /// In flight: no floor holds it; its centre moves on x0 + v t + g t^2 / 2 and its spin
-  /// is constant until it lands (a world without a floor has no flight: every ball moves
-  /// so there).
-  bool flying = false;
+  /// What holds the ball up between steps.
+  enum class Support : std::uint8_t
+  {
+    /// On the floor: it rolls, slides, spins or stands on it (or, in a world without a
+    /// floor, moves in the plane).
+    kFloor,
+    /// At rest in a group that leans on walls or the floor's slope: the step leaves it
+    /// where it is, without motion or events, until an impact or an edit wakes it.
+    kAsleep,
+    /// In flight: no floor holds it; its centre moves on x0 + v t + g t^2 / 2 and its spin
+    /// is constant until it lands (a world without a floor has no flight).
+    kAir,
+  };
+  Support support = Support::kFloor;
+  bool asleep() const { return support == Support::kAsleep; }
+  bool flying() const { return support == Support::kAir; }
   /// Steps in a row it has been all but still while leaning on something (to sleep).
   std::uint16_t quiet_steps = 0;
   double radius = 0.1;                    ///< [m]

@@ -35,7 +35,7 @@ void step::commitToFloor(StepContext& c, bool predict_next)
     {
       Ball& ball = c.balls_[i];
       ball.quiet_steps = 0;  // it leaned on nothing
-      asleep += ball.asleep ? 1 : 0;
+      asleep += ball.asleep() ? 1 : 0;
       c.roll(i, done.normal, done.moved);
       if (predict_next)
         c.predictMotion(i);
@@ -69,7 +69,7 @@ StepContext::Committed StepContext::commitBall(std::size_t i, bool settle)
   // (a ball asleep stays where it is, on the foot point it had; the floor's normal there
   // counts only across resting contacts: its spin is kept as it is, SpinPhase::kept())
   const Ground::End end = motions_[i].asleep() ? ground_.stillEnd(ball.position, ball.radius, guessOf(i), settle)
-                          : ball.flying      ? ground_.airEnd(positionAt(i, 1.0), guessOf(i))
+                          : ball.flying()      ? ground_.airEnd(positionAt(i, 1.0), guessOf(i))
                                              : ground_.end(positionAt(i, 1.0), ball.radius, guessOf(i));
   if (!feet_.empty())
     feet_[i] = end.foot;

@@ -27,7 +27,7 @@ void StepContext::wakeGroup(std::size_t first)
       continue;
     motions_[k].type = MotionType::kLine;  // (still, until its next motion starts)
     Ball& ball = balls_[k];
-    ball.asleep = false;
+    ball.support = Ball::Support::kFloor;
     ball.quiet_steps = 0;
     ++stats_.woken_balls;
     grid_.query(static_cast<std::uint32_t>(k), [&](std::uint32_t other) {
@@ -53,9 +53,9 @@ void StepContext::wakeAll()
   // (a ball awake keeps its count of still steps: the edit did not move it, and a step
   // that it moves in starts the count again)
   for (Ball& ball : balls_)
-    if (ball.asleep)
+    if (ball.asleep())
     {
-      ball.asleep = false;
+      ball.support = Ball::Support::kFloor;
       ball.quiet_steps = 0;
     }
   motions_ready_ = false;  // (a prediction made while they slept)
@@ -64,9 +64,9 @@ void StepContext::wakeAll()
 void StepContext::wakeTouching(const Vec3& position, double radius)
 {
   for (Ball& ball : balls_)
-    if (ball.asleep && (ball.position - position).norm() <= ball.radius + radius + settings_.touch_slack)
+    if (ball.asleep() && (ball.position - position).norm() <= ball.radius + radius + settings_.touch_slack)
     {
-      ball.asleep = false;
+      ball.support = Ball::Support::kFloor;
       ball.quiet_steps = 0;
       ++stats_.woken_balls;
     }
@@ -107,7 +107,7 @@ void StepContext::sleepStillGroups()
   for (std::size_t k = 0; k < n; ++k)
   {
     Ball& ball = balls_[k];
-    if (ball.asleep)
+    if (ball.asleep())
       continue;
     const bool still = leans[k] && ball.velocity.norm() <= settings_.sleep_speed;
     ball.quiet_steps = still ? static_cast<std::uint16_t>(std::min<int>(ball.quiet_steps + 1, 0xffff)) : 0;
@@ -118,12 +118,12 @@ void StepContext::sleepStillGroups()
   for (std::size_t k = 0; k < n; ++k)
   {
     Ball& ball = balls_[k];
-    if (!ball.asleep && ball.quiet_steps >= sleep_steps_ && !restless[root(k)])
+    if (!ball.asleep() && ball.quiet_steps >= sleep_steps_ && !restless[root(k)])
     {
-      ball.asleep = true;
+      ball.support = Ball::Support::kAsleep;
       ball.velocity = Vec3::Zero();
     }
-    asleep += ball.asleep ? 1 : 0;
+    asleep += ball.asleep() ? 1 : 0;
   }
   stats_.sleeping_balls = asleep;
 }

@@ -159,7 +159,7 @@ void resolveLanding(StepContext& c, const Event& event)
   if (lands)
   {
     v -= away * n;  // (on the floor: what is left along its normal is the floor's)
-    ball.flying = false;
+    ball.support = Ball::Support::kFloor;
     c.spin_->landed(c, i, x, v);
   }
   ++c.stats_.floor_impacts;

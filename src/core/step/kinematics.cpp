@@ -125,7 +125,7 @@ void StepContext::startMotion(std::size_t i, double x, const Vec3& position, con
     spin_->hold(*this, i);
     return;
   }
-  if (!balls_[i].flying && leavesFloor(*this, i, position, startVelocity(i)) && !grouped(i))
+  if (!balls_[i].flying() && leavesFloor(*this, i, position, startVelocity(i)) && !grouped(i))
   {
     // The floor cannot hold it on its bend: it flies from the floor (a chord's point can
     // lie off it), its speed what its energy gives there.
@@ -135,7 +135,7 @@ void StepContext::startMotion(std::size_t i, double x, const Vec3& position, con
     startVelocity(i) = ground_.withSpeedSquared(startVelocity(i), speed2);
     startPosition(i) = q;
   }
-  if (balls_[i].flying)
+  if (balls_[i].flying())
   {
     startFlight(*this, i);
     return;

@@ -38,15 +38,15 @@ void StepContext::predictMotion(std::size_t i, bool at_step_start)
     chord_ends_[i] = 1.0;
   if (!floor_uv_.empty())
     floor_uv_[i] = feet_[i];
-  if (ball.asleep)
+  if (ball.asleep())
   {
     motions_[i].type = MotionType::kAsleep;  // where it is, an obstacle, until woken
     spin_->predictAsleep(*this, i);
     grid_.setBox(static_cast<std::uint32_t>(i), sweptBox(ball.position, ball.position, ball.radius));
     return;
   }
-  const bool takes_off = at_step_start && !ball.flying && leavesFloor(*this, i, ball.position, ball.velocity);
-  if (ball.flying || takes_off)
+  const bool takes_off = at_step_start && !ball.flying() && leavesFloor(*this, i, ball.position, ball.velocity);
+  if (ball.flying() || takes_off)
   {
     spin_->predictFlight(*this, i);
     liftOff(*this, i, 0.0);  // (its kind recorded where it leaves the floor, or left it just now)

@@ -76,9 +76,9 @@ void StepContext::resolveBallWall(const Event& event)
 
   const Vec3 n = -event.normal;  // from the ball toward the wall
   // (a ball in flight is pushed along the normal itself; it rests on nothing)
-  const Vec3 dir = ball.flying ? n : wallPush(n, floor_normal);
+  const Vec3 dir = ball.flying() ? n : wallPush(n, floor_normal);
   const double closing = v.dot(dir);
-  const bool resting = !ball.flying && closing <= restingSpeed(floor_normal, wall.restitution, p, ball.radius);
+  const bool resting = !ball.flying() && closing <= restingSpeed(floor_normal, wall.restitution, p, ball.radius);
   if (resting)
   {
     // a resting contact: a constraint of the ball's group from now on
@@ -126,10 +126,10 @@ void StepContext::resolveBallBall(const Event& event)
   wakeOnImpact(i, j, n.dot(va - vb), rest_speed);
   // Each ball on the floor is pushed along the normal's part tangent to the floor under
   // it; one in flight along the normal itself, and it rests on nothing.
-  Vec3 ta = a.flying ? n : ground_.along(n, na);
-  Vec3 tb = b.flying ? n : ground_.along(n, nb);
+  Vec3 ta = a.flying() ? n : ground_.along(n, na);
+  Vec3 tb = b.flying() ? n : ground_.along(n, nb);
   double closing = va.dot(ta) - vb.dot(tb);
-  const bool resting = !a.flying && !b.flying && closing <= rest_speed;
+  const bool resting = !a.flying() && !b.flying() && closing <= rest_speed;
   if (resting)
   {
     // a resting contact: the two balls' groups become one, with it as a constraint
@@ -187,7 +187,7 @@ StepContext::Lift StepContext::pairLift(std::size_t i, std::size_t j, const Vec3
   // The floor only pushes: a ball on it that a ball in flight pushes away from it (struck
   // below its centre) is not held, takes the whole normal and flies. (Two balls on the
   // floor push each other along it, whatever their radii: the floor's plane model.)
-  const bool a_flies = balls_[i].flying, b_flies = balls_[j].flying;
+  const bool a_flies = balls_[i].flying(), b_flies = balls_[j].flying();
   if (a_flies == b_flies)
     return {};
   const double inv_a = inverseMass(i), inv_b = inverseMass(j);

@@ -185,7 +185,7 @@ void StepContext::linkRestingWalls(double reach)
 {
   const double touch = settings_.touch_slack;
   grid_.forEachNearObstacle([&](std::uint32_t i) {
-    if (motions_[i].frozen() || balls_[i].flying)
+    if (motions_[i].frozen() || balls_[i].flying())
       return;
     const Ball& ball = balls_[i];
     for (std::size_t w = 0; w < walls_.size(); ++w)
@@ -217,7 +217,7 @@ void StepContext::linkRestingPairs(double reach)
 {
   const double touch = settings_.touch_slack;
   grid_.forEachPair([&](std::uint32_t i, std::uint32_t j) {
-    if ((motions_[i].frozen() && motions_[j].frozen()) || balls_[i].flying || balls_[j].flying)
+    if ((motions_[i].frozen() && motions_[j].frozen()) || balls_[i].flying() || balls_[j].flying())
       return;
     const Ball& a = balls_[i];
     const Ball& b = balls_[j];

@@ -37,7 +37,7 @@ struct RollingSpin final : StepState::SpinModel
   Vec3 angularVelocity(const StepContext& c, std::size_t s) const override
   {
     const Ball& ball = c.balls_[s];
-    if (ball.flying)
+    if (ball.flying())
       return Vec3::Zero();
     const Vec3 normal = c.ground_.normalUnder(c.footOf(s));
     return normal.cross(ball.velocity) / ball.radius;
@@ -101,7 +101,7 @@ struct RollingSpin final : StepState::SpinModel
   void roll(StepContext& c, std::size_t i, const Vec3& normal, const Vec3& d) const override
   {
     Ball& ball = c.balls_[i];
-    if (ball.flying)
+    if (ball.flying())
       return;
     // rolling without slip, by the move along the floor (step::rolled())
     ball.orientation = rolled(ball.orientation, normal, d, ball.radius);
@@ -123,7 +123,7 @@ struct FrictionSpin final : StepState::SpinModel
       BallDef def = k < c.scene_.balls.size() ? c.scene_.balls[k] : randomBallDef(c.scene_, c.balls_[k]);
       def.position = c.balls_[k].position;
       def.velocity = c.balls_[k].velocity;
-      c.spins_.push_back(c.makeSpin(def, feet[k], c.balls_[k].flying));
+      c.spins_.push_back(c.makeSpin(def, feet[k], c.balls_[k].flying()));
     }
   }
   void reserveOne(StepContext& c) const override
@@ -304,12 +304,12 @@ struct FrictionSpin final : StepState::SpinModel
     SpinMotion& sm = c.spin_motions_[i];
     BallSpin& spin = c.spins_[i];
     // (a rolling ball rolls under the normal where it ends)
-    const Vec3 w = ball.flying ? c.spinAt(i, 1.0)
+    const Vec3 w = ball.flying() ? c.spinAt(i, 1.0)
                                : c.floor_motion_->spinThere(c, i, end.normal, ball.velocity, c.spinAt(i, 1.0),
                                                             sm.phase->rollsAtCommit(sm));
     sm.turn = (0.5 * c.dt_) * (spin.angular_velocity + w);
     spin.angular_velocity = w;
-    sm.kind = ball.flying ? MotionKind::kFlying : sm.phase->kindAtEnd(c, i, sm, end.normal, ball.velocity, w);
+    sm.kind = ball.flying() ? MotionKind::kFlying : sm.phase->kindAtEnd(c, i, sm, end.normal, ball.velocity, w);
     c.recordKind(i, c.motions_[i].x0);  // (a kind the step's events did not report)
     spin.kind = sm.kind;
   }

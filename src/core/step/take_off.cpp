@@ -22,7 +22,7 @@ namespace ball_collision_sim::core::step
 
 void liftOff(StepContext& c, std::size_t i, double x)
 {
-  const bool flew = std::exchange(c.balls_[i].flying, true);
+  const bool flew = std::exchange(c.balls_[i].support, Ball::Support::kAir) == Ball::Support::kAir;
   c.spin_->liftOff(c, i, x, flew);
 }
 
@@ -200,7 +200,7 @@ double edgeMargin(const StepContext& c, std::size_t i, double x)
 void queueEdgeFall(StepContext& c, std::size_t i)
 {
   const Motion& m = c.motions_[i];
-  if (!c.ground_.floor() || c.balls_[i].flying || m.frozen() || c.grouped(i))
+  if (!c.ground_.floor() || c.balls_[i].flying() || m.frozen() || c.grouped(i))
     return;
   const double end = c.chordEnd(i);
   if (!(end > m.x0))
