@@ -142,9 +142,8 @@ void StepContext::resolveBallBall(const Event& event)
   const double inv_a = inverseMass(i);
   const double inv_b = inverseMass(j);
   // (only a ball in flight lifts one on the floor)
-  const Lift lift = flights_ > 0 ? pairLift(i, j, n, na, nb, va, vb, ta, tb, closing) : Lift{};
+  const std::size_t lifted = flights_ > 0 ? pairLift(i, j, n, na, nb, va, vb, ta, tb, closing) : kNoBall;
   const double impulse = collisionImpulse(closing, inv_a, ta, inv_b, tb, scene_.restitution);
-  const bool lifts_a = lift.a, lifts_b = lift.b;
   const Vec3 va_before = va, vb_before = vb;
   va -= (impulse * inv_a) * ta;
   vb += (impulse * inv_b) * tb;
@@ -152,12 +151,10 @@ void StepContext::resolveBallBall(const Event& event)
   const PairContact pair{i, j, n, na, nb, ta, tb, ta, tb, inv_a, inv_b};
   spin_->pairImpact(*this, pair, event.x, impulse, va_before, vb_before, va, vb);
   // (a ball lifted flies from where it is on the floor)
-  if (lifts_a)
-    liftOff(*this, i, event.x);
-  if (lifts_b)
-    liftOff(*this, j, event.x);
-  takeVelocity(i, event.x, lifts_a ? onFloor(i, pa) : pa, na, va_before, va);
-  takeVelocity(j, event.x, lifts_b ? onFloor(j, pb) : pb, nb, vb_before, vb);
+  if (lifted != kNoBall)
+    liftOff(*this, lifted, event.x);
+  takeVelocity(i, event.x, lifted == i ? onFloor(i, pa) : pa, na, va_before, va);
+  takeVelocity(j, event.x, lifted == j ? onFloor(j, pb) : pb, nb, vb_before, vb);
   recordEvent(CollisionEvent::Kind::kBallBall, a.id, b.id, pa + a.radius * n, n, impulse, closing, false, event);
   countEvent(i);
   countEvent(j);
@@ -181,25 +178,24 @@ void StepContext::goOnAfter(const Event& event)
     detect(j);
 }
 
-StepContext::Lift StepContext::pairLift(std::size_t i, std::size_t j, const Vec3& n, const Vec3& na, const Vec3& nb,
-                                        const Vec3& va, const Vec3& vb, Vec3& ta, Vec3& tb, double& closing) const
+std::size_t StepContext::pairLift(std::size_t i, std::size_t j, const Vec3& n, const Vec3& na, const Vec3& nb,
+                                  const Vec3& va, const Vec3& vb, Vec3& ta, Vec3& tb, double& closing) const
 {
   // The floor only pushes: a ball on it that a ball in flight pushes away from it (struck
   // below its centre) is not held, takes the whole normal and flies. (Two balls on the
   // floor push each other along it, whatever their radii: the floor's plane model.)
-  const bool a_flies = balls_[i].flying(), b_flies = balls_[j].flying();
-  if (a_flies == b_flies)
-    return {};
+  const bool a_flies = balls_[i].flying();
+  if (a_flies == balls_[j].flying())
+    return kNoBall;
   const double inv_a = inverseMass(i), inv_b = inverseMass(j);
   const double impulse = collisionImpulse(closing, inv_a, ta, inv_b, tb, scene_.restitution);
-  const Lift lift{b_flies && liftedBy(i, (-impulse * inv_a) * n, na), a_flies && liftedBy(j, (impulse * inv_b) * n, nb)};
-  if (lift.a || lift.b)
-  {
-    ta = lift.a ? n : ta;
-    tb = lift.b ? n : tb;
-    closing = va.dot(ta) - vb.dot(tb);
-  }
-  return lift;
+  // (the one on the floor: j where i flies, pushed by +impulse along n; else i, by -impulse)
+  const bool lifts = a_flies ? liftedBy(j, (impulse * inv_b) * n, nb) : liftedBy(i, (-impulse * inv_a) * n, na);
+  if (!lifts)
+    return kNoBall;
+  (a_flies ? tb : ta) = n;
+  closing = va.dot(ta) - vb.dot(tb);
+  return a_flies ? j : i;
 }
 
 bool StepContext::liftedBy(std::size_t i, const Vec3& dv, const Vec3& floor_normal) const

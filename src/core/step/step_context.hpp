@@ -224,15 +224,12 @@ public:
   /// this normal: it points away from the floor enough to keep it off it for
   /// StepSettings::min_flight_time (the floor takes a push into it, never one out of it).
   bool liftedBy(std::size_t i, const Vec3& dv, const Vec3& floor_normal) const;
-  /// Which of balls i and j an impact along n lifts off the floor (one in flight striking
-  /// one on it below its centre): their directions ta, tb become n and the closing speed
-  /// along them is found again.
-  struct Lift
-  {
-    bool a = false;
-    bool b = false;
-  };
-  Lift pairLift(std::size_t i, std::size_t j, const Vec3& n, const Vec3& na, const Vec3& nb, const Vec3& va,
+  /// The ball of i and j that an impact along n lifts off the floor, or kNoBall: only one
+  /// in flight striking one on the floor below its centre lifts it, so at most one of
+  /// the two. The lifted ball's direction (ta or tb) becomes n and the closing speed along
+  /// them is found again.
+  static constexpr std::size_t kNoBall = ~std::size_t(0);
+  std::size_t pairLift(std::size_t i, std::size_t j, const Vec3& n, const Vec3& na, const Vec3& nb, const Vec3& va,
                 const Vec3& vb, Vec3& ta, Vec3& tb, double& closing) const;
   /// Ball i's new motion from x on, from `position` with `velocity` (`impact`: an impact
   /// gave it, not a resting contact or a chord's or phase's end).
