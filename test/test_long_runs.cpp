@@ -5,12 +5,24 @@
 #include <cstdio>
 #include <cstdlib>
 #include <random>
+#include <vector>
 
 using namespace ball_collision_sim::core;
 using namespace ball_collision_sim::test;
 
 namespace
 {
+/// Under the sanitizers (`make sanitize` sets BCS_SLOWDOWN), which run the core about 30
+/// times slower and look for what it does to memory, not for the physics of one more
+/// start: there a test that repeats one run over several starts takes `first` only.
+template <class T>
+std::vector<T> startsToRun(std::vector<T> all, std::size_t first = 1)
+{
+  if (std::getenv("BCS_SLOWDOWN") != nullptr && all.size() > first)
+    all.resize(first);
+  return all;
+}
+
 Scene closedBox(int count, double half)
 {
   Scene scene = flatScene(-half, half, -half, half);
@@ -145,7 +157,7 @@ TEST(LongRun, PileSettlesOnASlope)
 // ball and step; nor does any ball reach the event cap on the way (which stops it dead).
 TEST(LongRun, PileSettlesInABowl)
 {
-  for (const std::uint32_t seed : {3u, 5u, 7u})
+  for (const std::uint32_t seed : startsToRun<std::uint32_t>({3u, 5u, 7u}))
   {
     Scene scene = bowlPile(seed);
     scene.friction = pileFriction();
@@ -207,7 +219,7 @@ TEST(LongRun, RingOfThreeInABowlSettlesWithoutTheCap)
 // point off the floor: no step lifts one higher than its energy reaches.
 TEST(LongRun, NoStepMakesEnergyInBowlPiles)
 {
-  for (const std::uint32_t seed : {8u, 18u})
+  for (const std::uint32_t seed : startsToRun<std::uint32_t>({8u, 18u}))
   {
     World world(bowlPile(seed));
     const double largest_rise = largestEnergyRise(world, 1000);
@@ -264,11 +276,11 @@ TEST(LongRun, ElasticPilesKeepTheirEnergyForAMinute)
 // energy (beyond round-off of the energies in play), no two balls overlap by more than
 // 1e-9 m at any step, every ball is asleep after 30 s with no kinetic energy left, and
 // asleep they make at most 0.01 events per ball and step. Twice the same: the same bits.
-// Under the sanitizers (BCS_SLOWDOWN), which look for what the code does to memory, the
-// 60-ball piles only: the 200-ball ones run the same code for 30 times as long.
+// Under the sanitizers (startsToRun()), the 60-ball piles only: the 200-ball ones run the
+// same code for 30 times as long.
 TEST(LongRun, DissipativePilesComeToRestAndSleep)
 {
-  const std::vector<int> sizes = std::getenv("BCS_SLOWDOWN") ? std::vector<int>{60} : std::vector<int>{60, 200};
+  const std::vector<int> sizes = startsToRun<int>({60, 200});
   for (const double e : {0.5, 0.9})
     for (const int n : sizes)
       for (const bool slope : {false, true})
@@ -328,7 +340,8 @@ TEST(LongRun, PilesWithoutAFloorComeToRestAndSleep)
     int n;
     std::uint64_t seed;
   };
-  for (const Case c : {Case{0.5, 100, 7}, Case{0.9, 100, 7}, Case{0.9, 60, 6}})
+  // (the last first: its contacts say nearly the same, where the exact stage works hardest)
+  for (const Case c : startsToRun<Case>({Case{0.9, 60, 6}, Case{0.5, 100, 7}, Case{0.9, 100, 7}}))
   {
     const double half = 0.6;
     const Scene scene = floorlessBoxDrop(c.n, c.e, c.seed);
@@ -424,13 +437,10 @@ TEST(LongRun, FrictionlessPileInABowlSwingsAsOneBody)
 // starts: each comes to rest and sleeps within 30 s, whichever ball happens to end up
 // on the pile's edge (where a ball its neighbours hold still must not keep a speed it
 // does not move with, which kept the group awake for good). Under the sanitizers
-// (`make sanitize` sets BCS_SLOWDOWN), which run this 30 times slower and look for what
-// the code does to memory, not for the physics of another start, the first.
+// (startsToRun()), the first start only.
 TEST(LongRun, BowlPilesSleepFromAnyStart)
 {
-  const std::vector<std::uint64_t> seeds =
-      std::getenv("BCS_SLOWDOWN") ? std::vector<std::uint64_t>{5} : std::vector<std::uint64_t>{5, 6, 7, 8, 9};
-  for (const std::uint64_t seed : seeds)
+  for (const std::uint64_t seed : startsToRun<std::uint64_t>({5, 6, 7, 8, 9}))
   {
     Scene scene;
     scene.floor = bowl(3, 0.3);
