@@ -221,7 +221,9 @@ int prepareRun(const SimulateOptions& options, Run& run)
   // missed; that is still the scene's fault, reported the same way.
   try
   {
-    run.world = std::make_unique<World>(run.file.scene, std::move(run.file.checked));
+    ball_collision_sim::core::StepSettings settings;
+    settings.threads = options.threads;
+    run.world = std::make_unique<World>(run.file.scene, std::move(run.file.checked), settings);
   }
   catch (const std::invalid_argument& e)
   {

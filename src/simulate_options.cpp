@@ -1,5 +1,7 @@
 #include "simulate_options.hpp"
 
+#include "ball_collision_sim/core/step_settings.hpp"
+
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -51,7 +53,7 @@ bool isHelp(const std::string& arg)
 std::string simulateUsage()
 {
   return "usage: simulate SCENE.yaml --duration SECONDS [--bag OUT.bag] [--marker-rate HZ] [--csv OUT.csv]\n"
-         "                [--sample-every N]\n"
+         "                [--sample-every N] [--threads N]\n"
          "\n"
          "Runs a scene as fast as the machine allows and prints a one-line summary on stdout:\n"
          "  summary: steps=S events=E floor_impacts=F wall_s=W energy_start=A energy_end=B balls_lost=L\n"
@@ -63,6 +65,8 @@ std::string simulateUsage()
          "  --bag OUT.bag       write the node's topics (/clock, /tf, /ball_sim/...) stamped with\n"
          "                      simulated time; Ctrl-C closes a valid bag of the run so far\n"
          "  --marker-rate HZ    markers per simulated second in the bag (default 30; 0: the first only)\n"
+         "  --threads N         threads the step runs on (default 1; 0: every core); the same bits\n"
+         "                      for every N\n"
          "  -h, --help          print this help\n"
          "\n"
          "On a terminal, a progress bar with ETA goes to stderr.\n"
@@ -78,6 +82,7 @@ struct Given
   bool duration = false;
   bool sample_every = false;
   bool marker_rate = false;
+  bool threads = false;
 };
 
 // A positional argument: the scene ("-" alone or "-1" would be one too).
@@ -90,7 +95,7 @@ bool isPositional(const std::string& arg, bool options_ended)
 bool isKnownFlag(const std::string& flag)
 {
   return flag == "--duration" || flag == "--bag" || flag == "--csv" || flag == "--sample-every" ||
-         flag == "--marker-rate";
+         flag == "--marker-rate" || flag == "--threads";
 }
 
 // Each option's value into `options`: the error, or empty.
@@ -129,6 +134,19 @@ std::string takeSampleEvery(const std::string& value, SimulateOptions& options, 
   return {};
 }
 
+std::string takeThreads(const std::string& value, SimulateOptions& options, Given& given)
+{
+  if (std::exchange(given.threads, true))
+    return "--threads: given twice";
+  const std::optional<std::uint64_t> n = parseCount(value);
+  if (!n || *n > ball_collision_sim::core::kMaxThreads)
+    return "--threads: expected an integer from 0 (every core) to " +
+           std::to_string(ball_collision_sim::core::kMaxThreads) + ", got " +
+           quoted(value);
+  options.threads = static_cast<unsigned>(*n);
+  return {};
+}
+
 std::string takePath(const std::string& flag, const std::string& value, SimulateOptions& options)
 {
   std::string& path = flag == "--bag" ? options.bag_path : options.csv_path;
@@ -148,6 +166,8 @@ std::string takeOption(const std::string& flag, const std::string& value, Simula
     return takeMarkerRate(value, options, given);
   if (flag == "--sample-every")
     return takeSampleEvery(value, options, given);
+  if (flag == "--threads")
+    return takeThreads(value, options, given);
   return takePath(flag, value, options);
 }
 

@@ -15,6 +15,7 @@ struct SimulateOptions
   std::string csv_path;            ///< empty: no CSV
   std::uint64_t sample_every = 1;  ///< a CSV sample after every N-th step, N >= 1
   double marker_rate = 30.0;       ///< markers per simulated second in the bag [Hz]; 0 = the first only
+  unsigned threads = 1;            ///< threads the step runs on (StepSettings::threads); 0 = every core
   bool help = false;               ///< -h/--help: print the usage and nothing else
 };
 

@@ -110,6 +110,7 @@ TEST(BadScenes, EachGivesOneLineNamingTheKeyAndTheReason)
        "maximum 0.05 is below minimum 0.1"},
       {"real_time_factor negative", withExtra("real_time_factor: -1"), "real_time_factor", "must be >= 0"},
       {"max_balls 0", withExtra("max_balls: 0"), "max_balls", "must be >= 1 (got 0)"},
+      {"threads negative", withExtra("threads: -2"), "threads", "must be in [0, 1024] (0 = every core; got -2)"},
       {"tf_rate negative", withExtra("tf_rate: -30"), "tf_rate", "must be in [0, 1e6] Hz (got -30)"},
       {"click_radius 0", withExtra("click_radius: 0"), "click_radius", "must be > 0"},
       // friction, spin and inertia

@@ -332,6 +332,8 @@ TEST(SceneYaml, AcceptsAndIgnoresNodeOnlyKeys)
   EXPECT_EQ(errorOf("publish_clock: yes"), "t.yaml: publish_clock: expected true or false, got yes");
   EXPECT_EQ(errorOf("start_paused: 1"), "t.yaml: start_paused: expected true or false, got 1");
   EXPECT_EQ(errorOf("tf_max_balls: 2.5"), "t.yaml: tf_max_balls: expected an integer, got 2.5");
+  EXPECT_EQ(file.node.threads, 10);
+  EXPECT_EQ(errorOf("threads: two"), "t.yaml: threads: expected an integer, got two");
 }
 
 struct ErrorCase
@@ -350,7 +352,7 @@ TEST(SceneYaml, EachMistakeGivesOneLineNamingTheKeyAndTheReason)
     {"dtt: 0.1", "t.yaml: dtt: unknown key (expected one of: frame_id, dt, gravity, restitution, floor, friction, walls, "
                  "balls, random_balls, real_time_factor, marker_rate, tf_rate, tf_max_balls, state_rate, "
                  "publish_collisions, start_paused, click_radius, click_mass, status_period, max_balls, "
-                 "marker_list_threshold, ball_color, speed_color_max, collision_flashes, publish_clock, frame_prefix)"},
+                 "marker_list_threshold, ball_color, speed_color_max, collision_flashes, publish_clock, frame_prefix, threads)"},
     {"floor: {type: plane, control_points: []}",
      "t.yaml: floor.control_points: unknown key (expected one of: type, point, u, v, restitution)"},
     {"random_balls: {count: 1, region: {min: [0, 0], max: [1, 1], mid: [0, 0]}}",

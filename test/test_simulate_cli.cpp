@@ -188,6 +188,10 @@ TEST_F(SimulateCli, BadCommandLinesExitTwoWithAUsageHint)
     {{kGoodScene, "--duration", "1", "--sample-every", "0"}, "--sample-every"},
     {{kGoodScene, "--duration", "1", "--sample-every", "-3"}, "--sample-every"},
     {{kGoodScene, "--duration", "1", "--sample-every", "2.5"}, "--sample-every"},
+    {{kGoodScene, "--duration", "1", "--threads", "-1"}, "--threads"},
+    {{kGoodScene, "--duration", "1", "--threads", "1.5"}, "--threads"},
+    {{kGoodScene, "--duration", "1", "--threads", "1025"}, "--threads"},
+    {{kGoodScene, "--duration", "1", "--threads", "2", "--threads", "2"}, "--threads"},
     {{kGoodScene, "--duration", "1", "--csv"}, "--csv"},
     {{kGoodScene, kGoodScene, "--duration", "1"}, "unexpected argument"},
   };
@@ -550,6 +554,41 @@ TEST_F(SimulateCli, GoodSceneWritesTheSummaryAndTheCsv)
   EXPECT_NEAR(summary.energy_end, end, 1e-12 * std::abs(end)) << "csv gives " << end;
   // Restitution 1 on a flat floor keeps the energy.
   EXPECT_NEAR(summary.energy_end, summary.energy_start, 1e-9 * std::abs(summary.energy_start));
+}
+
+// --threads: the step on 2 and 3 threads writes the CSV and summary's events of 1, byte
+// for byte (4,000 balls: past StepSettings::parallel_min_balls, so the loops are split),
+// and 0 takes every core.
+TEST_F(SimulateCli, ThreadsWriteTheSameCsv)
+{
+  const std::string scene = path("many.yaml");
+  {
+    std::ofstream out(scene);
+    out << "restitution: 0.9\nfloor: {type: plane, point: [-4, -4, 0], u: [8, 0, 0], v: [0, 8, 0]}\n"
+           "walls:\n  - {point: [-4, -4, 0], u: [8, 0, 0], v: [0, 0, 0.3]}\n"
+           "  - {point: [-4, 4, 0], u: [8, 0, 0], v: [0, 0, 0.3]}\n"
+           "  - {point: [-4, -4, 0], u: [0, 8, 0], v: [0, 0, 0.3]}\n"
+           "  - {point: [4, -4, 0], u: [0, 8, 0], v: [0, 0, 0.3]}\n"
+           "random_balls: {count: 4000, seed: 3, radius: [0.03, 0.05], speed: [0, 3]}\n";
+  }
+  std::string first_csv, first_events;
+  for (const char* threads : {"1", "2", "3", "0"})
+  {
+    const std::string csv = path(std::string("threads") + threads + ".csv");
+    const RunResult result = run({scene, "--duration", "0.2", "--csv", csv, "--sample-every", "4", "--threads", threads});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const std::string summary = lines(result.out).back();
+    const std::string events = summary.substr(summary.find("events="), summary.find(" wall_s") - summary.find("events="));
+    if (first_csv.empty())
+    {
+      first_csv = readFile(csv);
+      first_events = events;
+      ASSERT_GT(parseSummary(summary).events, 1000u);
+      continue;
+    }
+    EXPECT_TRUE(readFile(csv) == first_csv) << "--threads " << threads << ": the CSV differs from 1 thread's";
+    EXPECT_EQ(events, first_events) << "--threads " << threads;
+  }
 }
 
 // A ball dropped from 0.5 m (placement as_given) lands on the floor: the summary counts it.

@@ -144,11 +144,18 @@ bool SimulatorNode::onLoadScene(LoadScene::Request& req, LoadScene::Response& re
     res.message = e.what();
     return true;
   }
-  // The new world is built before anything changes: should that throw, nothing has.
+  // The new world is built before anything changes: should that throw, nothing has. (It
+  // runs on the threads the request names, else on the node's.)
+  NodeSettings for_world;
+  {
+    const Lock guard = lock();
+    for_world = settings_.node;
+  }
+  copyKeys(requested.node_keys, requested.node, for_world);
   std::optional<core::World> built;
   try
   {
-    built.emplace(requested.scene, std::move(requested.checked));
+    built.emplace(requested.scene, std::move(requested.checked), stepSettingsOf(for_world));
   }
   catch (const std::exception& e)
   {

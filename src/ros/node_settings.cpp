@@ -25,6 +25,13 @@ ResolvedSettings resolve(const NodeSettings& node, const std::string& ns)
   return out;
 }
 
+core::StepSettings stepSettingsOf(const NodeSettings& node)
+{
+  core::StepSettings settings;
+  settings.threads = static_cast<unsigned>(node.threads);  // (validateNodeSettings(): in [0, kMaxThreads])
+  return settings;
+}
+
 void copyKeys(const std::vector<std::string>& keys, const NodeSettings& from, NodeSettings& to)
 {
   for (const std::string& key : keys)
@@ -63,6 +70,8 @@ void copyKeys(const std::vector<std::string>& keys, const NodeSettings& from, No
       to.publish_clock = from.publish_clock;
     else if (key == "frame_prefix")
       to.frame_prefix = from.frame_prefix;
+    else if (key == "threads")
+      to.threads = from.threads;
   }
 }
 

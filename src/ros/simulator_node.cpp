@@ -41,7 +41,7 @@ SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh) : Simulato
 }
 
 SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh, yaml::SceneFile file)
-    : world_(file.scene, std::move(file.checked))
+    : world_(file.scene, std::move(file.checked), stepSettingsOf(file.node))
     , settings_(resolve(file.node, nh.getNamespace()))
     , frame_id_(world_.scene().frame_id)
     , coloring_(ballColoring(world_, settings_.node))

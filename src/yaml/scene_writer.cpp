@@ -97,7 +97,7 @@ void writeNodeSettings(std::ostream& out, const NodeSettings& node)
       << "\nmax_balls: " << node.max_balls << "\nmarker_list_threshold: " << node.marker_list_threshold
       << "\nball_color: " << ballColorName(node.ball_color)
       << "\nspeed_color_max: " << real(node.speed_color_max)
-      << "\ncollision_flashes: " << flag(node.collision_flashes) << "\n";
+      << "\ncollision_flashes: " << flag(node.collision_flashes) << "\nthreads: " << node.threads << "\n";
   if (node.publish_clock)
     out << "publish_clock: " << flag(*node.publish_clock) << "\n";
   if (node.frame_prefix)

@@ -4,6 +4,7 @@
 #include "yaml_values.hpp"
 
 #include "ball_collision_sim/core/format.hpp"
+#include "ball_collision_sim/core/step_settings.hpp"
 
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
@@ -218,6 +219,9 @@ std::vector<core::SceneIssue> validateNodeSettings(const NodeSettings& node)
     fail("max_balls", "must be >= 1 (got " + std::to_string(node.max_balls) + ")");
   if (node.tf_max_balls < 0)
     fail("tf_max_balls", "must be >= 0 (got " + std::to_string(node.tf_max_balls) + ")");
+  if (node.threads < 0 || node.threads > static_cast<int>(core::kMaxThreads))
+    fail("threads", "must be in [0, " + std::to_string(core::kMaxThreads) + "] (0 = every core; got " +
+                        std::to_string(node.threads) + ")");
   if (finite("status_period", node.status_period) && !(node.status_period >= 0 && node.status_period <= 1e6))
     fail("status_period", "must be in [0, 1e6] s (0 = no status line; got " + formatNumber(node.status_period) + ")");
   positive("click_radius", node.click_radius, core::kMinLength, core::kMaxLength, "m");

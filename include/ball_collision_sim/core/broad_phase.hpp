@@ -197,6 +197,13 @@ public:
   /// (i != j, in either order).
   template <class F>
   void forEachPair(F&& f) const;
+  /// forEachPair() in parts, in its order: the binned items' pairs over [from, to) of
+  /// pairScan()'s length (parts of it may run at once), then the moved items' pairs.
+  std::size_t pairScan() const;
+  template <class F>
+  void forEachPairIn(std::size_t from, std::size_t to, F&& f) const;
+  template <class F>
+  void forEachMovedPair(F&& f) const;
 
 private:
   /// A whole number of cells as an index, clamped so that far-away items cannot overflow

@@ -115,13 +115,27 @@ void StepGrid::forEachNearObstacle(F&& f) const
 template <class F>
 void StepGrid::forEachPair(F&& f) const
 {
+  forEachPairIn(0, pairScan(), f);
+  forEachMovedPair(f);
+}
+
+inline std::size_t StepGrid::pairScan() const
+{
+  // dense: the slots whose cell has its east and upper neighbours in the array; hashed:
+  // the binned items
+  const std::size_t slots = starts_.size() - 1, w = static_cast<std::size_t>(width_);
+  return dense_ ? (slots >= w + 2 ? slots - w - 1 : 0) : entries_.size();
+}
+
+template <class F>
+void StepGrid::forEachPairIn(std::size_t from, std::size_t to, F&& f) const
+{
   if (dense_)
   {
     // Each cell with itself and with the four neighbours after it in row-major order
     // (east, and the row above): every pair of neighbouring cells once.
-    const std::size_t slots = starts_.size() - 1;
     const auto w = static_cast<std::size_t>(width_);
-    for (std::size_t s = 0; s + w + 2 <= slots; ++s)
+    for (std::size_t s = from; s < to; ++s)
     {
       const std::uint32_t begin = starts_[s], end = starts_[s + 1];
       for (std::uint32_t k = begin; k < end; ++k)
@@ -140,21 +154,24 @@ void StepGrid::forEachPair(F&& f) const
           pair(l);
       }
     }
+    return;
   }
-  else
+  for (std::size_t k = from; k < to; ++k)
   {
-    for (std::uint32_t k = 0; k < entries_.size(); ++k)
-    {
-      const std::uint32_t i = entries_[k];
-      if (moved(i))
-        continue;
-      const auto [cx, cy] = cellOf(i);
-      scanCells(cx - 1, cx + 1, cy - 1, cy + 1, probeOf(i), [&](std::uint32_t j) {
-        if (j > i)
-          f(i, j);
-      });
-    }
+    const std::uint32_t i = entries_[k];
+    if (moved(i))
+      continue;
+    const auto [cx, cy] = cellOf(i);
+    scanCells(cx - 1, cx + 1, cy - 1, cy + 1, probeOf(i), [&](std::uint32_t j) {
+      if (j > i)
+        f(i, j);
+    });
   }
+}
+
+template <class F>
+void StepGrid::forEachMovedPair(F&& f) const
+{
   // Items that moved out find all their pairs themselves; a pair of two such is found
   // from the lower one's side.
   for (std::uint32_t i : moved_list_)

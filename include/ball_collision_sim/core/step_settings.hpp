@@ -5,6 +5,10 @@
 
 namespace ball_collision_sim::core
 {
+/// The most threads a step takes (StepSettings::threads): more than any machine here has
+/// cores [threads].
+constexpr unsigned kMaxThreads = 1024;
+
 /// Every threshold and tunable of the step, with its unit and the reason for its value.
 /// The defaults are what the tests and benchmarks are measured with; a World takes them
 /// at construction.
@@ -194,5 +198,16 @@ struct StepSettings
   /// The balls' records are put in the grid's cell order (the step's visiting order)
   /// anew every this many steps: balls move less than a cell in a step [steps].
   std::uint32_t reorder_steps = 8;
+
+  // ---- threads ------------------------------------------------------------------------
+  /// The threads the step's per-ball stages (predict, commit) run on: 1, the caller's
+  /// alone; 0, as many as the machine has cores. Every count gives the same bits: each
+  /// thread takes a contiguous run of balls, and what they record for the step is put
+  /// together in the balls' order [threads].
+  unsigned threads = 1;  ///< at most kMaxThreads
+  /// ... where the world has at least this many balls: handing a loop to the other
+  /// threads and waiting for them costs some microseconds, what the commit of a few
+  /// hundred balls costs [balls].
+  std::size_t parallel_min_balls = 2048;
 };
 }  // namespace ball_collision_sim::core

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "ball_collision_sim/core/step_settings.hpp"
 #include "ball_collision_sim/node_settings.hpp"
 
 #include <ball_collision_sim/SimulatorConfig.h>
@@ -25,6 +26,9 @@ std::string defaultFramePrefix(const std::string& ns);
 /// Fills in frame_prefix and publish_clock where the settings leave them unset: by
 /// default only a node in the root namespace publishes /clock.
 ResolvedSettings resolve(const NodeSettings& node, const std::string& ns);
+
+/// The step's settings the node's ask for (its threads), the rest the core's defaults.
+core::StepSettings stepSettingsOf(const NodeSettings& node);
 
 /// Copies the settings named by `keys` (node keys, e.g. "marker_rate") from `from` to `to`.
 void copyKeys(const std::vector<std::string>& keys, const NodeSettings& from, NodeSettings& to);

@@ -12,6 +12,7 @@
 #include "ball_collision_sim/core/response.hpp"
 
 #include <algorithm>
+#include <atomic>
 
 namespace ball_collision_sim::core
 {
@@ -25,24 +26,29 @@ void step::commitToFloor(StepContext& c, bool predict_next)
   if (predict_next)
     c.flights_ = 0;  // (counted again as the next step's motions are predicted)
   c.stats_.resting_contacts += c.links_.size();
-  std::uint64_t asleep = 0;
+  std::atomic<std::uint64_t> asleep{0};
   if (settle)
     c.floor_normals_.resize(c.balls_.size());
-  for (std::size_t i = 0; i < c.balls_.size(); ++i)
-  {
-    const StepContext::Committed done = c.commitBall(i, settle);
-    if (!settle)
+  // (each ball's commit, turn and next motion are its own: on the step's threads)
+  c.forEachBall([&](std::size_t begin, std::size_t end) {
+    std::uint64_t run_asleep = 0;
+    for (std::size_t i = begin; i < end; ++i)
     {
-      Ball& ball = c.balls_[i];
-      ball.quiet_steps = 0;  // it leaned on nothing
-      asleep += ball.asleep() ? 1 : 0;
-      c.roll(i, done.normal, done.moved);
-      if (predict_next)
-        c.predictMotion(i);
+      const StepContext::Committed done = c.commitBall(i, settle);
+      if (!settle)
+      {
+        Ball& ball = c.balls_[i];
+        ball.quiet_steps = 0;  // it leaned on nothing
+        run_asleep += ball.asleep() ? 1 : 0;
+        c.roll(i, done.normal, done.moved);
+        if (predict_next)
+          c.predictMotion(i);
+      }
+      else
+        c.motions_[i].b = done.moved;  // the motion is done with: b keeps the step's move for roll()
     }
-    else
-      c.motions_[i].b = done.moved;  // the motion is done with: b keeps the step's move for roll()
-  }
+    asleep += run_asleep;
+  });
   c.step_starts_.clear();  // (each ball's was taken back by its commit)
   if (!settle)
   {
@@ -52,15 +58,19 @@ void step::commitToFloor(StepContext& c, bool predict_next)
   c.separateAtEnd();
   c.settleRestingVelocities();
   c.boundGroupEnergies();
-  for (std::size_t i = 0; i < c.balls_.size(); ++i)
-    c.roll(i, c.floor_normals_[i], c.motions_[i].b);
+  c.forEachBall([&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      c.roll(i, c.floor_normals_[i], c.motions_[i].b);
+  });
   // Groups at rest sleep; where gravity does not pull along the floor, nothing gathers
   // balls into groups, and none does.
   if (StepState::FloorMotion::gathers(c))
     c.sleepStillGroups();
   if (predict_next)
-    for (std::size_t i = 0; i < c.balls_.size(); ++i)
-      c.predictMotion(i);
+    c.forEachBall([&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i)
+        c.predictMotion(i);
+    });
 }
 
 StepContext::Committed StepContext::commitBall(std::size_t i, bool settle)

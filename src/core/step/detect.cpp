@@ -28,10 +28,17 @@ void step::buildBroadPhase(StepContext& c)
 void step::findFirstImpacts(StepContext& c)
 {
   c.grid_.forEachNearObstacle([&](std::uint32_t i) { c.detectWalls(i); });
-  c.grid_.forEachPair([&](std::uint32_t i, std::uint32_t j) { c.detectBall(i, j); });
+  // (the pairs' times of impact are each their own: on the step's threads, the events
+  // queued in the scan's order)
+  c.splitLoop(c.grid_.pairScan(), c.balls_.size(), [&](std::size_t from, std::size_t to) {
+    c.grid_.forEachPairIn(from, to, [&](std::uint32_t i, std::uint32_t j) { c.detectBall(i, j); });
+  });
+  c.grid_.forEachMovedPair([&](std::uint32_t i, std::uint32_t j) { c.detectBall(i, j); });
   if (c.motionsEnd())
-    for (std::size_t i = 0; i < c.motions_.size(); ++i)
-      c.queueMotionEnds(i);
+    c.forEachBall([&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i)
+        c.queueMotionEnds(i);
+    });
 }
 
 void StepContext::detect(std::size_t i)
@@ -58,7 +65,7 @@ void StepContext::detectWalls(std::size_t i)
     const auto hit = m.accelerates() ? sweepWall(wall, ball.position, m.b, parabolaOf(i), ball.radius, rest, slop)
                                      : sweepWall(wall, ball.position, m.b, ball.radius, rest, slop);
     if (hit)
-      queue_.push(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0, EventKind::kBallWall,
+      pushEvent(Event{m.x0 + hit->t, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(w), m.epoch, 0, EventKind::kBallWall,
                         hit->feature, MotionEnd::kPhase, hit->normal});
   }
   // (near an edge of the floor, where it may pass it)
@@ -94,7 +101,7 @@ void StepContext::detectBall(std::size_t i, std::size_t j)
                                settings_.closing_slop);
   }
   if (t)
-    queue_.push(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), ma.epoch, mb.epoch, EventKind::kBallBall,
+    pushEvent(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), ma.epoch, mb.epoch, EventKind::kBallBall,
                       WallFeature::kFace, MotionEnd::kPhase, Vec3::Zero()});
 }
 }  // namespace ball_collision_sim::core

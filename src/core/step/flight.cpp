@@ -28,8 +28,7 @@ double floorRestitution(const StepContext& c)
 
 void recordFlightChange(StepContext& c, std::size_t i, double x, MotionKind from, MotionKind to)
 {
-  ++c.stats_.transitions;
-  c.transitions_.push_back({(static_cast<double>(c.stats_.steps) + x) * c.dt_, c.balls_[i].id, from, to});
+  c.noteTransition(i, x, from, to);
 }
 
 void startFlight(StepContext& c, std::size_t i)
@@ -37,7 +36,7 @@ void startFlight(StepContext& c, std::size_t i)
   Motion& m = c.motions_[i];
   m.b = c.dt_ * c.startVelocity(i);
   m.become(MotionType::kFlight);  // (pathTerm(): flight_c_)
-  ++c.flights_;
+  c.noteFlight();
   if (!c.chord_ends_.empty())
     c.chord_ends_[i] = 1.0;
   c.spin_->startFlight(c, i);

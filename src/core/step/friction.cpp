@@ -40,8 +40,7 @@ void StepContext::recordKind(std::size_t i, double x)
   SpinMotion& sm = spin_motions_[i];
   if (sm.kind == sm.reported)
     return;
-  ++stats_.transitions;
-  transitions_.push_back({(static_cast<double>(stats_.steps) + x) * dt_, balls_[i].id, sm.reported, sm.kind});
+  noteTransition(i, x, sm.reported, sm.kind);
   sm.reported = sm.kind;
 }
 

@@ -173,7 +173,7 @@ void StepContext::queueMotionEnd(std::size_t i, double x, MotionEnd end)
 {
   const auto k = static_cast<std::uint32_t>(i);
   const std::uint16_t epoch = motions_[i].epoch;
-  queue_.push(Event{x, k, k, epoch, epoch, EventKind::kMotionEnd, WallFeature::kFace, end, Vec3::Zero()});
+  pushEvent(Event{x, k, k, epoch, epoch, EventKind::kMotionEnd, WallFeature::kFace, end, Vec3::Zero()});
 }
 
 void StepContext::queueMotionEnds(std::size_t i)

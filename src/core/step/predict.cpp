@@ -25,8 +25,10 @@ void step::predictMotions(StepContext& c)
   c.floor_uv_.resize(c.feet_.empty() ? 0 : c.balls_.size());  // where balls keep foot points
   c.chord_ends_.assign(c.feet_.empty() ? 0 : c.balls_.size(), 1.0);
   c.flights_ = 0;
-  for (std::size_t i = 0; i < c.balls_.size(); ++i)
-    c.predictMotion(i, true);
+  c.forEachBall([&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      c.predictMotion(i, true);
+  });
 }
 
 void StepContext::predictMotion(std::size_t i, bool at_step_start)

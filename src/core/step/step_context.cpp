@@ -7,6 +7,7 @@
 #include "contact_group.hpp"
 #include "floor_motion.hpp"
 #include "spin_model.hpp"
+#include "workers.hpp"
 
 #include "ball_collision_sim/core/state_hash.hpp"
 

@@ -5,6 +5,7 @@
 #include "step_state.hpp"
 
 #include <cassert>
+#include <functional>
 #include <memory>
 #include <unordered_map>
 
@@ -61,6 +62,24 @@ public:
   Vec2& guessOf(std::size_t i) { return floor_uv_.empty() ? no_foot_ : floor_uv_[i]; }
   /// The foot point of the record in slot s (curved floors), or a value the ground does not read.
   const Vec2& footOf(std::size_t s) const { return feet_.empty() ? no_foot_ : feet_[s]; }
+
+  /// Calls run(begin, end) over runs of balls that together are each ball once, in
+  /// order: on StepSettings::threads threads at once where there are
+  /// StepSettings::parallel_min_balls or more, else on this one. run() may change only its
+  /// own balls' records and work space; what they record for the step (noteTransition(),
+  /// stop(), flights) reaches it in the balls' order, as on one thread.
+  void forEachBall(const std::function<void(std::size_t, std::size_t)>& run);
+  /// As forEachBall(), over [0, n) of another loop of a world of `balls` balls (as the
+  /// grid's cells); the events run() finds (pushEvent()) reach the queue in that loop's
+  /// order.
+  void splitLoop(std::size_t n, std::size_t balls, const std::function<void(std::size_t, std::size_t)>& run);
+  /// Queues an event found, in its run's tally while a loop is split.
+  void pushEvent(const Event& event);
+  /// Records a change of ball i's kind of motion at x (a transition), in its run's tally
+  /// while forEachBall() splits a loop.
+  void noteTransition(std::size_t i, double x, MotionKind from, MotionKind to);
+  /// A flight starts (flights_), in its run's tally while forEachBall() splits a loop.
+  void noteFlight();
 
   // What the stages of a step (stages.hpp) share, in their order.
   /// Ball i's free motion over the next step from its record, and its swept box; at the

@@ -14,6 +14,8 @@ namespace ball_collision_sim::core
 namespace step
 {
 struct ExactSettings;  // src/core/step/contact_solver.hpp
+class Workers;         // src/core/step/workers.hpp
+struct Tally;
 }
 
 /// A ball's own spin, kept where the world has friction.
@@ -190,6 +192,10 @@ struct StepState
   std::vector<double> energy_ref_;
   /// the contact solver's work space
   Scratch<ContactGroup> contact_group_;
+  /// The threads the per-ball stages run on (forEachBall()), and what each run of balls
+  /// recorded, made at the first loop split among them; a copy starts without them.
+  Scratch<step::Workers> workers_;
+  Scratch<std::vector<step::Tally>> tallies_;
 
   /// With friction: the laws under the plane's normal, each ball's spin beside balls_,
   /// the step's phases by visiting index, and the step's changes of kind.
