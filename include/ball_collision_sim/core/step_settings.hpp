@@ -209,5 +209,9 @@ struct StepSettings
   /// threads and waiting for them costs some microseconds, what the commit of a few
   /// hundred balls costs [balls].
   std::size_t parallel_min_balls = 2048;
+  /// Between a step's loops, and while the caller waits for them, a thread looks for
+  /// work this long before it sleeps: woken from sleep, a thread of a virtual machine can
+  /// take longer to run again than a loop of 10^4 balls takes [us].
+  std::uint32_t thread_spin_us = 2000;
 };
 }  // namespace ball_collision_sim::core

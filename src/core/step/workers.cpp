@@ -34,8 +34,9 @@ Workers::~Workers()
   resize(1);
 }
 
-void Workers::resize(unsigned threads)
+void Workers::resize(unsigned threads, std::chrono::microseconds spin)
 {
+  spin_ = spin;
   threads = std::max(threads, 1u);
   if (threads == this->threads())
     return;
@@ -53,28 +54,56 @@ void Workers::resize(unsigned threads)
     pool_.emplace_back([this, k] { serve(k); });
 }
 
+template <class Ready>
+bool Workers::spinFor(Ready&& ready) const
+{
+  // (a thread that sleeps between a step's loops can take far longer to wake, in a
+  // virtual machine, than the loop it is woken for)
+  if (spin_.count() <= 0)
+    return ready();
+  const auto until = std::chrono::steady_clock::now() + spin_;
+  for (unsigned k = 1;; ++k)
+  {
+    if (ready())
+      return true;
+    if (k % 64 == 0 && std::chrono::steady_clock::now() > until)
+      return false;
+    std::this_thread::yield();
+  }
+}
+
 void Workers::split(std::size_t n, std::vector<Tally>& tallies,
                     const std::function<void(std::size_t, std::size_t, std::size_t)>& body)
 {
   const std::size_t runs = threads();
-  tallies.assign(runs, Tally{});
+  tallies.resize(runs);
+  for (Tally& tally : tallies)
+  {
+    // (emptied, their memory kept for the next loop)
+    tally.transitions.clear();
+    tally.events.clear();
+    tally.stopped = 0;
+    tally.flights = 0;
+    tally.asleep = 0;
+  }
   errors_.assign(runs, nullptr);
   {
     std::lock_guard<std::mutex> lock(mutex_);
     n_ = n;
     tallies_ = &tallies;
     body_ = &body;
-    pending_ = runs - 1;
-    ++generation_;
+    pending_.store(runs - 1);
+    generation_.fetch_add(1);
   }
   start_.notify_all();
   runPart(0);
+  if (!spinFor([this] { return pending_.load() == 0; }))
   {
     std::unique_lock<std::mutex> lock(mutex_);
-    done_.wait(lock, [this] { return pending_ == 0; });
-    body_ = nullptr;
-    tallies_ = nullptr;
+    done_.wait(lock, [this] { return pending_.load() == 0; });
   }
+  body_ = nullptr;
+  tallies_ = nullptr;
   for (const std::exception_ptr& error : errors_)
     if (error)
       std::rethrow_exception(error);
@@ -101,19 +130,22 @@ void Workers::serve(std::size_t k)
   std::uint64_t seen = 0;
   for (;;)
   {
+    const auto handed_out = [&] { return quit_.load() || generation_.load() != seen; };
+    if (!spinFor(handed_out))
     {
       std::unique_lock<std::mutex> lock(mutex_);
-      start_.wait(lock, [&] { return quit_ || generation_ != seen; });
-      if (quit_)
-        return;
-      seen = generation_;
+      start_.wait(lock, handed_out);
     }
+    if (quit_)
+      return;
+    seen = generation_.load();
     runPart(k);
+    if (pending_.fetch_sub(1) == 1)
     {
+      // (the caller may be asleep on done_: told under the mutex, so that it cannot miss it)
       std::lock_guard<std::mutex> lock(mutex_);
-      --pending_;
+      done_.notify_one();
     }
-    done_.notify_one();
   }
 }
 }  // namespace ball_collision_sim::core::step
@@ -134,7 +166,7 @@ void StepContext::splitLoop(std::size_t n, std::size_t balls, const std::functio
     return;
   }
   step::Workers& workers = workers_.get();
-  workers.resize(threads);
+  workers.resize(threads, std::chrono::microseconds(settings_.thread_spin_us));
   std::vector<step::Tally>& tallies = tallies_.get();
   workers.split(n, tallies, [&](std::size_t, std::size_t begin, std::size_t end) { run(begin, end); });
   // (what the runs recorded, in their order: the order of one run over [0, n))

@@ -8,6 +8,8 @@
 #include "ball_collision_sim/core/event_queue.hpp"
 #include "ball_collision_sim/core/world.hpp"
 
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -42,8 +44,10 @@ public:
   Workers(const Workers&) = delete;
   Workers& operator=(const Workers&) = delete;
   ~Workers();
-  /// Runs on `threads` threads from now on (at least 1), starting or ending its own.
-  void resize(unsigned threads);
+  /// Runs on `threads` threads from now on (at least 1), starting or ending its own; a
+  /// thread waiting for work, and the caller waiting for the threads, looks for it
+  /// without sleeping for `spin` first.
+  void resize(unsigned threads, std::chrono::microseconds spin = std::chrono::microseconds(0));
   unsigned threads() const { return static_cast<unsigned>(pool_.size()) + 1; }
   /// Calls body(k, begin, end) for run k of [0, n), runs in order of k, each on a thread
   /// of its own with tallyHere() its tallies[k] (tallies is resized to the runs); returns
@@ -54,14 +58,20 @@ public:
 private:
   void serve(std::size_t k);
   void runPart(std::size_t k);
+  /// Whether ready() holds within the spin time, looked at without sleeping.
+  template <class Ready>
+  bool spinFor(Ready&& ready) const;
 
   std::vector<std::thread> pool_;
+  std::chrono::microseconds spin_{0};
   std::mutex mutex_;
   std::condition_variable start_;
   std::condition_variable done_;
-  std::uint64_t generation_ = 0;
-  std::size_t pending_ = 0;
-  bool quit_ = false;
+  /// Bumped (under mutex_) when a loop is handed out; its fields are set before.
+  std::atomic<std::uint64_t> generation_{0};
+  /// The runs of the loop handed out still going, but the caller's.
+  std::atomic<std::size_t> pending_{0};
+  std::atomic<bool> quit_{false};
   // the loop being split
   std::size_t n_ = 0;
   std::vector<Tally>* tallies_ = nullptr;
