@@ -36,9 +36,8 @@ Workers::~Workers()
 
 void Workers::resize(unsigned threads, std::chrono::microseconds spin)
 {
-  spin_ = spin;
   threads = std::max(threads, 1u);
-  if (threads == this->threads())
+  if (threads == this->threads() && spin == spin_)
     return;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -49,6 +48,7 @@ void Workers::resize(unsigned threads, std::chrono::microseconds spin)
     t.join();
   pool_.clear();
   quit_ = false;
+  spin_ = spin;  // (no thread of its own reads it now)
   // (thread k serves run k; the caller's thread runs run 0)
   for (std::size_t k = 1; k < threads; ++k)
     pool_.emplace_back([this, k] { serve(k); });
