@@ -14,7 +14,7 @@ namespace
 {
 /// Under the sanitizers (`make sanitize` sets BCS_SLOWDOWN), which run the core about 30
 /// times slower and look for what it does to memory, not for the physics of one more
-/// start: there a test that repeats one run over several starts takes `first` only.
+/// start: there a test that repeats one run over several starts takes its `first` only.
 template <class T>
 std::vector<T> startsToRun(std::vector<T> all, std::size_t first = 1)
 {
@@ -436,11 +436,14 @@ TEST(LongRun, FrictionlessPileInABowlSwingsAsOneBody)
 // The same 200-ball pile at restitution 0.5 in the walled bowl, from five other random
 // starts: each comes to rest and sleeps within 30 s, whichever ball happens to end up
 // on the pile's edge (where a ball its neighbours hold still must not keep a speed it
-// does not move with, which kept the group awake for good). Under the sanitizers
-// (startsToRun()), the first start only.
+// does not move with, which kept the group awake for good). Skipped under the sanitizers
+// (BCS_SLOWDOWN): DissipativePilesComeToRestAndSleep's 60-ball piles in the same walled
+// bowl with the same friction run the same code there, in a fifth of the time.
 TEST(LongRun, BowlPilesSleepFromAnyStart)
 {
-  for (const std::uint64_t seed : startsToRun<std::uint64_t>({5, 6, 7, 8, 9}))
+  if (std::getenv("BCS_SLOWDOWN") != nullptr)
+    GTEST_SKIP() << "the same code as DissipativePilesComeToRestAndSleep's bowl piles, 5 times as long";
+  for (const std::uint64_t seed : {5, 6, 7, 8, 9})
   {
     Scene scene;
     scene.floor = bowl(3, 0.3);
