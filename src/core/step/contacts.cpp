@@ -3,7 +3,6 @@
 // the floor's motion type saying where its motion ends and how it is cut short).
 // Reads and writes motions_, balls_' sleep, and a stopped ball's spin_motions_; reads the
 // contact solver's work space (the step's resting contacts at its end).
-#include "workers.hpp"
 #include "spin_model.hpp"
 #include "contact_group.hpp"
 #include "spin_phase.hpp"
@@ -131,10 +130,7 @@ void StepContext::sleepStillGroups()
 
 void StepContext::stop(std::size_t i)
 {
-  if (step::Tally* tally = step::tallyHere())
-    ++tally->stopped;  // (a run of forEachBall()'s: the step's count takes it after)
-  else
-    ++stats_.stopped_balls;
+  noteStopped();
   motions_[i].b = startVelocity(i) = Vec3::Zero();
   // (with friction its spin then follows from its contacts, not from a phase whose motion
   // it does not make: FrictionLaw::constrained())

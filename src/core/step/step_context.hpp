@@ -80,6 +80,8 @@ public:
   void noteTransition(std::size_t i, double x, MotionKind from, MotionKind to);
   /// A flight starts (flights_), in its run's tally while forEachBall() splits a loop.
   void noteFlight();
+  /// A ball's energy ran out (WorldStats::stopped_balls), in its run's tally likewise.
+  void noteStopped();
 
   // What the stages of a step (stages.hpp) share, in their order.
   /// Ball i's free motion over the next step from its record, and its swept box; at the

@@ -84,7 +84,6 @@ void Workers::split(std::size_t n, std::vector<Tally>& tallies,
     tally.events.clear();
     tally.stopped = 0;
     tally.flights = 0;
-    tally.asleep = 0;
   }
   errors_.assign(runs, nullptr);
   {
@@ -199,6 +198,14 @@ void StepContext::noteTransition(std::size_t i, double x, MotionKind from, Motio
   }
   ++stats_.transitions;
   transitions_.push_back(t);
+}
+
+void StepContext::noteStopped()
+{
+  if (step::Tally* tally = step::tallyHere())
+    ++tally->stopped;
+  else
+    ++stats_.stopped_balls;
 }
 
 void StepContext::noteFlight()

@@ -29,7 +29,6 @@ struct Tally
   std::vector<StepEvent> events;  ///< events found, for the queue
   std::uint64_t stopped = 0;  ///< balls whose energy ran out (WorldStats::stopped_balls)
   std::uint32_t flights = 0;  ///< flights started (StepState::flights_)
-  std::uint64_t asleep = 0;   ///< balls asleep at the commit (WorldStats::sleeping_balls)
 };
 
 /// The tally of the run the calling thread works on, or null outside a split loop (then
