@@ -286,11 +286,45 @@ struct FaceSweep
     }
     return t;
   }
+  /// The same path seen from the plane's other side.
+  FaceSweep flipped() const
+  {
+    FaceSweep f = *this;
+    f.side = -side;
+    f.d0 = -d0;
+    f.rate = -rate;
+    f.acc = -acc;
+    return f;
+  }
+  /// From the other side: accelerated back toward its own side, a ball can pass the
+  /// plane beside the face, go beyond r on the far side and come back to the face from
+  /// there, where d, rising, reaches -r again: the larger root of (d0 + r) + rate t +
+  /// acc t^2 (both are positive: d0 + r > 0, and it moves toward the plane, rate < 0).
+  /// Over the face then, it meets it there; beside it, where it comes over it within r.
+  std::optional<WallHit> fromFarSide() const
+  {
+    if (!(acc > 0 && rate < 0))
+      return std::nullopt;
+    const double disc = rate * rate - 4 * acc * (d0 + r);
+    if (!(disc > 0))
+      return std::nullopt;
+    const double back = (0.5 * (std::sqrt(disc) - rate)) / acc;
+    if (!(back <= t_max))
+      return std::nullopt;
+    const FaceSweep far = flipped();
+    return far.hit(beside(wall, pointAt(p, e, c, back)) ? far.entering(back) : std::optional<double>(back));
+  }
 };
 
-/// The face: the plane at distance r on the ball's side (the signed distance from it is
-/// linear in t, or quadratic under acceleration), then the contact point must project
-/// inside the parallelogram.
+/// The earlier of two hits (a where they tie).
+std::optional<WallHit> earlier(const std::optional<WallHit>& a, const std::optional<WallHit>& b)
+{
+  return b && (!a || b->t < a->t) ? b : a;
+}
+
+/// The face: where the ball comes within r of the plane (the signed distance from it is
+/// linear in t, or quadratic under acceleration) with the contact point inside the
+/// parallelogram: on the side it starts on, or, under acceleration, on the other.
 std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e, const Vec3& c, double r,
                                  double t_max, double slop)
 {
@@ -303,10 +337,10 @@ std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e,
                    : firstRoot({f.d0 - r, f.rate, f.acc, 0.0, 0.0}, t_max);
     if (t && beside(wall, pointAt(p, e, c, *t)))
       t = f.entering(*t);
-    return f.hit(t);
+    return earlier(f.hit(t), f.fromFarSide());
   }
   if (beside(wall, p))
-    return f.hit(f.fromBeside());
+    return earlier(f.hit(f.fromBeside()), f.fromFarSide());
   const auto t = f.fromWithin(0.0);
   return t && !beside(wall, pointAt(p, e, c, *t)) ? f.hit(t) : std::nullopt;
 }
@@ -348,12 +382,57 @@ std::optional<WallHit> sweepEdge(const Wall& wall, int k, const Vec3& p, const V
 }
 }  // namespace
 
+namespace
+{
+/// Whether the ball stays farther than r from the wall's plane over [0, t_max], by more
+/// than the round-off of any feature's test: then it meets none of them (they lie in
+/// the plane, and a point's distance to each is at least its distance to the plane).
+bool clearOfPlane(const Wall& wall, const Vec3& p, const Vec3& e, const Vec3& c, double r, double t_max)
+{
+  const double s0 = (p - wall.def.point).dot(wall.normal);
+  const double en = e.dot(wall.normal), cn = c.dot(wall.normal);
+  const double s1 = s0 + t_max * (en + t_max * cn);
+  double lo = std::min(s0, s1), hi = std::max(s0, s1);
+  if (cn != 0)
+  {
+    const double t = -en / (2 * cn);  // (where the distance turns)
+    if (t > 0 && t < t_max)
+    {
+      const double s = s0 + t * (en + t * cn);
+      lo = std::min(lo, s);
+      hi = std::max(hi, s);
+    }
+  }
+  const double margin = kScreenMargin * (r + std::abs(s0) + t_max * (std::abs(en) + t_max * std::abs(cn)));
+  return lo > r + margin || hi < -(r + margin);
+}
+
+/// Whether a straight ball that meets the face at t from beyond r of its plane does so
+/// well inside the parallelogram (past round-off of the edges' and corners' tests): then
+/// no edge or corner comes first, as each is farther than the face until t, and farther
+/// than r at t.
+bool wellInsideFace(const Wall& wall, const Vec3& p, const Vec3& e, double r, double t)
+{
+  const Vec3 q = p + t * e - wall.def.point;
+  const double u = q.dot(wall.dual_u), v = q.dot(wall.dual_v);
+  // (the distance in the plane to the edges u = 0 and u = 1 is u / |dual_u| and
+  // (1 - u) / |dual_u|; the same in v)
+  const double margin = 1e-6 * (r + (p - wall.def.point).norm() + t * e.norm());
+  return std::min(u, 1 - u) > margin * wall.dual_u.norm() && std::min(v, 1 - v) > margin * wall.dual_v.norm();
+}
+}  // namespace
+
 std::optional<WallHit> sweepWall(const Wall& wall, const Vec3& p, const Vec3& e, const Vec3& c, double r,
                                  double t_max, double slop)
 {
+  if (clearOfPlane(wall, p, e, c, r, t_max))
+    return std::nullopt;
   // The first time the distance to the (convex) parallelogram reaches r is the earliest
   // valid contact over its features; ties go to the face, then edges, then corners.
   std::optional<WallHit> best = sweepFace(wall, p, e, c, r, t_max, slop);
+  if (best && c == Vec3::Zero() && std::abs((p - wall.def.point).dot(wall.normal)) > r &&
+      wellInsideFace(wall, p, e, r, best->t))
+    return best;
   for (int k = 0; k < 4; ++k)
   {
     const auto hit = sweepEdge(wall, k, p, e, c, r, best ? best->t : t_max, slop);
