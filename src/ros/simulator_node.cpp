@@ -170,14 +170,21 @@ void SimulatorNode::onTimer(const ros::WallTimerEvent&)
                         behind, factor);
       anchorClock();
     }
+    // (the view after each step where it is due: a tick that runs several steps to catch
+    // up still draws at the marker and tf rates)
     while (world_.stats().steps < due && (ros::WallTime::now() - start).toSec() < kStepBudget)
+    {
       stepOnce();
+      publishView(false);
+    }
   }
   else
   {
     do
+    {
       stepOnce();
-    while ((ros::WallTime::now() - start).toSec() < kStepBudget);
+      publishView(false);
+    } while ((ros::WallTime::now() - start).toSec() < kStepBudget);
   }
   publishView(false);
 }
