@@ -278,6 +278,34 @@ TEST(Flight, HopsALowWallOrHitsIt)
   }
 }
 
+// A shelf, a level wall 0.6 m up over x in [1, 2]: a ball thrown up beside it, past its
+// near edge, comes down on its top at the later root of z(t) = 0.6 + r (it crossed the
+// shelf's plane beside it on the way up) and bounces back up off it, never through it;
+// in steps of 0.01 s, and in one step of 1 s that holds the whole flight.
+TEST(Flight, ThrownPastAShelfsEdgeLandsOnItsTop)
+{
+  for (const double dt : {0.01, 1.0})
+  {
+  const double r = 0.1, top = 0.6, vz = 5.0;
+  const double t_land = (vz + std::sqrt(vz * vz - 2 * kG * top)) / kG;
+  const double vx = 1.5 / t_land;  // (over the shelf's middle as it comes down)
+  Scene scene = level(0.0);
+  scene.dt = dt;
+  scene.walls.push_back({Vec3(1, -1, top), Vec3(1, 0, 0), Vec3(0, 2, 0), {}});
+  scene.balls.push_back(given(0, r, vx, vz, r));
+  World world(scene);
+  // (to a little after the landing: up off the shelf again, over it)
+  const std::vector<CollisionEvent> hits =
+      runUntil(world, std::max(dt, t_land + 0.05), CollisionEvent::Kind::kBallWall);
+  ASSERT_EQ(hits.size(), 1u) << "dt " << dt;
+  EXPECT_NEAR(hits[0].time, t_land, 1e-12);
+  EXPECT_NEAR(hits[0].normal.z(), -1.0, 1e-15);  // (from the ball down to the shelf)
+  const Ball& b = world.balls()[0];
+  EXPECT_GT(b.position.z(), top + r);
+  EXPECT_GT(b.velocity.z(), 0.0);
+  }
+}
+
 // A cue striking down into the ball: the floor gives back e_floor of what it is pressed
 // in with, and the ball jumps: v_z = e |J_z| / m, in flight for 2 v_z / g, landing at
 // x = (J_x / m) 2 v_z / g.
