@@ -286,23 +286,23 @@ TEST(Flight, ThrownPastAShelfsEdgeLandsOnItsTop)
 {
   for (const double dt : {0.01, 1.0})
   {
-  const double r = 0.1, top = 0.6, vz = 5.0;
-  const double t_land = (vz + std::sqrt(vz * vz - 2 * kG * top)) / kG;
-  const double vx = 1.5 / t_land;  // (over the shelf's middle as it comes down)
-  Scene scene = level(0.0);
-  scene.dt = dt;
-  scene.walls.push_back({Vec3(1, -1, top), Vec3(1, 0, 0), Vec3(0, 2, 0), {}});
-  scene.balls.push_back(given(0, r, vx, vz, r));
-  World world(scene);
-  // (to a little after the landing: up off the shelf again, over it)
-  const std::vector<CollisionEvent> hits =
-      runUntil(world, std::max(dt, t_land + 0.05), CollisionEvent::Kind::kBallWall);
-  ASSERT_EQ(hits.size(), 1u) << "dt " << dt;
-  EXPECT_NEAR(hits[0].time, t_land, 1e-12);
-  EXPECT_NEAR(hits[0].normal.z(), -1.0, 1e-15);  // (from the ball down to the shelf)
-  const Ball& b = world.balls()[0];
-  EXPECT_GT(b.position.z(), top + r);
-  EXPECT_GT(b.velocity.z(), 0.0);
+    const double r = 0.1, top = 0.6, vz = 5.0;
+    const double t_land = (vz + std::sqrt(vz * vz - 2 * kG * top)) / kG;
+    const double vx = 1.5 / t_land;  // (over the shelf's middle as it comes down)
+    Scene scene = level(0.0);
+    scene.dt = dt;
+    scene.walls.push_back({Vec3(1, -1, top), Vec3(1, 0, 0), Vec3(0, 2, 0), {}});
+    scene.balls.push_back(given(0, r, vx, vz, r));
+    World world(scene);
+    // (to a little after the landing: up off the shelf again, over it)
+    const std::vector<CollisionEvent> hits =
+        runUntil(world, std::max(dt, t_land + 0.05), CollisionEvent::Kind::kBallWall);
+    ASSERT_EQ(hits.size(), 1u) << "dt " << dt;
+    EXPECT_NEAR(hits[0].time, t_land, 1e-12);
+    EXPECT_NEAR(hits[0].normal.z(), -1.0, 1e-15);  // (from the ball down to the shelf)
+    const Ball& b = world.balls()[0];
+    EXPECT_GT(b.position.z(), top + r);
+    EXPECT_GT(b.velocity.z(), 0.0);
   }
 }
 
