@@ -78,6 +78,19 @@ void StepContext::detectBall(std::size_t i, std::size_t j)
 {
   // Always in index order, so that the same pair gives the same bits whoever asks.
   const std::size_t a = std::min(i, j), b = std::max(i, j);
+  const Motion& ma = motions_[a];
+  const Motion& mb = motions_[b];
+  if (ma.type != MotionType::kLine || mb.type != MotionType::kLine || grouped(a))
+    return detectPairApart(a, b);
+  // (the common pair: two free lines, neither in a group)
+  const double xs = std::max(ma.x0, mb.x0);
+  const Vec3 d = (balls_[a].position + (xs - ma.x0) * ma.b) - (balls_[b].position + (xs - mb.x0) * mb.b);
+  if (const auto t = sphereSweep(d, ma.b - mb.b, balls_[a].radius + balls_[b].radius, 1 - xs, settings_.closing_slop))
+    pushPairEvent(a, b, xs + *t);
+}
+
+void StepContext::detectPairApart(std::size_t a, std::size_t b)
+{
   if (motions_[a].frozen() && motions_[b].frozen())
     return;  // neither moves (asleep, or stopped by the cap): no impact
   if (grouped(a) && linked(a, static_cast<std::uint32_t>(b)))
@@ -101,7 +114,12 @@ void StepContext::detectBall(std::size_t i, std::size_t j)
                                settings_.closing_slop);
   }
   if (t)
-    pushEvent(Event{xs + *t, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), ma.epoch, mb.epoch, EventKind::kBallBall,
-                      WallFeature::kFace, MotionEnd::kPhase, Vec3::Zero()});
+    pushPairEvent(a, b, xs + *t);
+}
+
+void StepContext::pushPairEvent(std::size_t a, std::size_t b, double x)
+{
+  pushEvent(Event{x, static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), motions_[a].epoch, motions_[b].epoch,
+                  EventKind::kBallBall, WallFeature::kFace, MotionEnd::kPhase, Vec3::Zero()});
 }
 }  // namespace ball_collision_sim::core

@@ -115,6 +115,11 @@ public:
   void detect(std::size_t i);
   void detectWalls(std::size_t i);
   void detectBall(std::size_t i, std::size_t j);
+  /// detectBall() for the pairs other than two free lines (MotionType::kLine) of balls
+  /// outside groups.
+  void detectPairApart(std::size_t a, std::size_t b);
+  /// Queues the impact of balls a < b at x.
+  void pushPairEvent(std::size_t a, std::size_t b, double x);
   /// The event as its kind, and a motion end as its end, says.
   void resolve(const Event& event);
   void resolveBallWall(const Event& event);
