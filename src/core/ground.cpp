@@ -44,24 +44,6 @@ Ground::Ground(const std::optional<FloorDef>& floor, const Vec3& gravity, const 
   }
 }
 
-Vec3 Ground::land(const Vec3& q, double radius, const Vec2& guess) const
-{
-  if (plane_)
-    return q + (radius + plane_offset_ - plane_normal_.dot(q)) * plane_normal_;
-  if (!floor_)
-    return q;
-  return floor_->ballCentre(floor_->project(q, guess), radius);
-}
-
-Vec3 Ground::landKeepingFoot(const Vec3& q, double radius, Vec2& guess) const
-{
-  if (!bends())
-    return land(q, radius, guess);
-  const FloorFoot foot = floor_->project(q, guess);
-  guess = foot.uv;
-  return floor_->ballCentre(foot, radius);
-}
-
 Vec3 Ground::normalAt(const Vec3& p, const Vec2& guess) const
 {
   if (plane_)
@@ -80,11 +62,6 @@ Vec3 Ground::normalUnder(const Vec2& foot) const
   return floor_->normal(foot);
 }
 
-Vec3 Ground::along(const Vec3& w, const Vec3& n) const
-{
-  return floor_ ? tangentPart(w, n) : w;
-}
-
 double Ground::gravityAlong(const Vec3& n) const
 {
   return plane_ ? plane_gravity_along_ : along(gravity_, n).norm();
@@ -95,20 +72,6 @@ Vec3 Ground::pathAcceleration() const
   if (straight_ || bends())
     return Vec3::Zero();
   return plane_ ? tangentPart(gravity_, plane_normal_) : gravity_;
-}
-
-Vec3 Ground::velocityAt(const Vec3& v0, double elapsed, const Vec3& p0, const Vec3& p, const Vec3& n,
-                        const Vec3& pull) const
-{
-  const Vec3 v = along(v0 + elapsed * pull, n);
-  if (straight_)
-    return v;  // no force along the floor: the motion is the chord itself
-  // Under a force along the floor the ball's path is a curve and its motion in the step
-  // the chord across it, which runs off the curve; so where an impact stops the chord,
-  // the velocity the force gave by then does not go with the height the chord reached.
-  // Keep the frictionless ball's |v|^2 = |v0|^2 + 2 <g, p - p0> (the course code's
-  // correction on its curved floor).
-  return withSpeedSquared(v, v0.squaredNorm() + 2 * pull.dot(p - p0));
 }
 
 Vec3 Ground::withSpeedSquared(const Vec3& v, double target) const
@@ -127,17 +90,11 @@ Vec3 Ground::turned(const Vec3& before, const Vec3& after) const
   return after * (before.norm() / speed);
 }
 
-Ground::End Ground::end(const Vec3& p, double radius, const Vec2& guess) const
+Vec3 Ground::landOnCurve(const Vec3& q, double radius, Vec2& guess) const
 {
-  if (plane_)
-    return {land(p, radius, guess), plane_normal_, guess};
-  if (!floor_)
-    return {p, up_, guess};
-  // The chord ends on the floor except where a ball was stopped by the event cap, was
-  // held, or its constraints did not settle: then it stays at its chord's end, clear of
-  // everything, a little off the floor until the next step puts it back.
-  const FloorFoot foot = floor_->project(p, guess);
-  return {p, foot.normal, foot.uv};
+  const FloorFoot foot = floor_->project(q, guess);
+  guess = foot.uv;
+  return floor_->ballCentre(foot, radius);
 }
 
 Ground::End Ground::airEnd(const Vec3& p, const Vec2& guess) const

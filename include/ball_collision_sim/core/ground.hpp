@@ -1,6 +1,7 @@
 #pragma once
 
 #include "ball_collision_sim/core/floor.hpp"
+#include "ball_collision_sim/core/response.hpp"
 #include "ball_collision_sim/core/scene.hpp"
 #include "ball_collision_sim/core/step_settings.hpp"
 #include "ball_collision_sim/core/types.hpp"
@@ -49,16 +50,26 @@ public:
   }
 
   /// The centre of a ball of radius r put back on the floor from q (q without a floor).
-  Vec3 land(const Vec3& q, double radius, const Vec2& guess) const;
+  Vec3 land(const Vec3& q, double radius, const Vec2& guess) const
+  {
+    if (plane_)
+      return q + (radius + plane_offset_ - plane_normal_.dot(q)) * plane_normal_;
+    if (!floor_)
+      return q;
+    return floor_->ballCentre(floor_->project(q, guess), radius);
+  }
   /// The same, with the foot point found written back into `guess` (curved floors).
-  Vec3 landKeepingFoot(const Vec3& q, double radius, Vec2& guess) const;
+  Vec3 landKeepingFoot(const Vec3& q, double radius, Vec2& guess) const
+  {
+    return bends() ? landOnCurve(q, radius, guess) : land(q, radius, guess);
+  }
   /// The floor's unit normal under a ball centred at p (up without a floor).
   Vec3 normalAt(const Vec3& p, const Vec2& guess) const;
   /// The normal under a ball whose foot point is `foot` (curved floors; the plane's
   /// normal, or up, elsewhere).
   Vec3 normalUnder(const Vec2& foot) const;
   /// w less its part along the floor's normal n; w itself without a floor.
-  Vec3 along(const Vec3& w, const Vec3& n) const;
+  Vec3 along(const Vec3& w, const Vec3& n) const { return floor_ ? tangentPart(w, n) : w; }
   /// A ball's motion or velocity w kept on a plane floor: less its part along the
   /// plane's normal (a ball on a plane moves in it); w itself elsewhere, where a chord
   /// is put back on the floor at its end.
@@ -82,7 +93,18 @@ public:
   /// The same under `pull` [m/s^2] in gravity's place: gravity and a friction force (whose
   /// work <f, p - p0> per unit mass comes off the energy too).
   Vec3 velocityAt(const Vec3& v0, double elapsed, const Vec3& p0, const Vec3& p, const Vec3& n,
-                  const Vec3& pull) const;
+                  const Vec3& pull) const
+  {
+    const Vec3 v = along(v0 + elapsed * pull, n);
+    if (straight_)
+      return v;  // no force along the floor: the motion is the chord itself
+    // Under a force along the floor the ball's path is a curve and its motion in the step
+    // the chord across it, which runs off the curve; so where an impact stops the chord,
+    // the velocity the force gave by then does not go with the height the chord reached.
+    // Keep the frictionless ball's |v|^2 = |v0|^2 + 2 <g, p - p0> (the course code's
+    // correction on its curved floor).
+    return withSpeedSquared(v, v0.squaredNorm() + 2 * pull.dot(p - p0));
+  }
   /// v scaled to the speed sqrt(target); zero where target <= 0.
   Vec3 withSpeedSquared(const Vec3& v, double target) const;
   /// A velocity `before` turned to the direction of `after` by something frictionless
@@ -98,7 +120,17 @@ public:
     Vec3 normal;
     Vec2 foot;
   };
-  End end(const Vec3& p, double radius, const Vec2& guess) const;
+  End end(const Vec3& p, double radius, const Vec2& guess) const
+  {
+    if (plane_)
+      return {land(p, radius, guess), plane_normal_, guess};
+    if (!floor_)
+      return {p, up_, guess};
+    // The chord ends on the floor except where a ball was stopped by the event cap, was
+    // held, or its constraints did not settle: then it stays at its chord's end, clear of
+    // everything, a little off the floor until the next step puts it back.
+    return airEnd(p, guess);
+  }
   /// The same for a ball in flight: where it is, the normal and foot point under it.
   End airEnd(const Vec3& p, const Vec2& guess) const;
   /// How far a ball of this radius centred at p is above the floor [m] (below: < 0),
@@ -130,6 +162,9 @@ public:
   bool bounded(const Bounds& walls) const { return floor_.has_value() || walls.any; }
 
 private:
+  /// landKeepingFoot() on a curved floor.
+  Vec3 landOnCurve(const Vec3& q, double radius, Vec2& guess) const;
+
   std::optional<Floor> floor_;
   Vec3 up_ = Vec3::UnitZ();
   bool plane_ = false;

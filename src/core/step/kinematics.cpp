@@ -17,16 +17,6 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-Vec3 StepContext::positionAt(std::size_t i, double x) const
-{
-  const Motion& m = motions_[i];
-  const Vec3 p = startPosition(i) + (x - m.x0) * m.b;
-  if (!motions_[i].accelerates())
-    return p;
-  const double s = x - m.x0;
-  return p + (s * s) * pathTerm(i);
-}
-
 Vec3 StepContext::rateAt(std::size_t i, double x) const
 {
   const Motion& m = motions_[i];
@@ -43,7 +33,7 @@ Vec3 StepContext::floorNormalAt(std::size_t i, const Vec3& position) const
   return ground_.normalAt(position, guessOf(i));
 }
 
-Vec3 StepContext::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
+Vec3 StepContext::motionVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
   switch (motions_[i].type)
   {

@@ -372,6 +372,8 @@ public:
     double chordSpeedSquared(const Vec3& b) const;
   };
   Vec3 onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const;
+  /// onFloorVelocity() of the motions other than a free line or path (its switch).
+  Vec3 motionVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const;
   /// The contact solver's exact stage as settings_ ask (step_types.hpp).
   step::ExactSettings exactSettings() const;
   /// The direction a wall pushes a ball along, n the unit normal from the ball toward it:

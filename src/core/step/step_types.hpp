@@ -86,6 +86,24 @@ struct StepState::Motion
   }
 };
 
+inline Vec3 StepContext::positionAt(std::size_t i, double x) const
+{
+  const Motion& m = motions_[i];
+  const Vec3 p = startPosition(i) + (x - m.x0) * m.b;
+  if (!m.accelerates())
+    return p;
+  const double s = x - m.x0;
+  return p + (s * s) * pathTerm(i);
+}
+
+inline Vec3 StepContext::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
+{
+  const Motion& m = motions_[i];
+  if (m.type == MotionType::kLine || m.type == MotionType::kPath)  // (a free line or path on the floor: the ground's)
+    return ground_.velocityAt(startVelocity(i), (x - m.x0) * dt_, startPosition(i), position, normal);
+  return motionVelocity(i, x, position, normal);
+}
+
 inline step::ExactSettings StepContext::exactSettings() const
 {
   step::ExactSettings exact;
