@@ -66,13 +66,6 @@ void StepContext::predictMotion(std::size_t i, bool at_step_start)
                motions_[i].accelerates() ? currentBox(i) : sweptBox(ball.position, ball.position + m.b, ball.radius));
 }
 
-Vec3 StepContext::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span, const Vec3& pull)
-{
-  // seed (1): ds = dt v + dt^2 g / 2, then back onto the floor, seed (2)-(4)
-  const Vec3 q = p + span * v + (0.5 * span * span) * pull;
-  return ground_.landKeepingFoot(q, balls_[i].radius, guessOf(i));
-}
-
 Aabb StepContext::currentBox(std::size_t i) const
 {
   const Motion& m = motions_[i];

@@ -96,6 +96,13 @@ inline Vec3 StepContext::positionAt(std::size_t i, double x) const
   return p + (s * s) * pathTerm(i);
 }
 
+inline Vec3 StepContext::predictedEnd(std::size_t i, const Vec3& p, const Vec3& v, double span, const Vec3& pull)
+{
+  // seed (1): ds = dt v + dt^2 g / 2, then back onto the floor, seed (2)-(4)
+  const Vec3 q = p + span * v + (0.5 * span * span) * pull;
+  return ground_.landKeepingFoot(q, balls_[i].radius, guessOf(i));
+}
+
 inline Vec3 StepContext::onFloorVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal) const
 {
   const Motion& m = motions_[i];
