@@ -144,8 +144,10 @@ void step::formRestingGroups(StepContext& c)
   // (the energy each ball may end the step with: its own at the step's start, which its
   // record holds only until its motion starts anew, and what impacts give it)
   c.energy_ref_.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    c.energy_ref_[i] = c.motionEnergyOf(i, c.balls_[i].position, c.balls_[i].velocity);
+  c.forEachBall([&](std::size_t begin, std::size_t end) {  // (each ball's its own: on the step's threads)
+    for (std::size_t i = begin; i < end; ++i)
+      c.energy_ref_[i] = c.motionEnergyOf(i, c.balls_[i].position, c.balls_[i].velocity);
+  });
   c.spin_->addSpinEnergies(c, c.energy_ref_);
   c.links_.clear();
   c.link_order_.clear();
