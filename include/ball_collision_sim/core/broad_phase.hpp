@@ -250,11 +250,16 @@ private:
   /// third where the grid keeps heights.
   bool meets(const Probe& p, std::uint32_t j) const
   {
-    return items_[j].box.overlaps(p.box) && (p.height == nullptr || heightsMeet(*p.height, heights_[j]));
+    // (where the grid keeps heights, both tests and one branch on the two: whether
+    // neighbouring boxes overlap is hard to predict either way)
+    const bool across = items_[j].box.overlaps(p.box);
+    if (p.height == nullptr)
+      return across;
+    return static_cast<bool>(static_cast<int>(across) & static_cast<int>(heightsMeet(*p.height, heights_[j])));
   }
   static bool heightsMeet(const std::array<float, 2>& a, const std::array<float, 2>& b)
   {
-    return a[0] <= b[1] && b[0] <= a[1];
+    return static_cast<bool>(static_cast<int>(a[0] <= b[1]) & static_cast<int>(b[0] <= a[1]));
   }
   std::size_t bucketOf(std::int64_t cx, std::int64_t cy) const
   {

@@ -41,10 +41,13 @@ void step::findFirstImpacts(StepContext& c)
     });
 }
 
-void StepContext::detect(std::size_t i)
+void StepContext::detect(std::size_t i, std::size_t done_with)
 {
   detectWalls(i);
-  grid_.query(static_cast<std::uint32_t>(i), [&](std::uint32_t j) { detectBall(i, j); });
+  grid_.query(static_cast<std::uint32_t>(i), [&](std::uint32_t j) {
+    if (j != done_with)
+      detectBall(i, j);
+  });
   if (motionsEnd())
     queueMotionEnds(i);
 }

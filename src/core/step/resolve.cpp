@@ -175,7 +175,7 @@ void StepContext::goOnAfter(const Event& event)
   if (group_j && !(group_i && groupOf(i) == groupOf(j)))
     solveGroup(j, event.x);
   else if (!group_j)
-    detect(j);
+    detect(j, group_i ? kNoBall : i);  // (the pair itself was just found from i's side)
 }
 
 std::size_t StepContext::pairLift(std::size_t i, std::size_t j, const Vec3& n, const Vec3& na, const Vec3& nb,

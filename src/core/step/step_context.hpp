@@ -112,7 +112,9 @@ public:
     return predictedEnd(i, p, v, span, pullOf(i));
   }
   Aabb currentBox(std::size_t i) const;
-  void detect(std::size_t i);
+  /// Ball i's walls, pairs and motion ends queued anew; the pair with `done_with` left
+  /// out (just found from that ball's side, with both motions as they are).
+  void detect(std::size_t i, std::size_t done_with = kNoBall);
   void detectWalls(std::size_t i);
   void detectBall(std::size_t i, std::size_t j);
   /// detectBall() for the pairs other than two free lines (MotionType::kLine) of balls
