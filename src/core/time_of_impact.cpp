@@ -15,6 +15,10 @@ namespace
 /// of a few rounded operations; it drops a pair only when its bound beats the reach by
 /// this part of it [1], well above their round-off, so no pair that meets is dropped.
 constexpr double kScreenMargin = 1e-9;
+/// A straight ball that meets a wall's face this part of its scale (radius, distance,
+/// travel) inside the face's edges meets no edge or corner first: far above the edge
+/// tests' round-off, so that skipping them cannot change what they would find [1].
+constexpr double kInsideMargin = 1e-6;
 
 /// p(t) for the coefficients a[0..n], by Horner's rule.
 double evaluate(const std::array<double, 5>& a, int n, double t)
@@ -286,6 +290,36 @@ struct FaceSweep
     }
     return t;
   }
+  /// Whether the ball stays farther than r from the plane on its side over [0, t_max] (it
+  /// never nears the plane), by more than
+  /// the round-off of any feature's test: then it meets none of them (they lie in the
+  /// plane, and a point's distance to each is at least its distance to the plane).
+  bool clearOfPlane() const
+  {
+    const double d1 = d0 + t_max * (rate + t_max * acc);
+    double lo = std::min(d0, d1);
+    if (acc != 0)
+    {
+      const double t = -rate / (2 * acc);  // (where the distance turns)
+      if (t > 0 && t < t_max)
+        lo = std::min(lo, d0 + t * (rate + t * acc));
+    }
+    // (d0 >= 0: the ball starts on the side d counts from, so it stays clear above it)
+    return lo > r + kScreenMargin * (r + d0 + t_max * (std::abs(rate) + t_max * std::abs(acc)));
+  }
+  /// Whether a straight ball that meets the face at t from beyond r of its plane does so
+  /// well inside the parallelogram (past round-off of the edges' and corners' tests):
+  /// then no edge or corner comes first, as each is farther than the face until t, and
+  /// farther than r at t.
+  bool wellInside(double t) const
+  {
+    const Vec3 q = p + t * e - wall.def.point;
+    const double u = q.dot(wall.dual_u), v = q.dot(wall.dual_v);
+    // (the distance in the plane to the edges u = 0 and u = 1 is u / |dual_u| and
+    // (1 - u) / |dual_u|; the same in v)
+    const double margin = kInsideMargin * (r + (p - wall.def.point).norm() + t * e.norm());
+    return std::min(u, 1 - u) > margin * wall.dual_u.norm() && std::min(v, 1 - v) > margin * wall.dual_v.norm();
+  }
   /// The same path seen from the plane's other side.
   FaceSweep flipped() const
   {
@@ -325,10 +359,11 @@ std::optional<WallHit> earlier(const std::optional<WallHit>& a, const std::optio
 /// The face: where the ball comes within r of the plane (the signed distance from it is
 /// linear in t, or quadratic under acceleration) with the contact point inside the
 /// parallelogram: on the side it starts on, or, under acceleration, on the other.
-std::optional<WallHit> sweepFace(const Wall& wall, const Vec3& p, const Vec3& e, const Vec3& c, double r,
-                                 double t_max, double slop)
+std::optional<WallHit> sweepFace(const FaceSweep& f)
 {
-  const FaceSweep f(wall, p, e, c, r, t_max, slop);
+  const Wall& wall = f.wall;
+  const Vec3 &p = f.p, &e = f.e, &c = f.c;
+  const double r = f.r, t_max = f.t_max;
   if (f.d0 > r)
   {
     std::optional<double> t =
@@ -382,56 +417,16 @@ std::optional<WallHit> sweepEdge(const Wall& wall, int k, const Vec3& p, const V
 }
 }  // namespace
 
-namespace
-{
-/// Whether the ball stays farther than r from the wall's plane over [0, t_max], by more
-/// than the round-off of any feature's test: then it meets none of them (they lie in
-/// the plane, and a point's distance to each is at least its distance to the plane).
-bool clearOfPlane(const Wall& wall, const Vec3& p, const Vec3& e, const Vec3& c, double r, double t_max)
-{
-  const double s0 = (p - wall.def.point).dot(wall.normal);
-  const double en = e.dot(wall.normal), cn = c.dot(wall.normal);
-  const double s1 = s0 + t_max * (en + t_max * cn);
-  double lo = std::min(s0, s1), hi = std::max(s0, s1);
-  if (cn != 0)
-  {
-    const double t = -en / (2 * cn);  // (where the distance turns)
-    if (t > 0 && t < t_max)
-    {
-      const double s = s0 + t * (en + t * cn);
-      lo = std::min(lo, s);
-      hi = std::max(hi, s);
-    }
-  }
-  const double margin = kScreenMargin * (r + std::abs(s0) + t_max * (std::abs(en) + t_max * std::abs(cn)));
-  return lo > r + margin || hi < -(r + margin);
-}
-
-/// Whether a straight ball that meets the face at t from beyond r of its plane does so
-/// well inside the parallelogram (past round-off of the edges' and corners' tests): then
-/// no edge or corner comes first, as each is farther than the face until t, and farther
-/// than r at t.
-bool wellInsideFace(const Wall& wall, const Vec3& p, const Vec3& e, double r, double t)
-{
-  const Vec3 q = p + t * e - wall.def.point;
-  const double u = q.dot(wall.dual_u), v = q.dot(wall.dual_v);
-  // (the distance in the plane to the edges u = 0 and u = 1 is u / |dual_u| and
-  // (1 - u) / |dual_u|; the same in v)
-  const double margin = 1e-6 * (r + (p - wall.def.point).norm() + t * e.norm());
-  return std::min(u, 1 - u) > margin * wall.dual_u.norm() && std::min(v, 1 - v) > margin * wall.dual_v.norm();
-}
-}  // namespace
-
 std::optional<WallHit> sweepWall(const Wall& wall, const Vec3& p, const Vec3& e, const Vec3& c, double r,
                                  double t_max, double slop)
 {
-  if (clearOfPlane(wall, p, e, c, r, t_max))
+  const FaceSweep face(wall, p, e, c, r, t_max, slop);
+  if (face.clearOfPlane())
     return std::nullopt;
   // The first time the distance to the (convex) parallelogram reaches r is the earliest
   // valid contact over its features; ties go to the face, then edges, then corners.
-  std::optional<WallHit> best = sweepFace(wall, p, e, c, r, t_max, slop);
-  if (best && c == Vec3::Zero() && std::abs((p - wall.def.point).dot(wall.normal)) > r &&
-      wellInsideFace(wall, p, e, r, best->t))
+  std::optional<WallHit> best = sweepFace(face);
+  if (best && c == Vec3::Zero() && face.d0 > r && face.wellInside(best->t))
     return best;
   for (int k = 0; k < 4; ++k)
   {

@@ -87,9 +87,16 @@ void StepContext::detectBall(std::size_t i, std::size_t j)
     return detectPairApart(a, b);
   // (the common pair: two free lines, neither in a group)
   const double xs = std::max(ma.x0, mb.x0);
-  const Vec3 d = (balls_[a].position + (xs - ma.x0) * ma.b) - (balls_[b].position + (xs - mb.x0) * mb.b);
-  if (const auto t = sphereSweep(d, ma.b - mb.b, balls_[a].radius + balls_[b].radius, 1 - xs, settings_.closing_slop))
+  if (const auto t = linesMeet(a, b, xs))
     pushPairEvent(a, b, xs + *t);
+}
+
+std::optional<double> StepContext::linesMeet(std::size_t a, std::size_t b, double xs) const
+{
+  const Motion& ma = motions_[a];
+  const Motion& mb = motions_[b];
+  const Vec3 d = (balls_[a].position + (xs - ma.x0) * ma.b) - (balls_[b].position + (xs - mb.x0) * mb.b);
+  return sphereSweep(d, ma.b - mb.b, balls_[a].radius + balls_[b].radius, 1 - xs, settings_.closing_slop);
 }
 
 void StepContext::detectPairApart(std::size_t a, std::size_t b)
@@ -101,20 +108,16 @@ void StepContext::detectPairApart(std::size_t a, std::size_t b)
   const Motion& ma = motions_[a];
   const Motion& mb = motions_[b];
   const double xs = std::max(ma.x0, mb.x0);
-  const double reach = balls_[a].radius + balls_[b].radius;
   std::optional<double> t;
   if (!ma.accelerates() && !mb.accelerates())
-  {
-    const Vec3 d = (balls_[a].position + (xs - ma.x0) * ma.b) - (balls_[b].position + (xs - mb.x0) * mb.b);
-    t = sphereSweep(d, ma.b - mb.b, reach, 1 - xs, settings_.closing_slop);
-  }
+    t = linesMeet(a, b, xs);
   else
   {
     // a parabola and a line, or two parabolas of different terms: a quartic (of the same
     // term, their difference is a line, and its quartic's higher terms are zero)
     const Vec3 d = positionAt(a, xs) - positionAt(b, xs);
-    t = sphereSweepAccelerated(d, rateAt(a, xs) - rateAt(b, xs), parabolaOf(a) - parabolaOf(b), reach, 1 - xs,
-                               settings_.closing_slop);
+    t = sphereSweepAccelerated(d, rateAt(a, xs) - rateAt(b, xs), parabolaOf(a) - parabolaOf(b),
+                               balls_[a].radius + balls_[b].radius, 1 - xs, settings_.closing_slop);
   }
   if (t)
     pushPairEvent(a, b, xs + *t);

@@ -120,6 +120,9 @@ public:
   /// detectBall() for the pairs other than two free lines (MotionType::kLine) of balls
   /// outside groups.
   void detectPairApart(std::size_t a, std::size_t b);
+  /// The first impact of balls a < b on straight motions from xs on, as a part of the
+  /// rest of the step (sphereSweep()), or none.
+  std::optional<double> linesMeet(std::size_t a, std::size_t b, double xs) const;
   /// Queues the impact of balls a < b at x.
   void pushPairEvent(std::size_t a, std::size_t b, double x);
   /// The event as its kind, and a motion end as its end, says.
