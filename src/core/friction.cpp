@@ -40,6 +40,39 @@ FrictionLaw::FrictionLaw(const FrictionDef& mu, const Vec3& normal, const Vec3& 
   g_t_ = along;
 }
 
+void TurningPhase::at(double t, Vec3& velocity, Vec3& move, Vec3& spin_change) const
+{
+  Vec3 q, integral_q;
+  drag.at(t, q, integral_q);
+  velocity = v0 + t * drift + share * (q - q0);
+  move = t * v0 + (0.5 * t * t) * drift + share * (integral_q - t * q0);
+  spin_change = normal.cross(velocity - v0 - slip_share * (q - q0)) / radius;
+}
+
+void FrictionLaw::turn(const Vec3& q0, const Vec3& v0, double k, double r, FrictionPhase& phase) const
+{
+  // the slip's drag (sliding) or the velocity's (rolling)
+  const bool slides = phase.kind == MotionKind::kSliding;
+  const TurningDrag drag = slides ? TurningDrag(q0, g_t_, mu_.sliding * g_n_ * (1 + k) / k)
+                                  : TurningDrag(q0, g_t_ / (1 + k), mu_.rolling * g_n_);
+  if (!drag.turns())
+    return;  // (along the fall line, or no pull or no drag: the accelerations are constant)
+  TurningPhase& turning = phase.turning;
+  turning.drag = drag;
+  turning.q0 = q0;
+  turning.v0 = v0;
+  turning.normal = normal_;
+  turning.radius = r;
+  if (slides)
+  {
+    turning.drift = g_t_ / (1 + k);
+    turning.share = k / (1 + k);
+    turning.slip_share = 1.0;
+  }
+  phase.duration = drag.endTime();
+  phase.ends = std::isfinite(phase.duration) ? (slides ? kSlipStops : kBallStops) : kPhaseRuns;
+}
+
 void FrictionLaw::stick(double k, double r, Vec3& v, Vec3& w) const
 {
   // The impulse P at the contact point changes the slip by (1 + 1/k) P / m: P = -m u k / (1 + k).
@@ -188,6 +221,7 @@ FrictionPhase FrictionLaw::start(double k, double r, Vec3& v, Vec3& w) const
   if (u_norm > slip_tolerance_ * scale)
   {
     phase = sliding(k, r, u / u_norm, u_norm);
+    turn(u, along(v), k, r, phase);
     spinDecay(k, r, wn, phase);
     phase.conservative = phase.acceleration == g_t_;
     return phase;
@@ -205,7 +239,11 @@ FrictionPhase FrictionLaw::start(double k, double r, Vec3& v, Vec3& w) const
   const bool holds = k * pull / (1 + k) <= mu_.sliding * g_n_;
   const Vec3 downhill = pull > 0 ? Vec3(g_t_ / pull) : Vec3::Zero();
   if (speed > 0)
+  {
     phase = holds ? rolling(k, r, moving, moving / speed) : sliding(k, r, downhill, 0.0);
+    if (holds)
+      turn(moving, moving, k, r, phase);
+  }
   else if (pull / (1 + k) <= mu_.rolling * g_n_)
   {
     phase.kind = MotionKind::kStationary;  // (spinning, where it turns about n)

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "ball_collision_sim/core/scene.hpp"
+#include "ball_collision_sim/core/turning_drag.hpp"
 #include "ball_collision_sim/core/types.hpp"
 
 #include <cstdint>
@@ -28,8 +29,36 @@ enum PhaseEnd : std::uint8_t
   kSpinStops = 4,  ///< the spin about the floor's normal reaches zero
 };
 
+/// A sliding or rolling phase on a tilted plane whose direction turns: the slip (sliding)
+/// or the velocity (rolling) crosses gravity's line along the plane, and friction's
+/// direction turns with it toward the fall line. Exact, from the drag of that slip or
+/// velocity (TurningDrag): with q the slip or the velocity,
+///   v(t) = v0 + t drift + share (q(t) - q0),
+///   p(t) - p0 = t v0 + t^2 drift / 2 + share (Q(t) - t q0),
+/// sliding: drift = g_t / (1 + k), share = k / (1 + k); rolling: q = v, drift 0, share 1;
+/// the spin along the plane changes by n x (dv - slip_share dq) / r (slip_share 1
+/// sliding, 0 rolling), which keeps a rolling ball rolling and a sliding one's slip q.
+struct TurningPhase
+{
+  TurningDrag drag;
+  Vec3 q0 = Vec3::Zero();
+  Vec3 v0 = Vec3::Zero();
+  Vec3 drift = Vec3::Zero();
+  double share = 1.0;
+  double slip_share = 0.0;
+  Vec3 normal = Vec3::UnitZ();
+  double radius = 1.0;
+
+  bool turns() const { return drag.turns(); }
+  /// t seconds into the phase (t up to its end): the velocity, the move from its start
+  /// and the change of the spin along the plane.
+  void at(double t, Vec3& velocity, Vec3& move, Vec3& spin_change) const;
+};
+
 /// A stretch of a ball's motion on a plane under the friction laws, with constant
-/// linear and angular acceleration, up to the first transition.
+/// linear and angular acceleration, up to the first transition; or, where its direction
+/// turns across a tilted plane, `turning`'s exact motion (its acceleration then the one
+/// at its start).
 struct FrictionPhase
 {
   MotionKind kind = MotionKind::kSliding;
@@ -46,6 +75,9 @@ struct FrictionPhase
   double gravity_share = 1.0;
   /// Sliding: the direction the slip's friction opposes (unit, along the floor).
   Vec3 slip_direction = Vec3::Zero();
+  /// Sliding or rolling across a tilted plane's fall line: the exact motion (turns()),
+  /// whose end is `duration`.
+  TurningPhase turning;
 };
 
 /// The friction laws of a ball of radius r and inertia k m r^2 on a floor with unit normal
@@ -54,9 +86,9 @@ struct FrictionPhase
 ///   rolling:    dv/dt = g_t / (1 + k) - mu_r g_n v/|v|,  w = n x v / r + (w.n) n
 ///   stationary: while |g_t| / (1 + k) <= mu_r g_n
 ///   spin about n decays at mu_sp g_n / (k r) in every state.
-/// The slip's and the velocity's directions are those at the phase's start: exact on a
-/// plane square to gravity and along a tilted plane's fall line, where they stay; elsewhere
-/// the phase is a step of first order, which the world starts again every step.
+/// On a plane square to gravity and along a tilted plane's fall line the slip's and the
+/// velocity's directions stay, and the accelerations are constant; across the fall line
+/// they turn toward it, and the phase's `turning` holds its exact motion (TurningDrag).
 class FrictionLaw
 {
 public:
@@ -132,6 +164,9 @@ private:
   void stick(double k, double r, Vec3& v, Vec3& w) const;
   FrictionPhase sliding(double k, double r, const Vec3& u_direction, double u_norm) const;
   FrictionPhase rolling(double k, double r, const Vec3& v, const Vec3& direction) const;
+  /// Where a sliding phase's slip or a rolling one's velocity q0 crosses the fall line:
+  /// `phase` made TurningPhase's exact motion from v0, its end the drag's.
+  void turn(const Vec3& q0, const Vec3& v0, double k, double r, FrictionPhase& phase) const;
   /// w.n, or 0 (and w made so) where it is round-off.
   double spinAboutNormal(double r, const Vec3& v, Vec3& w) const;
   /// Adds the decay of the spin about n to `phase`.

@@ -27,6 +27,10 @@ struct StepState::FloorMotion
   /// A motion's end is put back on the floor (a chord across a curved one): a group's
   /// solved motions are, and its contacts' linearization is corrected where they end.
   virtual bool endsPutOnFloor() const = 0;
+  /// A phase whose direction turns across a plane's fall line (TurningPhase) follows its
+  /// exact motion (a plane's); else its start's accelerations (a curved floor's chord,
+  /// under the normal where it is).
+  virtual bool followsTurns() const = 0;
   /// Gravity pulls balls along the floor, so that they gather into groups at rest.
   static bool gathers(const StepContext& w) { return !w.ground_.straight(); }
 
@@ -65,6 +69,7 @@ struct StepState::ExactMotion : StepState::FloorMotion
 {
   bool keepsFeet() const override { return false; }
   bool endsPutOnFloor() const override { return false; }
+  bool followsTurns() const override { return true; }
   void predict(StepContext& w, std::size_t i, const Vec3& v) const override;
   void start(StepContext& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
   FrictionLaw lawUnder(const StepContext& w, const Vec3& n) const override;
@@ -89,6 +94,7 @@ struct StepState::ChordMotion final : StepState::FloorMotion
 {
   bool keepsFeet() const override { return true; }
   bool endsPutOnFloor() const override { return true; }
+  bool followsTurns() const override { return false; }
   void predict(StepContext& w, std::size_t i, const Vec3& v) const override;
   void start(StepContext& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const override;
   FrictionLaw lawUnder(const StepContext& w, const Vec3& n) const override;

@@ -93,7 +93,8 @@ bool StepContext::startFriction(std::size_t i, double x, bool record, bool impac
   sm.slip_force = scene_.friction->sliding * std::max(0.0, -gravity_.dot(law.normal()));
   sm.roll_resistance = scene_.friction->rolling * std::max(0.0, -gravity_.dot(law.normal()));
   sm.slip_rate = sm.slip_force * (1 + spin.inertia) / spin.inertia - law.gravityAlong().dot(phase.slip_direction);
-  sm.phase = &SpinPhase::of(phase);
+  sm.turning = phase.turning;
+  sm.phase = &SpinPhase::of(phase, *floor_motion_);
   if (record)
     recordKind(i, x);
   return sm.phase->startMotion(*this, i, law);

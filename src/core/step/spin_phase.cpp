@@ -1,5 +1,5 @@
 // The five ways a ball's motion and spin go within the step under friction
-// (StepState::SpinPhase): kept, constrained, frictionless, still, driven.
+// (StepState::SpinPhase): kept, constrained, frictionless, still, driven, turning.
 // Reads motions_, spin_motions_, the start velocities, chord ends, gravity and the
 // ground; starting a phase writes the ball's motion (through the floor's motion type,
 // floor_motion_, where it depends on the floor).
@@ -103,6 +103,48 @@ struct StepState::SpinPhase::Driven final : StepState::SpinPhase::Forced
   }
 };
 
+/// Turning (sliding or rolling across a plane's fall line): its TurningPhase's exact
+/// motion and spin. Its path is the parabola from where it starts, at its velocity there,
+/// to where that motion is when the phase or the step ends, whichever is first: the
+/// phase's end, and the step's, find the ball where the closed form puts it.
+struct StepState::SpinPhase::Turning final : StepState::SpinPhase::Forced
+{
+  bool startMotion(StepContext& w, std::size_t i, const FrictionLaw& law) const override
+  {
+    Motion& m = w.motions_[i];
+    SpinMotion& sm = w.spin_motions_[i];
+    Vec3& v = w.startVelocity(i);
+    v = law.along(v);
+    m.b = w.dt_ * v;
+    const double span = std::min(sm.x_end, 1.0) - m.x0;
+    if (span > 0)
+    {
+      Vec3 velocity, move, spin_change;
+      sm.turning.at(span * w.dt_, velocity, move, spin_change);
+      sm.c = (move - span * m.b) / (span * span);
+    }
+    m.become(MotionType::kPhase);
+    return false;
+  }
+  Vec3 spinAt(const SpinMotion& sm, double t) const override
+  {
+    // (the spin about the normal dies at its own rate, alpha's part along the normal)
+    Vec3 velocity, move, spin_change;
+    sm.turning.at(t, velocity, move, spin_change);
+    return sm.w0 + (t * sm.alpha.dot(sm.normal)) * sm.normal + spin_change;
+  }
+  Vec3 velocity(const StepContext& w, std::size_t i, double x, const Vec3&, const Vec3&) const override
+  {
+    Vec3 velocity, move, spin_change;
+    w.spin_motions_[i].turning.at((x - w.motions_[i].x0) * w.dt_, velocity, move, spin_change);
+    return velocity;
+  }
+  double speedSquaredAt(const StepContext& w, std::size_t i, double x, const Vec3& p) const override
+  {
+    return velocity(w, i, x, p, w.spin_motions_[i].normal).squaredNorm();
+  }
+};
+
 const StepState::SpinPhase& StepState::SpinPhase::kept()
 {
   static const Kept phase;
@@ -115,13 +157,16 @@ const StepState::SpinPhase& StepState::SpinPhase::constrained()
   return phase;
 }
 
-const StepState::SpinPhase& StepState::SpinPhase::of(const FrictionPhase& start)
+const StepState::SpinPhase& StepState::SpinPhase::of(const FrictionPhase& start, const FloorMotion& floor)
 {
   static const Frictionless frictionless;
   static const Still still;
   static const Driven driven;
+  static const Turning turning;
   if (start.conservative)
     return frictionless;
+  if (start.turning.turns() && floor.followsTurns())
+    return turning;
   if (start.gravity_share > 0)
     return driven;
   return still;

@@ -9,6 +9,9 @@
 // - Still: a phase that holds the ball where it is (spinning or stationary); no share of
 //   gravity moves it.
 // - Driven: a phase its share of gravity and the friction force move (sliding, rolling).
+// - Turning: a driven phase on a plane whose direction turns across the fall line; its
+//   motion and spin are its TurningPhase's, exactly, and its path the parabola that
+//   meets that motion where the phase or the step ends.
 // Reads motions_, spin_motions_, the start velocities, chord ends, gravity and the
 // ground; starting a phase writes the ball's motion (through floor_motion_).
 #pragma once
@@ -22,8 +25,9 @@ struct StepState::SpinPhase
   virtual ~SpinPhase() = default;
   static const SpinPhase& kept();
   static const SpinPhase& constrained();
-  /// The phase `start` found: frictionless, still or driven.
-  static const SpinPhase& of(const FrictionPhase& start);
+  /// The phase `start` found on the floor whose motion type is `floor`: frictionless,
+  /// still, driven, or turning.
+  static const SpinPhase& of(const FrictionPhase& start, const FloorMotion& floor);
   /// Ball i's velocity at x under its phase's constant acceleration (SpinMotion::a): a
   /// still phase's anywhere, a driven one's on a plane.
   static Vec3 constantlyAccelerated(const StepContext& w, std::size_t i, double x);
@@ -71,5 +75,6 @@ private:
   struct Forced;
   struct Still;
   struct Driven;
+  struct Turning;
 };
 }  // namespace ball_collision_sim::core

@@ -170,5 +170,8 @@ struct StepState::SpinMotion
   double slip_force = 0.0;
   /// curved floors, rolling: mu_r g_n [m/s^2]
   double roll_resistance = 0.0;
+  /// a plane, sliding or rolling across its fall line: the phase's exact motion from its
+  /// start (SpinPhase's turning type)
+  TurningPhase turning;
 };
 }  // namespace ball_collision_sim::core
