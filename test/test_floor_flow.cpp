@@ -1,0 +1,209 @@
+// A ball's motion on a curved floor as FloorFlow integrates it: against an integration of
+// the same laws in long double at steps 64 times shorter (a paraboloid bowl, a saddle and
+// a dome's crest), its order of convergence (4), the energy and the angular momentum
+// about the bowl's axis kept, and the small-oscillation periods in the bowl,
+// 2 pi sqrt((R - r) / g) frictionless and 2 pi sqrt((1 + k)(R - r) / g) rolling.
+#include "fixtures.hpp"
+
+#include "ball_collision_sim/core/floor_flow.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace ball_collision_sim::core;
+using namespace ball_collision_sim::test;
+
+namespace
+{
+constexpr double kG = 9.81;
+const Vec3 kGravity(0, 0, -kG);
+
+/// The saddle z = (x^2 - y^2) h / 4 over [-2, 2]^2 (control z = f_i - f_j, f = (h, -h, h)).
+FloorDef saddle(double h)
+{
+  FloorDef f;
+  f.type = FloorDef::Type::kBiquadratic;
+  const double c[3] = {-2, 0, 2};
+  const double z[3] = {h, -h, h};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      f.control_points[i][j] = Vec3(c[i], c[j], z[i] - z[j]);
+  return f;
+}
+
+/// The flow's own law once more, in long double, from the floor's derivatives: a
+/// reference integrated by classical Runge-Kutta at many more, shorter steps.
+struct Reference
+{
+  using V3 = Eigen::Matrix<long double, 3, 1>;
+  using V2 = Eigen::Matrix<long double, 2, 1>;
+  using M2 = Eigen::Matrix<long double, 2, 2>;
+  const Floor& floor;
+  long double r, share, drag;
+
+  void rates(const V2& uv, const V3& v, V2& foot_rate, V3& acc) const
+  {
+    Vec3 s, su_d, sv_d, suu_d, suv_d, svv_d;
+    floor.derivatives(uv.cast<double>(), s, su_d, sv_d, suu_d, suv_d, svv_d);
+    // (a biquadratic's derivatives are exact in double at these parameters' round-off;
+    // the rest is done wide)
+    const V3 su = su_d.cast<long double>(), sv = sv_d.cast<long double>();
+    V3 n = su.cross(sv).normalized();
+    if (n.z() < 0)
+      n = -n;
+    M2 first, second;
+    first << su.dot(su), su.dot(sv), su.dot(sv), sv.dot(sv);
+    second << suu_d.cast<long double>().dot(n), suv_d.cast<long double>().dot(n), suv_d.cast<long double>().dot(n),
+        svv_d.cast<long double>().dot(n);
+    const V2 b(su.dot(v), sv.dot(v));
+    foot_rate = (first - r * second).inverse() * b;
+    const long double push = (first.inverse() * b).dot(second * foot_rate);
+    const V3 g(0, 0, -kG);
+    const long double g_n = -g.dot(n);
+    const V3 g_t = g + g_n * n;
+    acc = share * g_t + push * n;
+    const V3 along = v - v.dot(n) * n;
+    if (drag > 0 && along.norm() > 0)
+      acc -= (drag * g_n / along.norm()) * along;
+  }
+  void advance(V2& uv, V3& v, long double duration, int steps) const
+  {
+    const long double h = duration / steps;
+    for (int k = 0; k < steps; ++k)
+    {
+      V2 f1, f2, f3, f4;
+      V3 a1, a2, a3, a4;
+      rates(uv, v, f1, a1);
+      rates(uv + h / 2 * f1, v + h / 2 * a1, f2, a2);
+      rates(uv + h / 2 * f2, v + h / 2 * a2, f3, a3);
+      rates(uv + h * f3, v + h * a3, f4, a4);
+      uv += h / 6 * (f1 + 2 * f2 + 2 * f3 + f4);
+      v += h / 6 * (a1 + 2 * a2 + 2 * a3 + a4);
+    }
+  }
+};
+
+/// A start on the floor at foot (u, v) with velocity w along it.
+FloorFlow::State startAt(const Floor& floor, const Vec2& foot, const Vec3& w)
+{
+  const Vec3 n = floor.normal(foot);
+  return {foot, w - w.dot(n) * n};
+}
+
+struct FlowCase
+{
+  const char* name;
+  FloorDef floor;
+  Vec2 foot;
+  Vec3 velocity;
+  double share, drag;
+};
+
+class FlowAgainstReference : public ::testing::TestWithParam<FlowCase>
+{
+};
+
+// After 1 s, 100 steps of dt = 0.01 s each in the substeps FloorFlow::substepsFor() gives
+// for a turn of 0.05 rad, within 1e-8 m and m/s of the reference (about 1e-9 here); and in
+// one substep a step, halving it divides the error by about 16 (fourth order).
+TEST_P(FlowAgainstReference, WithinANanometreAfterOneSecond)
+{
+  const FlowCase c = GetParam();
+  const Floor floor(c.floor, kGravity);
+  const double r = 0.1;
+  const FloorFlow flow(floor, kGravity, r);
+  const FloorFlow::Law law{c.share, c.drag};
+  const FloorFlow::State start = startAt(floor, c.foot, c.velocity);
+  const auto run = [&](double dt, int substeps_cap) {
+    FloorFlow::State s = start;
+    for (int k = 0; k < static_cast<int>(std::lround(1.0 / dt)); ++k)
+    {
+      const int n = substeps_cap > 0 ? substeps_cap
+                                     : FloorFlow::substepsFor(dt, s.velocity.norm(), floor.maxCurvature() / (1 - r * floor.maxCurvature()), kG, 0.05);
+      flow.advance(s, dt, n, law);
+    }
+    return s;
+  };
+  Reference ref{floor, r, c.share, c.drag};
+  Reference::V2 uv = start.foot.cast<long double>();
+  Reference::V3 v = start.velocity.cast<long double>();
+  ref.advance(uv, v, 1.0L, 6400);
+  const Vec3 ref_p = flow.centre(uv.cast<double>());
+  const Vec3 ref_v = v.cast<double>();
+
+  const FloorFlow::State got = run(0.01, 0);
+  EXPECT_LT((flow.centre(got.foot) - ref_p).norm(), 1e-8) << c.name;
+  EXPECT_LT((got.velocity - ref_v).norm(), 1e-8) << c.name;
+
+  const double e1 = (flow.centre(run(0.01, 1).foot) - ref_p).norm();
+  const double e2 = (flow.centre(run(0.005, 1).foot) - ref_p).norm();
+  const double order = std::log2(e1 / e2);
+  EXPECT_GT(order, 3.7) << c.name << " errors " << e1 << " " << e2;
+  EXPECT_LT(order, 4.3) << c.name << " errors " << e1 << " " << e2;
+  std::printf("%s: error after 1 s %.3g m (flow), one substep a step %.3g, at dt / 2 %.3g: order %.2f\n", c.name,
+              (flow.centre(got.foot) - ref_p).norm(), e1, e2, order);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Floors, FlowAgainstReference,
+    ::testing::Values(FlowCase{"bowl_free", bowl(3, 0.3), Vec2(0.8, 0.4), Vec3(-1.0, 1.5, 0), 1.0, 0.0},
+                      FlowCase{"bowl_rolling", bowl(3, 0.3), Vec2(0.8, 0.4), Vec3(-1.0, 1.5, 0), 1 / 1.4, 0.0},
+                      FlowCase{"bowl_resisted", bowl(3, 0.3), Vec2(0.8, 0.4), Vec3(-1.0, 1.5, 0), 1 / 1.4, 0.01},
+                      FlowCase{"saddle_free", saddle(0.3), Vec2(0.45, 0.5), Vec3(1.5, 0.8, 0), 1.0, 0.0},
+                      FlowCase{"saddle_rolling", saddle(0.3), Vec2(0.45, 0.5), Vec3(1.5, 0.8, 0), 1 / 1.4, 0.01},
+                      FlowCase{"crest_free", dome(), Vec2(0.5, 0.52), Vec3(0.4, 0.3, 0), 1.0, 0.0},
+                      FlowCase{"crest_rolling", dome(), Vec2(0.5, 0.52), Vec3(0.4, 0.3, 0), 1 / 1.4, 0.01}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+// In the paraboloid bowl z = a (x^2 + y^2) a frictionless ball keeps its energy and its
+// angular momentum about the axis (a surface of revolution): over 10 s to 2e-9 (fourth
+// order drifts: the step takes a free ball's speed from its energy).
+TEST(FloorFlow, BowlKeepsEnergyAndAngularMomentum)
+{
+  const Floor floor(bowl(3, 0.3), kGravity);
+  const double r = 0.1;
+  const FloorFlow flow(floor, kGravity, r);
+  FloorFlow::State s = startAt(floor, Vec2(0.75, 0.5), Vec3(0, 1.2, 0));
+  const auto energy = [&](const FloorFlow::State& st) { return 0.5 * st.velocity.squaredNorm() + kG * flow.centre(st.foot).z(); };
+  const auto spin = [&](const FloorFlow::State& st) {
+    const Vec3 p = flow.centre(st.foot);
+    return p.x() * st.velocity.y() - p.y() * st.velocity.x();
+  };
+  const double e0 = energy(s), l0 = spin(s);
+  for (int k = 0; k < 1000; ++k)
+    flow.advance(s, 0.01, FloorFlow::substepsFor(0.01, s.velocity.norm(), 0.3, kG, 0.05), {1.0, 0.0});
+  EXPECT_NEAR(energy(s), e0, 2e-9);
+  EXPECT_NEAR(spin(s), l0, 2e-9);
+  EXPECT_GT(flow.centre(s.foot).norm(), 0.2);  // (it went round, off the bottom)
+}
+
+// Small oscillations in the bowl (radius of curvature R = 1 / (2 a) at its bottom, the
+// centre's path R - r): the period of x's swing, from its zero crossings over three
+// periods, frictionless and rolling (the share 1 / (1 + k)).
+TEST(FloorFlow, SmallOscillationPeriodsInTheBowl)
+{
+  const double L = 3, h = 0.3, a = 4 * h / (L * L), R = 1 / (2 * a), r = 0.1, k = 0.4;
+  const Floor floor(bowl(L, h), kGravity);
+  const FloorFlow flow(floor, kGravity, r);
+  for (double share : {1.0, 1 / (1 + k)})
+  {
+    const double expected = 2 * M_PI * std::sqrt((R - r) / (share * kG));
+    FloorFlow::State s = startAt(floor, Vec2(0.5 + 0.003, 0.5), Vec3::Zero());  // 9 mm off the bottom
+    double t = 0, previous = flow.centre(s.foot).x();
+    std::vector<double> crossings;
+    const double dt = 1e-3;
+    while (crossings.size() < 7)
+    {
+      flow.advance(s, dt, 1, {share, 0.0});
+      t += dt;
+      const double x = flow.centre(s.foot).x();
+      if ((previous > 0) != (x > 0))
+        crossings.push_back(t - dt * x / (x - previous));  // (the crossing, by the chord)
+      previous = x;
+    }
+    const double period = (crossings[6] - crossings[0]) / 3;
+    EXPECT_NEAR(period, expected, 1e-5 * expected) << share;
+  }
+}
+}  // namespace
