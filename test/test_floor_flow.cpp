@@ -207,3 +207,71 @@ TEST(FloorFlow, SmallOscillationPeriodsInTheBowl)
   }
 }
 }  // namespace
+
+namespace
+{
+struct WorldCase
+{
+  const char* name;
+  FloorDef floor;
+  Vec2 foot;
+  Vec3 velocity;
+  bool friction;  ///< a friction block that holds rolling (mu_s 0.5), mu_r 0.01
+};
+
+class WorldOnCurvedFloors : public ::testing::TestWithParam<WorldCase>
+{
+};
+
+// Through World at dt = 0.01 s: a frictionless ball (no friction block) and a rolling one
+// (a friction block that holds rolling, rolling resistance 0.01) after 1 s within 1e-6 m
+// and m/s of the reference (1e-8 here), on the bowl, the saddle and the crest.
+TEST_P(WorldOnCurvedFloors, WithinAMicrometreAfterOneSecond)
+{
+  const WorldCase c = GetParam();
+  const double r = 0.1, k = kSolidInertia;
+  Scene scene;
+  scene.floor = c.floor;
+  const Floor floor(c.floor, kGravity);
+  const FloorFlow flow(floor, kGravity, r);
+  const FloorFlow::State start = startAt(floor, c.foot, c.velocity);
+  BallDef b;
+  b.radius = r;
+  b.position = flow.centre(start.foot);
+  b.velocity = start.velocity;
+  if (c.friction)
+  {
+    FrictionDef f;
+    f.sliding = 0.5;
+    f.rolling = 0.01;
+    scene.friction = f;
+    b.inertia = k;  // (its spin: rolling's, n x v / r)
+  }
+  scene.balls = {b};
+  World world(scene);
+  for (int s = 0; s < 100; ++s)
+    world.step();
+  Reference ref{floor, r, c.friction ? 1 / (1 + k) : 1.0, c.friction ? 0.01 : 0.0};
+  Reference::V2 uv = start.foot.cast<long double>();
+  Reference::V3 v = start.velocity.cast<long double>();
+  ref.advance(uv, v, 1.0L, 6400);
+  const double dp = (world.balls()[0].position - flow.centre(uv.cast<double>())).norm();
+  const double dv = (world.balls()[0].velocity - v.cast<double>()).norm();
+  EXPECT_LT(dp, 1e-8) << c.name;
+  EXPECT_LT(dv, 1e-8) << c.name;
+  if (c.friction)
+  {
+    EXPECT_EQ(world.motionKind(0), MotionKind::kRolling);
+  }
+  std::printf("%s through World: %.3g m, %.3g m/s after 1 s\n", c.name, dp, dv);
+}
+
+INSTANTIATE_TEST_SUITE_P(Floors, WorldOnCurvedFloors,
+                         ::testing::Values(WorldCase{"bowl_free", bowl(3, 0.3), Vec2(0.8, 0.4), Vec3(-1.0, 1.5, 0), false},
+                                           WorldCase{"bowl_rolling", bowl(3, 0.3), Vec2(0.8, 0.4), Vec3(-1.0, 1.5, 0), true},
+                                           WorldCase{"saddle_free", saddle(0.3), Vec2(0.45, 0.5), Vec3(1.5, 0.8, 0), false},
+                                           WorldCase{"saddle_rolling", saddle(0.3), Vec2(0.45, 0.5), Vec3(1.5, 0.8, 0), true},
+                                           WorldCase{"crest_free", dome(), Vec2(0.5, 0.52), Vec3(0.4, 0.3, 0), false},
+                                           WorldCase{"crest_rolling", dome(), Vec2(0.5, 0.52), Vec3(0.4, 0.3, 0), true}),
+                         [](const auto& info) { return std::string(info.param.name); });
+}  // namespace

@@ -43,7 +43,7 @@ void FloorFlow::rates(const State& s, const Law& law, Vec2& foot_rate, Vec3& acc
   }
 }
 
-void FloorFlow::advance(State& state, double duration, int substeps, const Law& law) const
+Vec3 FloorFlow::advance(State& state, double duration, int substeps, const Law& law, Vec3& normal) const
 {
   const double h = duration / substeps;
   for (int k = 0; k < substeps; ++k)
@@ -58,8 +58,9 @@ void FloorFlow::advance(State& state, double duration, int substeps, const Law& 
     state.foot = s0.foot + (h / 6) * (f1 + 2 * f2 + 2 * f3 + f4);
     state.velocity = s0.velocity + (h / 6) * (a1 + 2 * a2 + 2 * a3 + a4);
   }
-  const Vec3 n = floor_.normal(state.foot);
-  state.velocity -= state.velocity.dot(n) * n;
+  const Vec3 c = centre(state.foot, &normal);
+  state.velocity -= state.velocity.dot(normal) * normal;
+  return c;
 }
 
 int FloorFlow::substepsFor(double duration, double speed, double curvature, double gravity, double turn)

@@ -33,9 +33,15 @@ public:
 
   /// The centre over foot point (u, v), and the floor's (up-oriented) unit normal there.
   Vec3 centre(const Vec2& foot, Vec3* normal = nullptr) const;
-  /// `state` advanced by `duration` [s] in `substeps` steps under `law`; its velocity
-  /// then along the floor where it is (less the part along n that round-off leaves).
-  void advance(State& state, double duration, int substeps, const Law& law) const;
+  /// `state` advanced by `duration` [s] in `substeps` steps under `law` (of its velocity,
+  /// only the part along the floor counts); its velocity then along the floor where it
+  /// is. Returns the centre there, and the floor's normal into `normal`.
+  Vec3 advance(State& state, double duration, int substeps, const Law& law, Vec3& normal) const;
+  Vec3 advance(State& state, double duration, int substeps, const Law& law) const
+  {
+    Vec3 normal;
+    return advance(state, duration, substeps, law, normal);
+  }
   /// The substeps that keep each one's turn below `turn` [rad] for a ball at speed
   /// `speed` over `duration` on a floor whose centres' paths bend at most by `curvature`
   /// [1/m] (and that gravity's pull along the floor swings, sqrt(g curvature), as often).

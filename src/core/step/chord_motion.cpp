@@ -20,8 +20,9 @@ void StepState::ChordMotion::predict(StepContext& w, std::size_t i, const Vec3& 
   // a chord across the path, no longer than the floor allows, kept within the energy
   Motion& m = w.motions_[i];
   const Vec3& p0 = w.startPosition(i);
-  m.b = w.predictedEnd(i, p0, v, w.dt_) - p0;
-  w.cutChord(i, p0, v);
+  const Vec2 foot = w.guessOf(i);  // (the kept foot point, under p0)
+  m.b = w.chordTo(i, p0, v, w.dt_, 1.0, true) - p0;
+  w.cutChord(i, p0, v, &foot);
   keepEnergy(w, i);
 }
 
@@ -29,8 +30,8 @@ void StepState::ChordMotion::start(StepContext& w, std::size_t i, double x, cons
 {
   Motion& m = w.motions_[i];
   const double rest = 1 - x;
-  m.b = rest > 0 ? Vec3((w.predictedEnd(i, position, v0, rest * w.dt_) - position) / rest) : Vec3(w.dt_ * v0);
-  w.cutChord(i, position, v0);
+  m.b = rest > 0 ? Vec3((w.chordTo(i, position, v0, rest * w.dt_, 1.0, false) - position) / rest) : Vec3(w.dt_ * v0);
+  w.cutChord(i, position, v0, nullptr);
   keepEnergy(w, i);
 }
 
@@ -55,6 +56,7 @@ void StepState::ChordMotion::shorten(StepContext& w, std::size_t i, const StepCo
   // out instead, so that no energy is made.
   Motion& m = w.motions_[i];
   const double rest = energy.rest;
+  w.flow_ends_[i].x = -1.0;  // (the chord is no longer where the ball's laws took it)
   double lo = 0.0;
   if (start > 0)
     lo = energyRunsOut(w, energy, start, full);
@@ -162,6 +164,9 @@ bool StepState::ChordMotion::stillMotion(StepContext& w, std::size_t i, const Fr
 Vec3 StepState::ChordMotion::phaseVelocity(const StepContext& w, std::size_t i, double x, const Vec3& position,
                                        const Vec3& normal) const
 {
+  Vec3 v;
+  if (w.flowVelocity(i, x, position, normal, v))
+    return v;  // (where its chord ends, as its laws take it)
   const SpinMotion& sm = w.spin_motions_[i];
   const double t = (x - w.motions_[i].x0) * w.dt_;
   return w.ground_.withSpeedSquared(w.ground_.along(w.startVelocity(i) + t * sm.pull, normal),
@@ -191,13 +196,19 @@ double StepState::ChordMotion::speedSquaredAt(const StepContext& w, std::size_t 
   return v0.squaredNorm() + 2 * w.gravity_.dot(moved) - spin_change - 2 * loss;
 }
 
-Vec3 StepState::ChordMotion::spinThere(const StepContext& w, std::size_t i, const Vec3& normal, const Vec3& v,
-                                   const Vec3& spin, bool rolling) const
+Vec3 StepState::ChordMotion::spinThere(const StepContext& w, std::size_t i, double x, const Vec3& normal, const Vec3& v,
+                                       const Vec3& spin, bool rolling) const
 {
-  // (a rolling ball rolls with the velocity its energy gives it there, under the normal
-  // there)
   if (!rolling)
     return spin;
-  return lawUnder(w, normal).rollingSpin(w.balls_[i].radius, v, spin, spin.dot(w.spin_motions_[i].normal));
+  const double wn = spin.dot(w.spin_motions_[i].normal);
+  // Where its chord ends as its laws took it, its spin along the floor is rolling's for
+  // the velocity there, and its spin about the normal is carried over: the law's (1 + k)
+  // counted that spin's energy.
+  if (!w.flow_ends_.empty() && w.flow_ends_[i].x == x)
+    return normal.cross(v) / w.balls_[i].radius + wn * normal;
+  // (elsewhere a rolling ball rolls with the velocity its energy gives it there, under
+  // the normal there)
+  return lawUnder(w, normal).rollingSpin(w.balls_[i].radius, v, spin, wn);
 }
 }  // namespace ball_collision_sim::core

@@ -78,9 +78,11 @@ StepContext::Committed StepContext::commitBall(std::size_t i, bool settle)
   Ball& ball = balls_[i];
   // (a ball asleep stays where it is, on the foot point it had; the floor's normal there
   // counts only across resting contacts: its spin is kept as it is, SpinPhase::kept())
+  // (a chord that ends where its laws took the ball ends over the foot point they found)
   const Ground::End end = motions_[i].asleep() ? ground_.stillEnd(ball.position, ball.radius, guessOf(i), settle)
                           : ball.flying()      ? ground_.airEnd(positionAt(i, 1.0), guessOf(i))
-                                             : ground_.end(positionAt(i, 1.0), ball.radius, guessOf(i));
+                          : flowEndsAt(i, 1.0) ? Ground::End{positionAt(i, 1.0), flow_ends_[i].normal, guessOf(i)}
+                                               : ground_.end(positionAt(i, 1.0), ball.radius, guessOf(i));
   if (!feet_.empty())
     feet_[i] = end.foot;
   if (settle)

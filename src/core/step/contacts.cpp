@@ -132,6 +132,8 @@ void StepContext::stop(std::size_t i)
 {
   noteStopped();
   motions_[i].b = startVelocity(i) = Vec3::Zero();
+  if (!flow_ends_.empty())
+    flow_ends_[i].x = -1.0;
   // (with friction its spin then follows from its contacts, not from a phase whose motion
   // it does not make: FrictionLaw::constrained())
   spin_->stop(*this, i);

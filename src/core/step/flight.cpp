@@ -38,7 +38,10 @@ void startFlight(StepContext& c, std::size_t i)
   m.become(MotionType::kFlight);  // (pathTerm(): flight_c_)
   c.noteFlight();
   if (!c.chord_ends_.empty())
+  {
     c.chord_ends_[i] = 1.0;
+    c.flow_ends_[i].x = -1.0;
+  }
   c.spin_->startFlight(c, i);
 }
 

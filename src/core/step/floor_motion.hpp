@@ -59,10 +59,10 @@ struct StepState::FloorMotion
                              const Vec3& normal) const = 0;
   /// |v|^2 of ball i at x where its motion is at p, from the energy (StepContext::speedSquaredAt()).
   virtual double speedSquaredAt(const StepContext& w, std::size_t i, double x, const Vec3& p) const = 0;
-  /// Ball i's spin at an event or the step's end, where its velocity is v under `normal`,
-  /// from its phase's spin there; `rolling`: its phase rolls.
-  virtual Vec3 spinThere(const StepContext& w, std::size_t i, const Vec3& normal, const Vec3& v, const Vec3& spin,
-                         bool rolling) const = 0;
+  /// Ball i's spin at x (an event or the step's end), where its velocity is v under
+  /// `normal`, from its phase's spin there; `rolling`: its phase rolls.
+  virtual Vec3 spinThere(const StepContext& w, std::size_t i, double x, const Vec3& normal, const Vec3& v,
+                         const Vec3& spin, bool rolling) const = 0;
 };
 
 struct StepState::ExactMotion : StepState::FloorMotion
@@ -78,7 +78,7 @@ struct StepState::ExactMotion : StepState::FloorMotion
   bool stillMotion(StepContext& w, std::size_t i, const FrictionLaw& law) const override;
   Vec3 phaseVelocity(const StepContext& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const override;
   double speedSquaredAt(const StepContext& w, std::size_t i, double x, const Vec3& p) const override;
-  Vec3 spinThere(const StepContext&, std::size_t, const Vec3&, const Vec3&, const Vec3& spin, bool) const override
+  Vec3 spinThere(const StepContext&, std::size_t, double, const Vec3&, const Vec3&, const Vec3& spin, bool) const override
   {
     return spin;
   }
@@ -103,7 +103,7 @@ struct StepState::ChordMotion final : StepState::FloorMotion
   bool stillMotion(StepContext& w, std::size_t i, const FrictionLaw& law) const override;
   Vec3 phaseVelocity(const StepContext& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const override;
   double speedSquaredAt(const StepContext& w, std::size_t i, double x, const Vec3& p) const override;
-  Vec3 spinThere(const StepContext& w, std::size_t i, const Vec3& normal, const Vec3& v, const Vec3& spin,
+  Vec3 spinThere(const StepContext& w, std::size_t i, double x, const Vec3& normal, const Vec3& v, const Vec3& spin,
                  bool rolling) const override;
 
 private:

@@ -127,7 +127,7 @@ void StepContext::constrainSpin(std::size_t i)
 Vec3 StepContext::spinAtEvent(std::size_t i, double x, const Vec3& normal, const Vec3& v) const
 {
   const SpinMotion& sm = spin_motions_[i];
-  return floor_motion_->spinThere(*this, i, normal, v, spinAt(i, x), sm.phase->rollsAtEvent(sm));
+  return floor_motion_->spinThere(*this, i, x, normal, v, spinAt(i, x), sm.phase->rollsAtEvent(sm));
 }
 
 Vec3 StepContext::spinAt(std::size_t i, double x) const

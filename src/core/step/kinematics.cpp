@@ -102,7 +102,10 @@ void StepContext::beginMotion(std::size_t i, double x, const Vec3& position, con
   startPosition(i) = position;
   startVelocity(i) = v0;
   if (!chord_ends_.empty())
+  {
     chord_ends_[i] = 1.0;
+    flow_ends_[i].x = -1.0;
+  }
 }
 
 void StepContext::startMotion(std::size_t i, double x, const Vec3& position, const Vec3& velocity, bool impact)
@@ -133,7 +136,7 @@ void StepContext::startMotion(std::size_t i, double x, const Vec3& position, con
   spin_->startOnFloor(*this, i, x, position, impact);
 }
 
-void StepContext::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)
+void StepContext::cutChord(std::size_t i, const Vec3& position, const Vec3& v0, const Vec2* start_foot)
 {
   if (chord_ends_.empty())
     return;  // (paths that do not bend are not chords)
@@ -148,7 +151,50 @@ void StepContext::cutChord(std::size_t i, const Vec3& position, const Vec3& v0)
   // (the path beyond the cut is not the chord's: the cut's event makes the chord after it)
   const double span = rest * (longest / length);
   chord_ends_[i] = m.x0 + span;
-  m.b = (predictedEnd(i, position, v0, span * dt_) - position) / span;
+  if (start_foot)
+    guessOf(i) = *start_foot;  // (the uncut chord's end moved the kept foot point)
+  m.b = (chordTo(i, position, v0, span * dt_, chord_ends_[i], start_foot != nullptr) - position) / span;
+}
+
+Vec3 StepContext::chordTo(std::size_t i, const Vec3& p, const Vec3& v, double span, double x_end, bool on_kept_foot)
+{
+  FloorFlow::Law law;
+  FlowEnd& end = flow_ends_[i];
+  end.x = -1.0;
+  if (!spin_->flowLaw(*this, i, law) || !(span > 0))
+    return predictedEnd(i, p, v, span);
+  // from the foot point under p (a start part way along a chord lies off the floor by
+  // its sag; at the step's start the ball is over its kept foot point), at v (whose
+  // part along the floor there is what counts)
+  const double r = balls_[i].radius;
+  Vec2& foot = guessOf(i);
+  if (!on_kept_foot)
+    ground_.landKeepingFoot(p, r, foot);
+  FloorFlow::State state{foot, v};
+  const Floor& floor = *ground_.floor();
+  const double k = floor.maxCurvature();
+  const double bend = r * k < 1 ? k / (1 - r * k) : k;  // (the centres' surface bends more in a hollow)
+  const FloorFlow flow(floor, gravity_, r);
+  const Vec3 centre =
+      flow.advance(state, span, FloorFlow::substepsFor(span, v.norm(), bend, gravity_.norm(), settings_.flow_turn), law,
+                   end.normal);
+  foot = state.foot;
+  end.velocity = state.velocity;
+  end.x = x_end;
+  end.keeps_energy = !(law.drag > 0);
+  return centre;
+}
+
+bool StepContext::flowVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal, Vec3& v) const
+{
+  if (!flowEndsAt(i, x))
+    return false;
+  const FlowEnd& end = flow_ends_[i];
+  // (without drag its speed is its energy's, as a chord's is: no energy made or lost to
+  // the integration's round-off)
+  v = end.keeps_energy ? ground_.withSpeedSquared(ground_.along(end.velocity, normal), speedSquaredAt(i, x, position))
+                       : ground_.along(end.velocity, normal);
+  return true;
 }
 
 void StepContext::queueCut(std::size_t i)

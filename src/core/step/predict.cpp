@@ -24,6 +24,7 @@ void step::predictMotions(StepContext& c)
   c.spin_->startStep(c);
   c.floor_uv_.resize(c.feet_.empty() ? 0 : c.balls_.size());  // where balls keep foot points
   c.chord_ends_.assign(c.feet_.empty() ? 0 : c.balls_.size(), 1.0);
+  c.flow_ends_.assign(c.chord_ends_.size(), StepState::FlowEnd{});
   c.flights_ = 0;
   c.forEachBall([&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
@@ -37,7 +38,10 @@ void StepContext::predictMotion(std::size_t i, bool at_step_start)
   Motion& m = motions_[i];
   m = Motion{};
   if (!chord_ends_.empty())
+  {
     chord_ends_[i] = 1.0;
+    flow_ends_[i].x = -1.0;
+  }
   if (!floor_uv_.empty())
     floor_uv_[i] = feet_[i];
   if (ball.asleep())

@@ -81,6 +81,11 @@ struct RollingSpin final : StepState::SpinModel
   {
     return c.linearChordSpeedSquared(i, rest, b);
   }
+  bool flowLaw(const StepContext&, std::size_t, FloorFlow::Law& law) const override
+  {
+    law = FloorFlow::Law{};  // (a frictionless ball's: gravity along the floor)
+    return true;
+  }
   void queueEnd(StepContext&, std::size_t) const override {}
   void endMotion(StepContext&, const Event&, const Vec3&, Vec3&) const override {}
   void takeOff(StepContext&, std::size_t, double, const Vec3&, const Vec3&) const override {}
@@ -234,6 +239,10 @@ struct FrictionSpin final : StepState::SpinModel
   {
     return c.spin_motions_[i].phase->chordSpeedSquared(c, i, rest, b);
   }
+  bool flowLaw(const StepContext& c, std::size_t i, FloorFlow::Law& law) const override
+  {
+    return c.spin_motions_[i].phase->flowLaw(c, i, law);
+  }
   void queueEnd(StepContext& c, std::size_t i) const override { c.queueTransition(i); }
   void endMotion(StepContext& c, const Event& event, const Vec3& normal, Vec3& v) const override
   {
@@ -305,7 +314,7 @@ struct FrictionSpin final : StepState::SpinModel
     BallSpin& spin = c.spins_[i];
     // (a rolling ball rolls under the normal where it ends)
     const Vec3 w = ball.flying() ? c.spinAt(i, 1.0)
-                               : c.floor_motion_->spinThere(c, i, end.normal, ball.velocity, c.spinAt(i, 1.0),
+                               : c.floor_motion_->spinThere(c, i, 1.0, end.normal, ball.velocity, c.spinAt(i, 1.0),
                                                             sm.phase->rollsAtCommit(sm));
     sm.turn = (0.5 * c.dt_) * (spin.angular_velocity + w);
     spin.angular_velocity = w;

@@ -72,6 +72,9 @@ struct StepState::SpinModel
   /// |v|^2 of ball i at x where its motion is at p, from its energy; what pulls its chord
   /// [m/s^2]; a chord's end speed squared with displacement b over `rest` of the step.
   virtual double speedSquaredAt(const StepContext& c, std::size_t i, double x, const Vec3& p) const = 0;
+  /// On a curved floor: the law ball i's motion follows, where FloorFlow integrates it
+  /// (a free ball's, a rolling one's); false where its chord is the first-order one.
+  virtual bool flowLaw(const StepContext& c, std::size_t i, FloorFlow::Law& law) const = 0;
   virtual const Vec3& pull(const StepContext& c, std::size_t i) const = 0;
   virtual double chordSpeedSquared(const StepContext& c, std::size_t i, double rest, const Vec3& b) const = 0;
   /// Queues the end of ball i's phase where it falls within the step.

@@ -51,6 +51,11 @@ struct StepState::SpinPhase::Constrained final : StepState::SpinPhase
 struct StepState::SpinPhase::Frictionless final : StepState::SpinPhase
 {
   bool ownsMotion() const override { return true; }
+  bool flowLaw(const StepContext&, std::size_t, FloorFlow::Law& law) const override
+  {
+    law = FloorFlow::Law{};
+    return true;
+  }
   bool rollsAtCommit(const SpinMotion& sm) const override { return sm.kind == MotionKind::kRolling; }
 };
 
@@ -100,6 +105,16 @@ struct StepState::SpinPhase::Driven final : StepState::SpinPhase::Forced
   Vec3 velocity(const StepContext& w, std::size_t i, double x, const Vec3& position, const Vec3& normal) const override
   {
     return w.floor_motion_->phaseVelocity(w, i, x, position, normal);
+  }
+  /// (rolling: gravity's share 1 / (1 + k) and rolling resistance; a sliding ball's slip
+  /// turns its friction, and its chord is the first-order one)
+  bool flowLaw(const StepContext& w, std::size_t i, FloorFlow::Law& law) const override
+  {
+    if (w.spin_motions_[i].kind != MotionKind::kRolling)
+      return false;
+    law.share = 1 / (1 + w.spins_[i].inertia);
+    law.drag = w.scene_.friction->rolling;
+    return true;
   }
 };
 

@@ -55,6 +55,9 @@ struct StepState::SpinPhase
   {
     return w.pulledSpeedSquared(i, p);
   }
+  /// On a curved floor: the law FloorFlow integrates its motion by (false: the chord
+  /// under pull(), of first order).
+  virtual bool flowLaw(const StepContext&, std::size_t, FloorFlow::Law&) const { return false; }
   /// |v|^2 where ball i's chord b ends, `rest` of the step on (StepContext::EnergyCheck).
   virtual double chordSpeedSquared(const StepContext& w, std::size_t i, double rest, const Vec3& b) const;
   /// Its spin rolls the ball where it ends the step (under the normal there) ...

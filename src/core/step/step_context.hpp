@@ -111,6 +111,18 @@ public:
   {
     return predictedEnd(i, p, v, span, pullOf(i));
   }
+  /// On a curved floor: where ball i's chord from p at velocity v ends `span` seconds on,
+  /// at x_end, as its laws take it (FloorFlow) where its motion has a flow law
+  /// (SpinModel::flowLaw()), its velocity there kept (flow_ends_); else predictedEnd().
+  /// `on_kept_foot`: p is the centre over the foot point kept (guessOf(i)), as at the
+  /// step's start.
+  Vec3 chordTo(std::size_t i, const Vec3& p, const Vec3& v, double span, double x_end, bool on_kept_foot);
+  /// Ball i's velocity at x where its chord ends as its flow took it (at `position`, the
+  /// floor's normal there), into `v`; false where its chord is not a flow's or x is not
+  /// its end.
+  bool flowVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal, Vec3& v) const;
+  /// Ball i's chord ends at x where its laws took it (flow_ends_).
+  bool flowEndsAt(std::size_t i, double x) const { return !flow_ends_.empty() && flow_ends_[i].x == x; }
   Aabb currentBox(std::size_t i) const;
   /// Ball i's walls, pairs and motion ends queued anew; the pair with `done_with` left
   /// out (just found from that ball's side, with both motions as they are).
@@ -143,7 +155,8 @@ public:
   /// A chord of ball i (from `position` with start velocity v0) longer than the floor
   /// allows (Ground::longestChord()) is cut where it reaches that length, and ends there
   /// on the floor; the ball goes on from there by an event (queueCut(), resolveMotionEnd()).
-  void cutChord(std::size_t i, const Vec3& position, const Vec3& v0);
+  /// `start_foot`: the foot point under `position` where it is known (the step's start).
+  void cutChord(std::size_t i, const Vec3& position, const Vec3& v0, const Vec2* start_foot);
   void queueCut(std::size_t i);
   /// Queues the end of ball i's motion at x, for why it ends (an EventKind::kMotionEnd
   /// under the motion's epoch).

@@ -3,6 +3,7 @@
 // and solves per ball. StepContext (step_context.hpp) adds what reads and writes it.
 #pragma once
 
+#include "ball_collision_sim/core/floor_flow.hpp"
 #include "ball_collision_sim/core/world.hpp"
 
 #include <cassert>
@@ -158,6 +159,16 @@ struct StepState
   std::vector<Vec3> floor_normals_;
   std::vector<Vec2> floor_uv_;  ///< curved floors: each ball's last foot point, Newton's guess
   std::vector<double> chord_ends_;  ///< curved floors: where each ball's chord ends (chordEnd())
+  /// curved floors: where a ball's chord ends as its laws take it (FloorFlow), its
+  /// velocity there, and the x it holds at (-1: none; the chord is the first-order one)
+  struct FlowEnd
+  {
+    Vec3 velocity = Vec3::Zero();
+    Vec3 normal = Vec3::UnitZ();  ///< the floor's there
+    double x = -1.0;
+    bool keeps_energy = true;  ///< a law without drag: its speed is its energy's
+  };
+  std::vector<FlowEnd> flow_ends_;
   Vec2 no_foot_ = Vec2(0.5, 0.5);  ///< the foot point where the ground keeps none
   std::vector<CollisionEvent> events_;
   bool record_events_ = true;

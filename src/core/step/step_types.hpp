@@ -107,7 +107,12 @@ inline Vec3 StepContext::onFloorVelocity(std::size_t i, double x, const Vec3& po
 {
   const Motion& m = motions_[i];
   if (m.type == MotionType::kLine || m.type == MotionType::kPath)  // (a free line or path on the floor: the ground's)
+  {
+    Vec3 v;
+    if (!flow_ends_.empty() && flowVelocity(i, x, position, normal, v))
+      return v;  // (a chord's end on a curved floor, where its laws take it)
     return ground_.velocityAt(startVelocity(i), (x - m.x0) * dt_, startPosition(i), position, normal);
+  }
   return motionVelocity(i, x, position, normal);
 }
 
