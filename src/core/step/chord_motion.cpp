@@ -21,7 +21,7 @@ void StepState::ChordMotion::predict(StepContext& w, std::size_t i, const Vec3& 
   Motion& m = w.motions_[i];
   const Vec3& p0 = w.startPosition(i);
   const Vec2 foot = w.guessOf(i);  // (the kept foot point, under p0)
-  m.b = w.chordTo(i, p0, v, w.dt_, 1.0, true) - p0;
+  m.b = w.chordOver(i, p0, v, 0.0, 1.0, true);
   w.cutChord(i, p0, v, &foot);
   keepEnergy(w, i);
 }
@@ -29,8 +29,7 @@ void StepState::ChordMotion::predict(StepContext& w, std::size_t i, const Vec3& 
 void StepState::ChordMotion::start(StepContext& w, std::size_t i, double x, const Vec3& position, const Vec3& v0) const
 {
   Motion& m = w.motions_[i];
-  const double rest = 1 - x;
-  m.b = rest > 0 ? Vec3((w.chordTo(i, position, v0, rest * w.dt_, 1.0, false) - position) / rest) : Vec3(w.dt_ * v0);
+  m.b = w.chordOver(i, position, v0, x, 1.0, false);
   w.cutChord(i, position, v0, nullptr);
   keepEnergy(w, i);
 }
@@ -38,7 +37,8 @@ void StepState::ChordMotion::start(StepContext& w, std::size_t i, double x, cons
 void StepState::ChordMotion::keepEnergy(StepContext& w, std::size_t i)
 {
   const double rest = w.chordEnd(i) - w.motions_[i].x0;
-  if (w.motions_[i].frozen() || !(rest > 0))
+  // (a chord that ends where the ball's laws take it keeps its energy as they do)
+  if (w.motions_[i].frozen() || !(rest > 0) || !(w.flow_ends_[i].x < 0))
     return;
   const StepContext::EnergyCheck energy{&w, i, rest};
   // (the chord's own end is what counts: one cut short of where its energy runs out
@@ -199,14 +199,15 @@ double StepState::ChordMotion::speedSquaredAt(const StepContext& w, std::size_t 
 Vec3 StepState::ChordMotion::spinThere(const StepContext& w, std::size_t i, double x, const Vec3& normal, const Vec3& v,
                                        const Vec3& spin, bool rolling) const
 {
+  // Where its chord ends as its laws took it: a sliding ball's spin is the flow's, a
+  // rolling one's rolling's for the velocity there with the flow's spin about the normal
+  // (the law's (1 + k) counted its energy).
+  if (w.flowEndsAt(i, x))
+    return rolling ? Vec3(normal.cross(v) / w.balls_[i].radius + w.flow_ends_[i].spin_n * normal)
+                   : w.flow_ends_[i].spin;
   if (!rolling)
     return spin;
   const double wn = spin.dot(w.spin_motions_[i].normal);
-  // Where its chord ends as its laws took it, its spin along the floor is rolling's for
-  // the velocity there, and its spin about the normal is carried over: the law's (1 + k)
-  // counted that spin's energy.
-  if (!w.flow_ends_.empty() && w.flow_ends_[i].x == x)
-    return normal.cross(v) / w.balls_[i].radius + wn * normal;
   // (elsewhere a rolling ball rolls with the velocity its energy gives it there, under
   // the normal there)
   return lawUnder(w, normal).rollingSpin(w.balls_[i].radius, v, spin, wn);

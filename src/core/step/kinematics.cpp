@@ -153,36 +153,63 @@ void StepContext::cutChord(std::size_t i, const Vec3& position, const Vec3& v0, 
   chord_ends_[i] = m.x0 + span;
   if (start_foot)
     guessOf(i) = *start_foot;  // (the uncut chord's end moved the kept foot point)
-  m.b = (chordTo(i, position, v0, span * dt_, chord_ends_[i], start_foot != nullptr) - position) / span;
+  m.b = chordOver(i, position, v0, m.x0, chord_ends_[i], start_foot != nullptr);
 }
 
-Vec3 StepContext::chordTo(std::size_t i, const Vec3& p, const Vec3& v, double span, double x_end, bool on_kept_foot)
+Vec3 StepContext::chordOver(std::size_t i, const Vec3& p, const Vec3& v, double x0, double x1, bool on_kept_foot)
 {
   FloorFlow::Law law;
   FlowEnd& end = flow_ends_[i];
   end.x = -1.0;
+  const double span = x1 - x0;
   if (!spin_->flowLaw(*this, i, law) || !(span > 0))
-    return predictedEnd(i, p, v, span);
+    return span > 0 ? Vec3((predictedEnd(i, p, v, span * dt_) - p) / span) : Vec3(dt_ * v);
   // from the foot point under p (a start part way along a chord lies off the floor by
   // its sag; at the step's start the ball is over its kept foot point), at v (whose
-  // part along the floor there is what counts)
+  // part along the floor there is what counts), with its spin
   const double r = balls_[i].radius;
   Vec2& foot = guessOf(i);
   if (!on_kept_foot)
     ground_.landKeepingFoot(p, r, foot);
   FloorFlow::State state{foot, v};
+  if (!spin_motions_.empty())
+  {
+    // (a free ball's spin stays as it is; a rolling or sliding one's in its parts about
+    // the normal and along the floor)
+    const SpinMotion& sm = spin_motions_[i];
+    state.spin = sm.w0;
+    if (law.kind != FloorFlow::Kind::kFree)
+    {
+      state.spin_n = sm.w0.dot(sm.normal);
+      state.spin -= state.spin_n * sm.normal;
+      // (a spin about the normal that the phase's start took for round-off is none:
+      // FrictionLaw::start() left it at that)
+      if (!(std::abs(state.spin_n) * r > settings_.resting_speed_floor))
+        state.spin_n = 0.0;
+    }
+  }
   const Floor& floor = *ground_.floor();
   const double k = floor.maxCurvature();
   const double bend = r * k < 1 ? k / (1 - r * k) : k;  // (the centres' surface bends more in a hollow)
   const FloorFlow flow(floor, gravity_, r);
-  const Vec3 centre =
-      flow.advance(state, span, FloorFlow::substepsFor(span, v.norm(), bend, gravity_.norm(), settings_.flow_turn), law,
-                   end.normal);
+  const int substeps = FloorFlow::substepsFor(span * dt_, v.norm(), bend, gravity_.norm(), settings_.flow_turn);
+  const FloorFlow::End reached =
+      flow.advance(state, span * dt_, substeps, law, settings_.slip_turn, settings_.flow_step_cap);
   foot = state.foot;
   end.velocity = state.velocity;
-  end.x = x_end;
-  end.keeps_energy = !(law.drag > 0);
-  return centre;
+  end.normal = reached.normal;
+  end.spin = law.kind == FloorFlow::Kind::kSliding ? Vec3(state.spin + state.spin_n * reached.normal) : state.spin;
+  end.spin_n = state.spin_n;
+  end.keeps_energy = law.kind == FloorFlow::Kind::kFree || (law.kind == FloorFlow::Kind::kRolling && !(law.rolling > 0));
+  // (where its phase ends on the way, its chord ends there: the phase's end, an event)
+  end.x = reached.ends == kPhaseRuns ? x1 : x0 + reached.time / dt_;
+  if (law.kind != FloorFlow::Kind::kFree)
+  {
+    SpinMotion& sm = spin_motions_[i];
+    sm.x_end = reached.ends == kPhaseRuns ? 2.0 : end.x;
+    sm.ends = reached.ends;
+  }
+  return end.x > x0 ? Vec3((reached.centre - p) / (end.x - x0)) : Vec3(dt_ * v);
 }
 
 bool StepContext::flowVelocity(std::size_t i, double x, const Vec3& position, const Vec3& normal, Vec3& v) const

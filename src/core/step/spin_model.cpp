@@ -259,6 +259,7 @@ struct FrictionSpin final : StepState::SpinModel
         sm.kind = MotionKind::kRolling;  // (its slip is gone: it rolls, or finds it cannot)
     }
     sm.w0 = w;
+    sm.normal = normal;  // (the spin there is under the normal there: rollOn())
   }
   void takeOff(StepContext& c, std::size_t i, double x, const Vec3& normal, const Vec3& v) const override
   {

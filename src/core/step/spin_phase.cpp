@@ -53,7 +53,7 @@ struct StepState::SpinPhase::Frictionless final : StepState::SpinPhase
   bool ownsMotion() const override { return true; }
   bool flowLaw(const StepContext&, std::size_t, FloorFlow::Law& law) const override
   {
-    law = FloorFlow::Law{};
+    law = FloorFlow::Law{};  // (its spin stays; its spin's end about the normal is the phase's)
     return true;
   }
   bool rollsAtCommit(const SpinMotion& sm) const override { return sm.kind == MotionKind::kRolling; }
@@ -106,14 +106,17 @@ struct StepState::SpinPhase::Driven final : StepState::SpinPhase::Forced
   {
     return w.floor_motion_->phaseVelocity(w, i, x, position, normal);
   }
-  /// (rolling: gravity's share 1 / (1 + k) and rolling resistance; a sliding ball's slip
-  /// turns its friction, and its chord is the first-order one)
+  /// (sliding or rolling, under the scene's coefficients)
   bool flowLaw(const StepContext& w, std::size_t i, FloorFlow::Law& law) const override
   {
-    if (w.spin_motions_[i].kind != MotionKind::kRolling)
+    const MotionKind kind = w.spin_motions_[i].kind;
+    if (kind != MotionKind::kRolling && kind != MotionKind::kSliding)
       return false;
-    law.share = 1 / (1 + w.spins_[i].inertia);
-    law.drag = w.scene_.friction->rolling;
+    law.kind = kind == MotionKind::kRolling ? FloorFlow::Kind::kRolling : FloorFlow::Kind::kSliding;
+    law.inertia = w.spins_[i].inertia;
+    law.rolling = w.scene_.friction->rolling;
+    law.sliding = w.scene_.friction->sliding;
+    law.spinning = w.scene_.friction->spinning;
     return true;
   }
 };

@@ -111,12 +111,13 @@ public:
   {
     return predictedEnd(i, p, v, span, pullOf(i));
   }
-  /// On a curved floor: where ball i's chord from p at velocity v ends `span` seconds on,
-  /// at x_end, as its laws take it (FloorFlow) where its motion has a flow law
-  /// (SpinModel::flowLaw()), its velocity there kept (flow_ends_); else predictedEnd().
-  /// `on_kept_foot`: p is the centre over the foot point kept (guessOf(i)), as at the
-  /// step's start.
-  Vec3 chordTo(std::size_t i, const Vec3& p, const Vec3& v, double span, double x_end, bool on_kept_foot);
+  /// On a curved floor: ball i's chord from p at x0 with velocity v to x1, as a
+  /// displacement per unit of x. Where its motion has a flow law (SpinModel::flowLaw())
+  /// the chord ends where its laws take it (FloorFlow), or where its phase ends on the way
+  /// (then SpinMotion::x_end), and its state there is kept (flow_ends_); else its end is
+  /// predictedEnd()'s. `on_kept_foot`: p is the centre over the foot point kept
+  /// (guessOf(i)), as at the step's start.
+  Vec3 chordOver(std::size_t i, const Vec3& p, const Vec3& v, double x0, double x1, bool on_kept_foot);
   /// Ball i's velocity at x where its chord ends as its flow took it (at `position`, the
   /// floor's normal there), into `v`; false where its chord is not a flow's or x is not
   /// its end.

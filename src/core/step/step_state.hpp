@@ -165,6 +165,8 @@ struct StepState
   {
     Vec3 velocity = Vec3::Zero();
     Vec3 normal = Vec3::UnitZ();  ///< the floor's there
+    Vec3 spin = Vec3::Zero();     ///< sliding, free: the spin there
+    double spin_n = 0.0;          ///< rolling: the spin about the normal there
     double x = -1.0;
     bool keeps_energy = true;  ///< a law without drag: its speed is its energy's
   };
