@@ -94,6 +94,16 @@ inline FloorDef dome()
   return f;
 }
 
+/// A friction block of these coefficients (the others 0).
+inline core::FrictionDef friction(double sliding, double rolling, double spinning = 0.0)
+{
+  core::FrictionDef f;
+  f.sliding = sliding;
+  f.rolling = rolling;
+  f.spinning = spinning;
+  return f;
+}
+
 /// Friction for piles in a bowl (sliding 0.2, rolling resistance 0.01, spinning 0.044):
 /// what takes their energy as they come to rest. The test bowls are paraboloids, where a
 /// frictionless pile's centre of mass swings as one body for good (every ball is pulled
@@ -101,11 +111,7 @@ inline FloorDef dome()
 /// pile closes for that motion).
 inline core::FrictionDef pileFriction()
 {
-  core::FrictionDef f;
-  f.sliding = 0.2;
-  f.rolling = 0.01;
-  f.spinning = 0.044;
-  return f;
+  return friction(0.2, 0.01, 0.044);
 }
 
 /// 60 balls (radius 0.05-0.08 m, 0.5-2 kg, up to 1 m/s) dropped in a 3 m square bowl

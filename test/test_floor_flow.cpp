@@ -271,10 +271,7 @@ TEST_P(WorldOnCurvedFloors, WithinAMicrometreAfterOneSecond)
   b.velocity = start.velocity;
   if (c.friction)
   {
-    FrictionDef f;
-    f.sliding = 0.5;
-    f.rolling = 0.01;
-    scene.friction = f;
+    scene.friction = friction(0.5, 0.01);
     b.inertia = k;  // (its spin: rolling's, n x v / r)
   }
   scene.balls = {b};
@@ -453,10 +450,7 @@ TEST_P(SlidingOnCurvedFloors, SlipsEndAndRollAsTheReference)
   const double r = 0.05, k = kSolidInertia;
   Scene scene;
   scene.floor = c.floor;
-  FrictionDef f;
-  f.sliding = 0.2;
-  f.rolling = 0.01;
-  f.spinning = 0.044;
+  const FrictionDef f = pileFriction();
   scene.friction = f;
   const Floor floor(c.floor, kGravity);
   const FloorFlow flow(floor, kGravity, r);

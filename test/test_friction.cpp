@@ -19,15 +19,6 @@ namespace
 {
 constexpr double kG = 9.81;
 
-FrictionDef friction(double sliding, double rolling, double spinning = 0.0)
-{
-  FrictionDef f;
-  f.sliding = sliding;
-  f.rolling = rolling;
-  f.spinning = spinning;
-  return f;
-}
-
 /// A level floor [x0, x1] x [-1, 1] with friction, no walls.
 Scene table(const FrictionDef& f, double x0 = -2, double x1 = 14)
 {

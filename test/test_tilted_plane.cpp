@@ -147,15 +147,6 @@ TEST(TurningDrag, TerminalSpeedAndTheFallLine)
   EXPECT_NEAR(integral.y(), 1.2 * 0.1 - 3.0 * 0.01, 1e-15);
 }
 
-FrictionDef friction(double sliding, double rolling, double spinning = 0.0)
-{
-  FrictionDef f;
-  f.sliding = sliding;
-  f.rolling = rolling;
-  f.spinning = spinning;
-  return f;
-}
-
 /// A plane through the origin tilted by `tilt` degrees, falling toward azimuth `azimuth`
 /// degrees, 20 m square; its downhill and across directions and normal.
 struct Tilted
