@@ -42,6 +42,10 @@ public:
     double rolling = 0.0;   ///< mu_r
     double sliding = 0.0;   ///< mu_s
     double spinning = 0.0;  ///< mu_sp
+
+    /// No drag takes energy: a free ball's law, or a rolling one's without rolling
+    /// resistance (its speed is then its energy's).
+    bool keepsEnergy() const { return kind == Kind::kFree || (kind == Kind::kRolling && !(rolling > 0)); }
   };
   struct State
   {

@@ -200,7 +200,6 @@ Vec3 StepContext::chordOver(std::size_t i, const Vec3& p, const Vec3& v, double 
   end.normal = reached.normal;
   end.spin = law.kind == FloorFlow::Kind::kSliding ? Vec3(state.spin + state.spin_n * reached.normal) : state.spin;
   end.spin_n = state.spin_n;
-  end.keeps_energy = law.kind == FloorFlow::Kind::kFree || (law.kind == FloorFlow::Kind::kRolling && !(law.rolling > 0));
   // (where its phase ends on the way, its chord ends there: the phase's end, an event)
   end.x = reached.ends == kPhaseRuns ? x1 : x0 + reached.time / dt_;
   if (law.kind != FloorFlow::Kind::kFree)
@@ -219,7 +218,9 @@ bool StepContext::flowVelocity(std::size_t i, double x, const Vec3& position, co
   const FlowEnd& end = flow_ends_[i];
   // (without drag its speed is its energy's, as a chord's is: no energy made or lost to
   // the integration's round-off)
-  v = end.keeps_energy ? ground_.withSpeedSquared(ground_.along(end.velocity, normal), speedSquaredAt(i, x, position))
+  FloorFlow::Law law;
+  spin_->flowLaw(*this, i, law);  // (the law the flow followed: the motion's, unchanged since)
+  v = law.keepsEnergy() ? ground_.withSpeedSquared(ground_.along(end.velocity, normal), speedSquaredAt(i, x, position))
                        : ground_.along(end.velocity, normal);
   return true;
 }

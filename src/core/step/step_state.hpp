@@ -168,7 +168,6 @@ struct StepState
     Vec3 spin = Vec3::Zero();     ///< sliding, free: the spin there
     double spin_n = 0.0;          ///< rolling: the spin about the normal there
     double x = -1.0;
-    bool keeps_energy = true;  ///< a law without drag: its speed is its energy's
   };
   std::vector<FlowEnd> flow_ends_;
   Vec2 no_foot_ = Vec2(0.5, 0.5);  ///< the foot point where the ground keeps none
