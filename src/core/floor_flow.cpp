@@ -132,13 +132,13 @@ double FloorFlow::timeToEnd(const State& s, const Law& law, const Rates& d, std:
       which = end;
     }
   };
-  const double size = d.q.norm();
   if (law.kind == Kind::kFree)
     return kNever;
-  if (size > 0 && (law.kind == Kind::kSliding || law.rolling > 0))
+  // (the slip's end, or the ball's stop: also a rolling ball's without rolling
+  // resistance, at a turning point where its speed falls to zero)
+  const double size = d.q.norm();
+  if (size > 0)
     consider(size, -d.q.dot(d.q_rate) / size, law.kind == Kind::kSliding ? kSlipStops : kBallStops);
-  else if (size > 0)
-    consider(size, -d.q.dot(d.q_rate) / size, kBallStops);
   consider(std::abs(s.spin_n), d.spin_n_rate, kSpinStops);
   return best;
 }
