@@ -118,7 +118,9 @@ void StepContext::settleRestingVelocities()
     // the impulses across the contacts may leave a velocity a part along the floor's
     // normal, which the floor takes (where speeds are the energy's, it keeps the speed)
     const std::size_t i = group.ballAt(k);
+    const Vec3 before = balls_[i].velocity;
     balls_[i].velocity = ground_.turned(group.u[k], ground_.along(group.u[k], floor_normals_[i]));
+    spin_->settle(*this, i, balls_[i].velocity - before, floor_normals_[i]);
   }
 }
 

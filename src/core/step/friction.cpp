@@ -124,10 +124,17 @@ void StepContext::constrainSpin(std::size_t i)
   sm.phase = &SpinPhase::constrained();
 }
 
+void StepContext::rollSpin(std::size_t i)
+{
+  constrainSpin(i);  // (for its spin about the normal)
+  spin_motions_[i].phase = &SpinPhase::rolled();
+}
+
 Vec3 StepContext::spinAtEvent(std::size_t i, double x, const Vec3& normal, const Vec3& v) const
 {
   const SpinMotion& sm = spin_motions_[i];
-  return floor_motion_->spinThere(*this, i, x, normal, v, spinAt(i, x), sm.phase->rollsAtEvent(sm));
+  const Vec3 spin = sm.phase->spinWith(sm, (x - motions_[i].x0) * dt_, balls_[i].radius, normal, v);
+  return floor_motion_->spinThere(*this, i, x, normal, v, spin, sm.phase->rollsAtEvent(sm));
 }
 
 Vec3 StepContext::spinAt(std::size_t i, double x) const

@@ -280,7 +280,7 @@ void StepContext::finishGroup(double x, double span)
     motions_[b].become(MotionType::kGrouped);
     if (member_rolls_[m])
       spin_motions_[b].w0 = n.cross(v) / balls_[b].radius + spin_about_n;
-    spin_->followGroup(*this, b);
+    spin_->followGroup(*this, b, member_rolls_[m]);
     if (x > 0)
     {
       renewMotion(b);

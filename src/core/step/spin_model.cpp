@@ -62,7 +62,7 @@ struct RollingSpin final : StepState::SpinModel
   }
   void hold(StepContext&, std::size_t) const override {}
   void cap(StepContext&, std::size_t) const override {}
-  void followGroup(StepContext&, std::size_t) const override {}
+  void followGroup(StepContext&, std::size_t, bool) const override {}
   void stop(StepContext&, std::size_t) const override {}
   void startFlight(StepContext&, std::size_t) const override {}
   void liftOff(StepContext& c, std::size_t i, double x, bool flew) const override
@@ -115,6 +115,7 @@ struct RollingSpin final : StepState::SpinModel
   void addSpinEnergies(const StepContext&, std::vector<double>&) const override {}
   void scaleSpin(StepContext&, std::size_t, double) const override {}
   bool rollsInGroup(const StepContext&, std::size_t, const Vec3&) const override { return false; }
+  void settle(StepContext&, std::size_t, const Vec3&, const Vec3&) const override {}
 };
 
 /// Friction: each ball's own spin, and its phase in the step.
@@ -209,7 +210,13 @@ struct FrictionSpin final : StepState::SpinModel
     c.keepSpin(i);
     c.spin_motions_[i].w0 = Vec3::Zero();  // (no motion at all, and no energy made)
   }
-  void followGroup(StepContext& c, std::size_t i) const override { c.constrainSpin(i); }
+  void followGroup(StepContext& c, std::size_t i, bool rolls) const override
+  {
+    if (rolls)
+      c.rollSpin(i);
+    else
+      c.constrainSpin(i);
+  }
   void stop(StepContext& c, std::size_t i) const override
   {
     // (a ball whose phase does not make its motion keeps what spin it has)
@@ -314,9 +321,12 @@ struct FrictionSpin final : StepState::SpinModel
     SpinMotion& sm = c.spin_motions_[i];
     BallSpin& spin = c.spins_[i];
     // (a rolling ball rolls under the normal where it ends)
-    const Vec3 w = ball.flying() ? c.spinAt(i, 1.0)
-                               : c.floor_motion_->spinThere(c, i, 1.0, end.normal, ball.velocity, c.spinAt(i, 1.0),
-                                                            sm.phase->rollsAtCommit(sm));
+    const Vec3 w = ball.flying()
+                       ? c.spinAt(i, 1.0)
+                       : c.floor_motion_->spinThere(
+                             c, i, 1.0, end.normal, ball.velocity,
+                             sm.phase->spinWith(sm, (1.0 - c.motions_[i].x0) * c.dt_, ball.radius, end.normal, ball.velocity),
+                             sm.phase->rollsAtCommit(sm));
     sm.turn = (0.5 * c.dt_) * (spin.angular_velocity + w);
     spin.angular_velocity = w;
     sm.kind = ball.flying() ? MotionKind::kFlying : sm.phase->kindAtEnd(c, i, sm, end.normal, ball.velocity, w);
@@ -348,6 +358,11 @@ struct FrictionSpin final : StepState::SpinModel
   bool rollsInGroup(const StepContext& c, std::size_t i, const Vec3& n) const override
   {
     return c.frictionUnder(n).holdsRolling(c.spins_[i].inertia);
+  }
+  void settle(StepContext& c, std::size_t i, const Vec3& change, const Vec3& normal) const override
+  {
+    if (rollsInGroup(c, i, normal))
+      c.spins_[i].angular_velocity += normal.cross(change) / c.balls_[i].radius;
   }
 };
 

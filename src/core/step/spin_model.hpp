@@ -62,8 +62,9 @@ struct StepState::SpinModel
   virtual void hold(StepContext& c, std::size_t i) const = 0;
   /// The event cap stopped ball i for the rest of the step, spin and all.
   virtual void cap(StepContext& c, std::size_t i) const = 0;
-  /// Ball i's motion is its resting group's; or it stopped where its energy ran out.
-  virtual void followGroup(StepContext& c, std::size_t i) const = 0;
+  /// Ball i's motion is its resting group's, in which it rolls (`rolls`: the group moved it
+  /// as a rolling mass) or not; or it stopped where its energy ran out.
+  virtual void followGroup(StepContext& c, std::size_t i, bool rolls) const = 0;
   virtual void stop(StepContext& c, std::size_t i) const = 0;
   /// Ball i flies from now in the step (startFlight()), or leaves the floor at x (liftOff(),
   /// `flew`: it was in flight already).
@@ -108,6 +109,10 @@ struct StepState::SpinModel
   virtual double spinEnergy(const StepContext& c, std::size_t i) const = 0;
   /// energies[i] += spinEnergy(i) for every ball.
   virtual void addSpinEnergies(const StepContext& c, std::vector<double>& energies) const = 0;
+  /// The step's end changed ball i's velocity by `change` across its resting contacts
+  /// (settleRestingVelocities()), on the floor with this normal: where the contacts move
+  /// it as a rolling mass, the floor's grip turns its spin with it and its slip stays.
+  virtual void settle(StepContext& c, std::size_t i, const Vec3& change, const Vec3& normal) const = 0;
   virtual void scaleSpin(StepContext& c, std::size_t i, double scale) const = 0;
   /// Ball i in a resting group under the floor's normal n rolls (friction holds it so).
   virtual bool rollsInGroup(const StepContext& c, std::size_t i, const Vec3& n) const = 0;

@@ -1,5 +1,5 @@
-// The five ways a ball's motion and spin go within the step under friction
-// (StepState::SpinPhase): kept, constrained, frictionless, still, driven, turning.
+// The ways a ball's motion and spin go within the step under friction
+// (StepState::SpinPhase): kept, constrained, rolled, frictionless, still, driven, turning.
 // Reads motions_, spin_motions_, the start velocities, chord ends, gravity and the
 // ground; starting a phase writes the ball's motion (through the floor's motion type,
 // floor_motion_, where it depends on the floor).
@@ -39,6 +39,25 @@ struct StepState::SpinPhase::Constrained final : StepState::SpinPhase
   Vec3 spinAt(const SpinMotion& sm, double t) const override
   {
     return sm.w0 + std::min(t, sm.along_time) * sm.alpha + (std::min(t, sm.normal_time) * sm.normal_rate) * sm.normal;
+  }
+  MotionKind kindAtEnd(const StepContext& w, std::size_t i, const SpinMotion&, const Vec3& normal, const Vec3& v,
+                       const Vec3& spin) const override
+  {
+    return w.frictionUnder(normal).constrainedKind(w.balls_[i].radius, v, spin);
+  }
+};
+
+/// Rolled: its spin along the floor is rolling's for its velocity, wherever an event or
+/// the step's end finds it; about the normal it falls as a constrained one's.
+struct StepState::SpinPhase::Rolled final : StepState::SpinPhase
+{
+  Vec3 spinAt(const SpinMotion& sm, double t) const override
+  {
+    return sm.w0 + (std::min(t, sm.normal_time) * sm.normal_rate) * sm.normal;
+  }
+  Vec3 spinWith(const SpinMotion& sm, double t, double r, const Vec3& normal, const Vec3& v) const override
+  {
+    return normal.cross(v) / r + spinAt(sm, t).dot(sm.normal) * normal;
   }
   MotionKind kindAtEnd(const StepContext& w, std::size_t i, const SpinMotion&, const Vec3& normal, const Vec3& v,
                        const Vec3& spin) const override
@@ -172,6 +191,12 @@ const StepState::SpinPhase& StepState::SpinPhase::kept()
 const StepState::SpinPhase& StepState::SpinPhase::constrained()
 {
   static const Constrained phase;
+  return phase;
+}
+
+const StepState::SpinPhase& StepState::SpinPhase::rolled()
+{
+  static const Rolled phase;
   return phase;
 }
 

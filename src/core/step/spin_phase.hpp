@@ -1,9 +1,12 @@
 // How a ball's motion and spin go within the step in a world with friction, as a type
 // (SpinMotion::phase): what depends on it is asked of the type, not branched on in the
-// step's stages. Five types:
+// step's stages. The types:
 // - Kept: no motion of its own (frozen by the event cap, or asleep); its spin stays.
 // - Constrained: its contacts decide its motion (held, or kept out of blocked
 //   directions); friction acts on its spin only (FrictionLaw::constrained()).
+// - Rolled: a resting group's member that the group moves as a rolling mass (its floor
+//   friction holds rolling): it rolls with the group's velocity wherever it is, under the
+//   normal there; its spin about the normal dies as a constrained one's.
 // - Frictionless: a friction phase without friction force; its velocity is a
 //   frictionless ball's.
 // - Still: a phase that holds the ball where it is (spinning or stationary); no share of
@@ -25,6 +28,7 @@ struct StepState::SpinPhase
   virtual ~SpinPhase() = default;
   static const SpinPhase& kept();
   static const SpinPhase& constrained();
+  static const SpinPhase& rolled();
   /// The phase `start` found on the floor whose motion type is `floor`: frictionless,
   /// still, driven, or turning.
   static const SpinPhase& of(const FrictionPhase& start, const FloorMotion& floor);
@@ -38,6 +42,12 @@ struct StepState::SpinPhase
   virtual bool ownsMotion() const { return false; }
   /// The ball's spin t seconds into its motion.
   virtual Vec3 spinAt(const SpinMotion& sm, double t) const { return sm.w0 + t * sm.alpha; }
+  /// ... where its velocity is then v, under `normal` (a ball of radius r): spinAt()'s,
+  /// but for a phase whose spin follows its velocity.
+  virtual Vec3 spinWith(const SpinMotion& sm, double t, double, const Vec3&, const Vec3&) const
+  {
+    return spinAt(sm, t);
+  }
   /// Gives ball i the motion of its new phase under `law` (StepContext::startFriction()); true
   /// where the caller is to give it a frictionless ball's motion, or the chord under
   /// SpinMotion::pull on a curved floor.
@@ -74,6 +84,7 @@ struct StepState::SpinPhase
 private:
   struct Kept;
   struct Constrained;
+  struct Rolled;
   struct Frictionless;
   struct Forced;
   struct Still;

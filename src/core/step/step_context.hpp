@@ -327,6 +327,8 @@ public:
   /// Ball i's motion from its start on is not its phase's (its group's, or stopped where
   /// its energy ran out): its spin follows FrictionLaw::constrained().
   void constrainSpin(std::size_t i);
+  /// ... or its group's, which moves it as a rolling mass: its spin rolls with it.
+  void rollSpin(std::size_t i);
   /// Records a transition at x where ball i's kind is not the one last reported.
   void recordKind(std::size_t i, double x);
   Vec3 spinAt(std::size_t i, double x) const;
