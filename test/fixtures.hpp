@@ -30,14 +30,14 @@ inline Scene flatScene(double x0 = -2, double x1 = 2, double y0 = -2, double y1 
   return s;
 }
 
-/// Four walls of the given height around [x0, x1] x [y0, y1], standing on z = 0.
-inline void addBox(Scene& s, double x0, double x1, double y0, double y1, double height = 0.5)
+/// Four walls of the given height around [x0, x1] x [y0, y1], standing on z = base.
+inline void addBox(Scene& s, double x0, double x1, double y0, double y1, double height = 0.5, double base = 0.0)
 {
   const double w = x1 - x0, d = y1 - y0;
-  s.walls.push_back({Vec3(x0, y0, 0), Vec3(w, 0, 0), Vec3(0, 0, height), {}});
-  s.walls.push_back({Vec3(x0, y1, 0), Vec3(w, 0, 0), Vec3(0, 0, height), {}});
-  s.walls.push_back({Vec3(x0, y0, 0), Vec3(0, d, 0), Vec3(0, 0, height), {}});
-  s.walls.push_back({Vec3(x1, y0, 0), Vec3(0, d, 0), Vec3(0, 0, height), {}});
+  s.walls.push_back({Vec3(x0, y0, base), Vec3(w, 0, 0), Vec3(0, 0, height), {}});
+  s.walls.push_back({Vec3(x0, y1, base), Vec3(w, 0, 0), Vec3(0, 0, height), {}});
+  s.walls.push_back({Vec3(x0, y0, base), Vec3(0, d, 0), Vec3(0, 0, height), {}});
+  s.walls.push_back({Vec3(x1, y0, base), Vec3(0, d, 0), Vec3(0, 0, height), {}});
 }
 
 inline BallDef ball(double x, double y, double vx, double vy, double radius = 0.1, double mass = 1.0)
@@ -75,6 +75,19 @@ inline FloorDef bowl(double L, double h)
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       f.control_points[i][j] = Vec3(c[i], c[j], z[i] + z[j]);
+  return f;
+}
+
+/// The saddle z = (x^2 - y^2) h / 4 over [-2, 2]^2 (control z = f_i - f_j, f = (h, -h, h)).
+inline FloorDef saddle(double h)
+{
+  FloorDef f;
+  f.type = FloorDef::Type::kBiquadratic;
+  const double c[3] = {-2, 0, 2};
+  const double z[3] = {h, -h, h};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      f.control_points[i][j] = Vec3(c[i], c[j], z[i] - z[j]);
   return f;
 }
 

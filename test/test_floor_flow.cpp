@@ -19,19 +19,6 @@ namespace
 constexpr double kG = 9.81;
 const Vec3 kGravity(0, 0, -kG);
 
-/// The saddle z = (x^2 - y^2) h / 4 over [-2, 2]^2 (control z = f_i - f_j, f = (h, -h, h)).
-FloorDef saddle(double h)
-{
-  FloorDef f;
-  f.type = FloorDef::Type::kBiquadratic;
-  const double c[3] = {-2, 0, 2};
-  const double z[3] = {h, -h, h};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      f.control_points[i][j] = Vec3(c[i], c[j], z[i] - z[j]);
-  return f;
-}
-
 /// The flow's own law once more, in long double, from the floor's derivatives: a
 /// reference integrated by classical Runge-Kutta at many more, shorter steps.
 struct Reference

@@ -173,11 +173,21 @@ FrictionLaw::ConstrainedSpin FrictionLaw::constrained(double k, double r, const 
   return out;
 }
 
+bool FrictionLaw::slipsBeyondContacts(double r, const Vec3& v, const Vec3& w) const
+{
+  const Vec3 gap = w - w.dot(normal_) * normal_ - normal_.cross(v) / r;
+  return r * gap.norm() > std::max(slip_tolerance_ * speeds(r, v, w), still_speed_);
+}
+
+Vec3 FrictionLaw::settled(double r, const Vec3& v, const Vec3& w) const
+{
+  return slipsBeyondContacts(r, v, w) ? w : Vec3(normal_.cross(v) / r + w.dot(normal_) * normal_);
+}
+
 MotionKind FrictionLaw::constrainedKind(double r, const Vec3& v, const Vec3& w) const
 {
   const double wn = w.dot(normal_);
-  const Vec3 gap = w - wn * normal_ - normal_.cross(v) / r;
-  if (gap.norm() > slip_tolerance_ * speeds(r, v, w) / r)
+  if (slipsBeyondContacts(r, v, w))
     return MotionKind::kSliding;
   if (v != Vec3::Zero())
     return MotionKind::kRolling;

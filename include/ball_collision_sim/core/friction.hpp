@@ -121,8 +121,12 @@ public:
     double normal_time = 0.0;        ///< [s]
   };
   ConstrainedSpin constrained(double k, double r, const Vec3& v, Vec3& w) const;
-  /// The kind of a ball whose contacts decide its motion, from its velocity and spin.
+  /// The kind of a ball whose contacts decide its motion, from its velocity and spin: its
+  /// contacts settle velocities to the still speed, and a slip below that is theirs ...
   MotionKind constrainedKind(double r, const Vec3& v, const Vec3& w) const;
+  /// ... and its spin w with such a slip taken away (rolling's, its spin about the
+  /// normal kept); a larger slip is friction's to take.
+  Vec3 settled(double r, const Vec3& v, const Vec3& w) const;
   /// Rolling's spin for velocity v: n x v / r, and about n the spin wn, cut where it would
   /// make |w| larger than the spin w it replaces; w itself where n x v / r alone would
   /// (the velocity changed since w was rolling's: a slip).
@@ -160,6 +164,8 @@ public:
   bool grips() const { return mu_.sliding > 0; }
 
 private:
+  /// A constrained ball's slip is more than its contacts resolve (constrainedKind()).
+  bool slipsBeyondContacts(double r, const Vec3& v, const Vec3& w) const;
   /// Removes slip u by the impulse at the contact point that stops it.
   void stick(double k, double r, Vec3& v, Vec3& w) const;
   FrictionPhase sliding(double k, double r, const Vec3& u_direction, double u_norm) const;

@@ -133,7 +133,7 @@ void StepContext::rollSpin(std::size_t i)
 Vec3 StepContext::spinAtEvent(std::size_t i, double x, const Vec3& normal, const Vec3& v) const
 {
   const SpinMotion& sm = spin_motions_[i];
-  const Vec3 spin = sm.phase->spinWith(sm, (x - motions_[i].x0) * dt_, balls_[i].radius, normal, v);
+  const Vec3 spin = sm.phase->spinWith(*this, i, x, normal, v);
   return floor_motion_->spinThere(*this, i, x, normal, v, spin, sm.phase->rollsAtEvent(sm));
 }
 

@@ -325,12 +325,12 @@ struct FrictionSpin final : StepState::SpinModel
                        ? c.spinAt(i, 1.0)
                        : c.floor_motion_->spinThere(
                              c, i, 1.0, end.normal, ball.velocity,
-                             sm.phase->spinWith(sm, (1.0 - c.motions_[i].x0) * c.dt_, ball.radius, end.normal, ball.velocity),
+                             sm.phase->spinWith(c, i, 1.0, end.normal, ball.velocity),
                              sm.phase->rollsAtCommit(sm));
     sm.turn = (0.5 * c.dt_) * (spin.angular_velocity + w);
     spin.angular_velocity = w;
     sm.kind = ball.flying() ? MotionKind::kFlying : sm.phase->kindAtEnd(c, i, sm, end.normal, ball.velocity, w);
-    c.recordKind(i, c.motions_[i].x0);  // (a kind the step's events did not report)
+    c.recordKind(i, sm.phase->kindFrom(c, i, sm));  // (a kind the step's events did not report)
     spin.kind = sm.kind;
   }
   void roll(StepContext& c, std::size_t i, const Vec3&, const Vec3&) const override
@@ -357,7 +357,9 @@ struct FrictionSpin final : StepState::SpinModel
   }
   bool rollsInGroup(const StepContext& c, std::size_t i, const Vec3& n) const override
   {
-    return c.frictionUnder(n).holdsRolling(c.spins_[i].inertia);
+    // (a ball that slips goes on slipping: its contacts move it as a mass, and its
+    // spin follows friction, FrictionLaw::constrained(), until its slip ends)
+    return c.spin_motions_[i].kind != MotionKind::kSliding && c.frictionUnder(n).holdsRolling(c.spins_[i].inertia);
   }
   void settle(StepContext& c, std::size_t i, const Vec3& change, const Vec3& normal) const override
   {

@@ -15,6 +15,16 @@ Vec3 StepState::SpinPhase::velocity(const StepContext& w, std::size_t i, double 
   return w.ground_.velocityAt(w.startVelocity(i), (x - m.x0) * w.dt_, w.startPosition(i), position, normal);
 }
 
+Vec3 StepState::SpinPhase::spinWith(const StepContext& w, std::size_t i, double x, const Vec3&, const Vec3&) const
+{
+  return spinAt(w.spin_motions_[i], (x - w.motions_[i].x0) * w.dt_);
+}
+
+double StepState::SpinPhase::kindFrom(const StepContext& w, std::size_t i, const SpinMotion&) const
+{
+  return w.motions_[i].x0;
+}
+
 double StepState::SpinPhase::chordSpeedSquared(const StepContext& w, std::size_t i, double rest, const Vec3& b) const
 {
   return w.linearChordSpeedSquared(i, rest, b);
@@ -40,10 +50,24 @@ struct StepState::SpinPhase::Constrained final : StepState::SpinPhase
   {
     return sm.w0 + std::min(t, sm.along_time) * sm.alpha + (std::min(t, sm.normal_time) * sm.normal_rate) * sm.normal;
   }
+  /// (a slip its contacts left below what they resolve is none: FrictionLaw::settled())
+  Vec3 spinWith(const StepContext& w, std::size_t i, double x, const Vec3& normal, const Vec3& v) const override
+  {
+    return w.frictionUnder(normal).settled(w.balls_[i].radius, v, spinAt(w.spin_motions_[i], (x - w.motions_[i].x0) * w.dt_));
+  }
   MotionKind kindAtEnd(const StepContext& w, std::size_t i, const SpinMotion&, const Vec3& normal, const Vec3& v,
                        const Vec3& spin) const override
   {
     return w.frictionUnder(normal).constrainedKind(w.balls_[i].radius, v, spin);
+  }
+  /// (a slip ends where its spin reaches rolling's, a spin about the normal where it dies)
+  double kindFrom(const StepContext& w, std::size_t i, const SpinMotion& sm) const override
+  {
+    const double x0 = w.motions_[i].x0;
+    const double t = sm.reported == MotionKind::kSliding                                          ? sm.along_time
+                     : sm.reported == MotionKind::kSpinning && sm.kind == MotionKind::kStationary ? sm.normal_time
+                                                                                                   : 0.0;
+    return std::min(1.0, x0 + t / w.dt_);
   }
 };
 
@@ -55,9 +79,11 @@ struct StepState::SpinPhase::Rolled final : StepState::SpinPhase
   {
     return sm.w0 + (std::min(t, sm.normal_time) * sm.normal_rate) * sm.normal;
   }
-  Vec3 spinWith(const SpinMotion& sm, double t, double r, const Vec3& normal, const Vec3& v) const override
+  Vec3 spinWith(const StepContext& w, std::size_t i, double x, const Vec3& normal, const Vec3& v) const override
   {
-    return normal.cross(v) / r + spinAt(sm, t).dot(sm.normal) * normal;
+    const SpinMotion& sm = w.spin_motions_[i];
+    const Vec3 spin = spinAt(sm, (x - w.motions_[i].x0) * w.dt_);
+    return normal.cross(v) / w.balls_[i].radius + spin.dot(sm.normal) * normal;
   }
   MotionKind kindAtEnd(const StepContext& w, std::size_t i, const SpinMotion&, const Vec3& normal, const Vec3& v,
                        const Vec3& spin) const override

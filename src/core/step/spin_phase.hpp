@@ -42,12 +42,9 @@ struct StepState::SpinPhase
   virtual bool ownsMotion() const { return false; }
   /// The ball's spin t seconds into its motion.
   virtual Vec3 spinAt(const SpinMotion& sm, double t) const { return sm.w0 + t * sm.alpha; }
-  /// ... where its velocity is then v, under `normal` (a ball of radius r): spinAt()'s,
-  /// but for a phase whose spin follows its velocity.
-  virtual Vec3 spinWith(const SpinMotion& sm, double t, double, const Vec3&, const Vec3&) const
-  {
-    return spinAt(sm, t);
-  }
+  /// Ball i's spin at x where its velocity is then v, under `normal`: spinAt()'s, but for
+  /// a phase whose spin follows its velocity.
+  virtual Vec3 spinWith(const StepContext& w, std::size_t i, double x, const Vec3& normal, const Vec3& v) const;
   /// Gives ball i the motion of its new phase under `law` (StepContext::startFriction()); true
   /// where the caller is to give it a frictionless ball's motion, or the chord under
   /// SpinMotion::pull on a curved floor.
@@ -80,6 +77,10 @@ struct StepState::SpinPhase
   {
     return sm.kind;
   }
+  /// Where in the step (a fraction) ball i came to the kind it ends the step in, a kind
+  /// its events did not report: where its motion started, or where its spin's change ran
+  /// out.
+  virtual double kindFrom(const StepContext& w, std::size_t i, const SpinMotion&) const;
 
 private:
   struct Kept;

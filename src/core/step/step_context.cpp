@@ -158,6 +158,11 @@ void StepContext::step()
   // each ball's record at hand.
   const bool reorder = grid_.inCellOrder() && (order_age_ == 0 || order_age_ >= settings_.reorder_steps);
   commitToFloor(*this, !reorder);  // every ball to the step's end, back on the floor
+  // (the step's changes of kind in time order: the commit reports kinds that began
+  // before events its balls met later, and its threads report in their own order)
+  std::stable_sort(transitions_.begin(), transitions_.end(), [](const MotionTransition& a, const MotionTransition& b) {
+    return a.time < b.time || (a.time == b.time && a.ball < b.ball);
+  });
   if (reorder)
   {
     std::vector<std::uint32_t> from;
