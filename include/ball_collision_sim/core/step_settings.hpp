@@ -80,9 +80,14 @@ struct StepSettings
   /// its error down by about that factor, to round-off [refinements].
   int exact_refinements = 2;
   /// Rounds in which every wrong contact changes side together (block principal pivoting)
-  /// may go without making fewer wrong, before the primal active-set method, which ends,
-  /// takes over (it takes one contact at a time, and so more solves) [rounds].
+  /// may go without making fewer wrong, before the interior-point method and then the
+  /// primal active-set method, which end, take over [rounds].
   int exact_pivot_tries = 3;
+  /// Iterations of the interior-point method, which finds which contacts push in a jam
+  /// whose contacts say the same (each one sparse factorization on one pattern; a square
+  /// jam of 204 balls takes about 30) before the active-set method finishes from there,
+  /// in a solve or a few [iterations].
+  int exact_interior_iterations = 100;
   /// Sweeps of the contact solver over a group with rolling resistance, each followed by
   /// the members' resistance, before its contacts are solved exactly with the resistance
   /// found (what is left is a resistance a little off its cap) [sweeps].

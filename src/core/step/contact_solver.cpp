@@ -1,6 +1,7 @@
 // The contact solver's exact stage (contact_solver.hpp): reads the free vectors and the
 // rows' first guess of which push; writes the vectors and the impulses.
 #include "contact_solver.hpp"
+#include "contact_interior.hpp"
 
 #include <Eigen/SparseCholesky>
 
@@ -8,70 +9,6 @@ namespace ball_collision_sim::core::step
 {
 namespace
 {
-/// A, the pushing rows' W = J M^-1 J^T (its lower triangle, its diagonal a little larger),
-/// its diagonal as it is, and the right side, their closings past their targets at u_free.
-struct PushingSystem
-{
-  Eigen::SparseMatrix<double> A;
-  Eigen::VectorXd diagonal;
-  Eigen::VectorXd rhs;
-};
-
-PushingSystem pushingSystem(const std::vector<Vec3>& u_free, const std::vector<double>& inv,
-                            const std::vector<ContactRow>& rows, const std::vector<int>& active, double regularization)
-{
-  const int n = static_cast<int>(active.size());
-  const auto coefficient = [&](const ContactRow& row, std::uint32_t k) {
-    Vec3 c = Vec3::Zero();
-    if (row.a == k)
-      c += row.push_a;
-    if (row.b == k)
-      c -= row.push_b;
-    return c;
-  };
-  // (A's entries: rows that share a body, found through each body's rows)
-  std::vector<Eigen::Triplet<double>> entries;
-  PushingSystem out;
-  Eigen::VectorXd& rhs = out.rhs;
-  rhs.resize(n);
-  std::vector<std::vector<int>> of_body(u_free.size());
-  for (int p = 0; p < n; ++p)
-  {
-    const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
-    rhs[p] = closingOf(u_free, r) - r.target;
-    of_body[r.a].push_back(p);
-    if (r.b != ContactRow::kImmovable)
-      of_body[r.b].push_back(p);
-  }
-  Eigen::VectorXd& diagonal = out.diagonal;
-  diagonal = Eigen::VectorXd::Zero(n);
-  for (std::size_t k = 0; k < of_body.size(); ++k)
-  {
-    if (inv[k] == 0)
-      continue;
-    for (const int p : of_body[k])
-      for (const int q : of_body[k])
-      {
-        if (q > p)
-          continue;  // (the solver reads the lower triangle)
-        const ContactRow& r = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(p)])];
-        const ContactRow& t = rows[static_cast<std::size_t>(active[static_cast<std::size_t>(q)])];
-        const auto body = static_cast<std::uint32_t>(k);
-        const double a = inv[k] * coefficient(r, body).dot(coefficient(t, body));
-        if (p == q)
-          diagonal[p] += a;
-        entries.emplace_back(p, q, a);
-      }
-  }
-  // (contacts that say the same, in a jam, leave A singular: it is factorized with its
-  // diagonal a little larger, and the solution refined against A itself)
-  for (int p = 0; p < n; ++p)
-    entries.emplace_back(p, p, regularization * diagonal[p]);
-  out.A.resize(n, n);
-  out.A.setFromTriplets(entries.begin(), entries.end());
-  return out;
-}
-
 /// The impulses of the rows `active` (taken to push) that take their closings to their
 /// targets from u_free, solved directly, into lambda (pushedBy() gives the vectors they
 /// leave); false where A could not be factorized. Refined `refinements` times, the impulses
@@ -209,13 +146,13 @@ bool solveRegularized(const std::vector<Vec3>& u_free, const std::vector<double>
 /// `pivot_tries` rounds. True, with the impulses and the vectors they leave, where no row
 /// is left wrong within `solves` (counted down).
 bool pivotBlocks(const std::vector<Vec3>& u_free, const std::vector<double>& inv, const std::vector<ContactRow>& rows,
-                 std::vector<double>& lambda, std::vector<Vec3>& trial, double slack, const ExactSettings& settings,
-                 int& solves)
+                 const std::vector<double>& start, std::vector<double>& lambda, std::vector<Vec3>& trial, double slack,
+                 const ExactSettings& settings, int refinements, int& solves)
 {
   std::vector<int> active;
   std::vector<char> in_active(rows.size(), 0);
   for (std::size_t r = 0; r < rows.size(); ++r)
-    if (rows[r].impulse > 0)
+    if (start[r] > 0)
       in_active[r] = 1;
   std::size_t fewest = rows.size() + 1;
   int tries = settings.pivot_tries;
@@ -226,7 +163,7 @@ bool pivotBlocks(const std::vector<Vec3>& u_free, const std::vector<double>& inv
       if (in_active[r])
         active.push_back(static_cast<int>(r));
     std::fill(lambda.begin(), lambda.end(), 0.0);
-    if (!active.empty() && !solvePushing(u_free, inv, rows, active, lambda, settings, settings.refinements))
+    if (!active.empty() && !solvePushing(u_free, inv, rows, active, lambda, settings, refinements))
       return false;
     trial = pushedBy(u_free, inv, rows, lambda);
     const std::vector<int> wrong = wrongRows(rows, in_active, trial, lambda, slack);
@@ -255,14 +192,27 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
   std::vector<double> lambda(rows.size());
   std::vector<Vec3> trial;
   int solves = settings.rounds;
-  if (!pivotBlocks(u_free, inv, rows, lambda, trial, slack, settings, solves))
+  std::vector<double> sweeps(rows.size());
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    sweeps[r] = rows[r].impulse;
+  if (!pivotBlocks(u_free, inv, rows, sweeps, lambda, trial, slack, settings, settings.refinements, solves))
   {
-    // Where that does not settle, the problem with A's diagonal a little larger, from
-    // the contact solver's impulses, by a method that ends; then A's own impulses with
-    // the rows found, where they are right too.
-    for (std::size_t r = 0; r < rows.size(); ++r)
-      lambda[r] = std::max(rows[r].impulse, 0.0);
-    if (!solveRegularized(u_free, inv, rows, lambda, slack, settings, solves))
+    // Where that does not settle, the problem with A's diagonal a little larger: the
+    // interior-point method finds which rows push, and pivoting from there settles
+    // which of those it left on the fence push; where that does not settle either, the
+    // primal active-set method, which ends, from the interior-point method's impulses
+    // (or the sweeps'). Then A's own impulses with the rows found, where they are right
+    // too.
+    std::vector<double> interior(rows.size());
+    const bool ipm = solveInterior(u_free, inv, rows, interior, settings.regularization, settings.interior_iterations);
+    bool okr = ipm && pivotBlocks(u_free, inv, rows, interior, lambda, trial, slack, settings, 0, solves);
+    if (!okr)
+    {
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        lambda[r] = ipm ? interior[r] : std::max(rows[r].impulse, 0.0);
+      okr = solveRegularized(u_free, inv, rows, lambda, slack, settings, solves);
+    }
+    if (!okr)
       return false;
     std::vector<int> active;
     std::vector<char> in_active(rows.size(), 0);

@@ -132,8 +132,11 @@ struct ExactSettings
   /// ... and the solution refined this many times against A itself [refinements]
   int refinements = 2;
   /// rounds that all wrong rows may change side together without making fewer of them,
-  /// before the primal active-set method takes over [rounds]
+  /// before the interior-point and primal active-set methods take over [rounds]
   int pivot_tries = 3;
+  /// iterations of the interior-point method, which finds the rows that push for the
+  /// active-set method to start from [iterations]
+  int interior_iterations = 100;
 };
 
 /// The rows' closings, exactly, from where the contact solver left them (the rows whose
@@ -145,13 +148,15 @@ struct ExactSettings
 /// closes past its target by more than `slack`): all of them at once while that makes
 /// fewer wrong (block principal pivoting, Judice and Pires). Where that stalls (contacts
 /// that say the same leave A near singular, and its impulses come out with either sign),
-/// the problem with A's diagonal a little larger (definite: one answer) is solved by the
-/// primal active-set method from the sweeps' impulses, which lowers its objective at each
-/// solve and so ends; A's own impulses for the rows found are kept where they are right
-/// too. At most `settings.rounds` solves in all, and that one more; the method takes one
-/// row at a time once adding several made no progress, so a tight jam of many balls
-/// takes about a solve per pushing row. True, with u and the impulses set, where no row
-/// is wrong; false with neither changed.
+/// the problem with A's diagonal a little larger (definite: one answer) is solved by an
+/// interior-point method over all rows (solveInterior(): some thirty factorizations on one
+/// pattern, whatever the jam), and pivoting from the rows it found to push settles those
+/// it left on the fence; where that does not settle, the primal active-set method from
+/// its impulses, which lowers its objective at each solve and so ends (it takes one row at
+/// a time once adding several made no progress). A's own impulses for the rows found are
+/// kept where they are right too. At most `settings.rounds` direct solves in all, and that
+/// one more. True, with u and the impulses set, where no row is wrong; false with neither
+/// changed.
 bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<double>& inv, std::vector<ContactRow>& rows,
                           std::vector<Vec3>& u, double slack, const ExactSettings& settings);
 

@@ -123,6 +123,7 @@ inline step::ExactSettings StepContext::exactSettings() const
   exact.regularization = settings_.exact_regularization;
   exact.refinements = settings_.exact_refinements;
   exact.pivot_tries = settings_.exact_pivot_tries;
+  exact.interior_iterations = settings_.exact_interior_iterations;
   return exact;
 }
 
