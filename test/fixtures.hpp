@@ -209,6 +209,35 @@ inline Scene floorlessBoxDrop(int count, double e, std::uint64_t seed)
   return scene;
 }
 
+/// A tight jam: balls of radius 0.1 m and 1 kg stacked in square packing, layers of
+/// `base` x `base`, then (base - 1)^2 on their hollows, down to `top` x `top` (base 7 and
+/// top 1: 140 balls; 8: 204), in a floorless box of five walls that they fill, each
+/// ball off its place by up to 1e-6 of its radius (and the packing opened by 2e-6 so
+/// that none overlaps) and moving at up to 0.1 m/s, as `seed` gives; restitution 0.5.
+inline Scene squareJam(int base, int top, std::uint64_t seed)
+{
+  Scene scene;
+  scene.restitution = 0.5;
+  const double r = 0.1, open = 1 + 2e-6, side = 2 * r * base * open;
+  scene.walls.push_back({Vec3(0, 0, 0), Vec3(side, 0, 0), Vec3(0, side, 0), {}});
+  addBox(scene, 0, side, 0, side, 2 * r * base);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int layer = 0; base - layer >= top; ++layer)
+    for (int i = 0; i < base - layer; ++i)
+      for (int j = 0; j < base - layer; ++j)
+      {
+        BallDef b;
+        b.radius = r;
+        b.mass = 1;
+        b.position = open * r * Vec3(2 * i + 1 + layer, 2 * j + 1 + layer, 1 + layer * std::sqrt(2.0)) +
+                     1e-6 * r * Vec3(unit(rng), unit(rng), unit(rng));
+        b.velocity = 0.1 * Vec3(unit(rng), unit(rng), unit(rng)) / std::sqrt(3.0);
+        scene.balls.push_back(b);
+      }
+  return scene;
+}
+
 /// Adds a ball of radius 0.01 m, on the floor, at the first free place of a 20 x 20 grid
 /// over [x0, x1] x [y0, y1] and removes it again; false when there was no room.
 inline bool addAndRemoveABall(core::World& world, double x0, double x1, double y0, double y1)

@@ -526,6 +526,57 @@ TEST(ImpactFriction, WallTurnsASpinningBall)
   }
 }
 
+// A ball rolling square into a wall (e = 1) meets it with its touching point slipping
+// down at v (its topspin's r w): the wall's friction across the floor's line acts upward,
+// where the floor takes none of it, so that only the spin turns: w_y' = v / r - min(v k
+// m, mu (1 + e) m v) / (k m r). From mu = k / (1 + e) on, the topspin stops; the velocity
+// only bounces.
+TEST(ImpactFriction, WallTakesARollingBallsTopspin)
+{
+  const double v = 1.0, r = 0.1, m = 1.0;
+  for (const double k : {kSolidInertia, kHollowInertia})
+    for (const double mu : {0.0, 0.05, 0.15, 0.5})
+    {
+      Scene scene = impactsOnly(0.0, mu);
+      scene.balls = {struck(1.5, v, Vec3(0, v / r, 0), k, r)};
+      World world(scene);
+      for (int s = 0; s < 60; ++s)
+        world.step();
+      ASSERT_EQ(world.stats().events, 1u);
+      const double jz = std::min(v * k * m, mu * 2 * m * v);
+      EXPECT_NEAR(world.balls()[0].velocity.x(), -v, 1e-15) << mu;
+      EXPECT_NEAR(world.balls()[0].velocity.y(), 0.0, 1e-15) << mu;
+      EXPECT_NEAR(world.angularVelocity(0).y(), v / r - jz / (k * m * r), 1e-12) << "k " << k << " mu " << mu;
+      EXPECT_NEAR(world.angularVelocity(0).x(), 0.0, 1e-12);
+      EXPECT_NEAR(world.angularVelocity(0).z(), 0.0, 1e-12);
+    }
+}
+
+// A ball rolling into an equal one at rest, head on (e = 1): its touching point slips
+// down past the other's at v. Friction between them acts across the floor's line, where
+// the floor takes it all, with the impulse min(v k m / 2, mu m v) (each ball's touching
+// point moves by J / (k m) under it): it takes that from the rolling ball's topspin and
+// gives the struck one as much backspin; the velocities are exchanged as without it.
+TEST(ImpactFriction, BallBallFrictionTurnsTopspinAcrossTheFloorLine)
+{
+  const double v = 1.0, r = 0.1, m = 1.0, k = kSolidInertia;
+  for (const double mu : {0.05, 0.5})
+  {
+    Scene scene = impactsOnly(mu, 0.0);
+    scene.balls = {struck(-1.0, v, Vec3(0, v / r, 0), k, r), struck(0.0, 0.0, Vec3::Zero(), k, r)};
+    World world(scene);
+    for (int s = 0; s < 100; ++s)
+      world.step();
+    ASSERT_EQ(world.stats().events, 1u);
+    const double jz = std::min(v * k * m / 2, mu * m * v);
+    EXPECT_NEAR(world.balls()[0].velocity.norm(), 0.0, 1e-15) << mu;
+    EXPECT_NEAR(world.balls()[1].velocity.x(), v, 1e-15) << mu;
+    EXPECT_NEAR(world.balls()[1].velocity.y(), 0.0, 1e-15) << mu;
+    EXPECT_NEAR(world.angularVelocity(0).y(), v / r - jz / (k * m * r), 1e-12) << mu;
+    EXPECT_NEAR(world.angularVelocity(1).y(), -jz / (k * m * r), 1e-12) << mu;
+  }
+}
+
 // A table of balls at e = 0.9 with every friction on, impacts' too: the energy never rises
 // in a step and every ball comes to rest.
 TEST(ImpactFriction, TableComesToRestWithEnergyNeverRising)

@@ -290,11 +290,15 @@ void FrictionLaw::finish(std::uint8_t ends, double k, double r, double speeds, V
     w -= w.dot(normal_) * normal_;
 }
 
-double tangentialImpulse(const Vec3& slip, double mu, double normal_impulse, double inverse_mass)
+Vec3 tangentialImpulse(const Vec3& slip, const Vec3& t1, const Vec3& t2, const Mat2& response, double mu,
+                       double normal_impulse)
 {
-  const double s = slip.norm();
-  if (!(s > 0) || !(mu > 0) || !(normal_impulse > 0) || !(inverse_mass > 0))
-    return 0.0;
-  return std::min(mu * normal_impulse, s / inverse_mass);
+  const Vec2 u(slip.dot(t1), slip.dot(t2));
+  if (!(mu > 0) || !(normal_impulse > 0) || u == Vec2::Zero())
+    return Vec3::Zero();
+  const Vec2 stop = -response.llt().solve(u);
+  const double size = stop.norm(), bound = mu * normal_impulse;
+  const Vec2 j = size > bound ? Vec2((bound / size) * stop) : stop;
+  return j.x() * t1 + j.y() * t2;
 }
 }  // namespace ball_collision_sim::core

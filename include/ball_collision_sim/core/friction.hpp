@@ -186,9 +186,12 @@ private:
   double still_speed_;  ///< [m/s]
 };
 
-/// A tangential impulse at an impact: opposes the slip `slip` of the touching points
-/// (tangential to the contact normal), at most mu times the normal impulse, and never
-/// more than stops the slip, `inverse_mass` being the slip's change per unit impulse
-/// (sum over the bodies of 1/m + 1/(k m)) [N s].
-double tangentialImpulse(const Vec3& slip, double mu, double normal_impulse, double inverse_mass);
+/// The tangential impulse of an impact, in the contact's tangent plane (unit t1, t2): the
+/// touching points slip at `slip`, and an impulse J1 t1 + J2 t2 changes their slip by
+/// `response` (J1, J2) (symmetric, positive definite: each body's 1/m along what it can
+/// move along, plus 1/(k m)). It is the impulse that stops the slip, or where that is more
+/// than mu times the normal impulse, that impulse scaled down to it: never more than
+/// stops it, so it never makes energy [N s].
+Vec3 tangentialImpulse(const Vec3& slip, const Vec3& t1, const Vec3& t2, const Mat2& response, double mu,
+                       double normal_impulse);
 }  // namespace ball_collision_sim::core

@@ -152,31 +152,38 @@ void StepContext::queueTransition(std::size_t i)
   queueMotionEnd(i, sm.x_end, MotionEnd::kPhase);
 }
 
+Mat2 StepContext::slipResponse(const Vec3& t1, const Vec3& t2, const Vec3& floor_normal, double inv, double k) const
+{
+  // (an impulse J moves the ball by inv J along what the floor lets it, and turns its
+  // touching point by inv J / k)
+  const Vec3 a1 = ground_.along(t1, floor_normal), a2 = ground_.along(t2, floor_normal);
+  Mat2 response;
+  response << t1.dot(a1) + 1 / k, t1.dot(a2), t2.dot(a1), t2.dot(a2) + 1 / k;
+  return inv * response;
+}
+
 void StepContext::ballBallFriction(const PairContact& c, double normal_impulse, Vec3& va, Vec3& vb)
 {
   Vec3& wa = spin_motions_[c.i].w0;
   Vec3& wb = spin_motions_[c.j].w0;
   const double mu = scene_.friction->ball_ball;
-  // Friction acts along the one line both in the contact's tangent plane and along the
-  // floor: the floor takes pushes into it, and a push along the normal would press the
-  // balls together (their centres need not be at one height).
-  Vec3 e = c.n.cross(c.na + c.nb);
-  const double e_norm = e.norm();
-  if (!(mu > 0) || !(e_norm > 0))
+  if (!(mu > 0))
     return;
-  e /= e_norm;
+  // Friction acts across the contact's tangent plane: along the floor, and across it,
+  // where it turns the spins (the floor takes the part of a push into it).
+  const Vec3 t1 = c.n.unitOrthogonal(), t2 = c.n.cross(t1);
   const double ra = balls_[c.i].radius, rb = balls_[c.j].radius;
   const double ka = spins_[c.i].inertia, kb = spins_[c.j].inertia;
   // the touching points' velocities: a's at ra n from its centre, b's at -rb n from its
   // (a ball without motion, asleep or stopped by the cap, is still: its surface too,
   // else it would drive the other like a belt)
   const Vec3 spin_a = motions_[c.i].frozen() ? Vec3::Zero() : wa, spin_b = motions_[c.j].frozen() ? Vec3::Zero() : wb;
-  const double slip = ((va + spin_a.cross(ra * c.n)) - (vb - spin_b.cross(rb * c.n))).dot(e);
-  const double inverse_mass = c.inv_a * (1 + 1 / ka) + c.inv_b * (1 + 1 / kb);
-  const double jt = tangentialImpulse(slip * e, mu, normal_impulse, inverse_mass);
-  if (jt == 0)
+  Vec3 slip = (va + spin_a.cross(ra * c.n)) - (vb - spin_b.cross(rb * c.n));
+  slip -= slip.dot(c.n) * c.n;
+  const Mat2 response = slipResponse(t1, t2, c.na, c.inv_a, ka) + slipResponse(t1, t2, c.nb, c.inv_b, kb);
+  const Vec3 impulse = tangentialImpulse(slip, t1, t2, response, mu, normal_impulse);  // on a; -impulse on b
+  if (impulse == Vec3::Zero())
     return;
-  const Vec3 impulse = -std::copysign(jt, slip) * e;  // on a; -impulse on b
   va += c.inv_a * ground_.along(impulse, c.na);
   vb -= c.inv_b * ground_.along(impulse, c.nb);
   wa += (c.inv_a / (ka * ra)) * c.n.cross(impulse);
@@ -187,20 +194,18 @@ void StepContext::ballWallFriction(std::size_t i, const Vec3& n, const Vec3& flo
 {
   Vec3& w = spin_motions_[i].w0;
   const double mu = scene_.friction->wall;
-  // (along the line both along the wall and along the floor, as between balls)
-  Vec3 e = floor_normal.cross(n);
-  const double e_norm = e.norm();
-  if (!(mu > 0) || motions_[i].frozen() || !(e_norm > 0))
+  if (!(mu > 0) || motions_[i].frozen())
     return;
-  e /= e_norm;
+  // (across the contact's tangent plane, as between balls)
+  const Vec3 t1 = n.unitOrthogonal(), t2 = n.cross(t1);
   const double r = balls_[i].radius;
   const double k = spins_[i].inertia;
   const double inv = 1.0 / balls_[i].mass;
-  const double slip = (v + w.cross(r * n)).dot(e);  // the touching point's, n toward the wall
-  const double jt = tangentialImpulse(slip * e, mu, normal_impulse, inv * (1 + 1 / k));
-  if (jt == 0)
+  Vec3 slip = v + w.cross(r * n);  // the touching point's, n toward the wall
+  slip -= slip.dot(n) * n;
+  const Vec3 impulse = tangentialImpulse(slip, t1, t2, slipResponse(t1, t2, floor_normal, inv, k), mu, normal_impulse);
+  if (impulse == Vec3::Zero())
     return;
-  const Vec3 impulse = -std::copysign(jt, slip) * e;
   v += inv * ground_.along(impulse, floor_normal);
   w += (inv / (k * r)) * n.cross(impulse);
 }

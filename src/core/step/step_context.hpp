@@ -338,11 +338,16 @@ public:
   /// Queues the end of ball i's phase when it falls within the step.
   void queueTransition(std::size_t i);
   /// An impact with friction, the balls' spins at it in SpinMotion::w0: the tangential
-  /// impulse (ball_ball and wall friction) opposing the slip of the touching points, at
-  /// most mu times the normal impulse (0 for a resting contact), never reversing the slip.
+  /// impulse (ball_ball and wall friction) across the contact's tangent plane opposing
+  /// the slip of the touching points, at most mu times the normal impulse (0 for a
+  /// resting contact), never more than stops the slip (tangentialImpulse()).
   void ballBallFriction(const PairContact& c, double normal_impulse, Vec3& va, Vec3& vb);
   /// The same at a wall; n is the contact normal toward the wall.
   void ballWallFriction(std::size_t i, const Vec3& n, const Vec3& floor_normal, double normal_impulse, Vec3& v);
+  /// How an impulse in a contact's tangent plane (t1, t2) changes the slip of a ball's
+  /// touching point: inv times its part along the floor (normal floor_normal), plus inv
+  /// / k times itself.
+  Mat2 slipResponse(const Vec3& t1, const Vec3& t2, const Vec3& floor_normal, double inv, double k) const;
   /// The friction laws under the floor's normal n (the plane's, or on a curved floor the
   /// local one).
   FrictionLaw frictionUnder(const Vec3& n) const;
