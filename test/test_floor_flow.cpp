@@ -280,6 +280,64 @@ TEST_P(WorldOnCurvedFloors, WithinAMicrometreAfterOneSecond)
   std::printf("%s through World: %.3g m, %.3g m/s after 1 s\n", c.name, dp, dv);
 }
 
+// The small-oscillation periods through World at dt = 0.01 s: a ball let go at rest 9 mm
+// off the bowl's bottom, frictionless (no friction block) and rolling (a friction block
+// that holds rolling, no rolling resistance), swings with the period 2 pi sqrt((R - r) /
+// g), and 2 pi sqrt((1 + k)(R - r) / g) rolling, to 1e-5 over five periods; x's zero
+// crossings found between step ends by the cubic that meets x and its rate at both.
+TEST(WorldOnCurvedFloor, SmallOscillationPeriodsInTheBowl)
+{
+  const double L = 3, h = 0.3, a = 4 * h / (L * L), R = 1 / (2 * a), r = 0.1;
+  const Floor floor(bowl(L, h), kGravity);
+  const FloorFlow flow(floor, kGravity, r);
+  for (const double k : {0.0, kSolidInertia, kHollowInertia})
+  {
+    Scene scene;
+    scene.floor = bowl(L, h);
+    BallDef b;
+    b.radius = r;
+    b.position = flow.centre(startAt(floor, Vec2(0.5 + 0.003, 0.5), Vec3::Zero()).foot);
+    if (k > 0)
+    {
+      scene.friction = friction(0.5, 0.0);
+      b.inertia = k;
+    }
+    scene.balls = {b};
+    World world(scene);
+    const double expected = 2 * M_PI * std::sqrt((1 + k) * (R - r) / kG);
+    std::vector<double> crossings;
+    double x0 = world.balls()[0].position.x(), v0 = world.balls()[0].velocity.x();
+    while (crossings.size() < 11)
+    {
+      const double t0 = world.time();
+      world.step();
+      const double dt = world.time() - t0;
+      const double x1 = world.balls()[0].position.x(), v1 = world.balls()[0].velocity.x();
+      if ((x0 > 0) != (x1 > 0))
+      {
+        // (Hermite's cubic on [0, 1] through x0, x1 with slopes v0 dt, v1 dt; Newton from
+        // the chord's crossing)
+        double s = x0 / (x0 - x1);
+        for (int it = 0; it < 20; ++it)
+        {
+          const double s2 = s * s, s3 = s2 * s;
+          const double p = (2 * s3 - 3 * s2 + 1) * x0 + (s3 - 2 * s2 + s) * v0 * dt + (-2 * s3 + 3 * s2) * x1 +
+                           (s3 - s2) * v1 * dt;
+          const double dp = (6 * s2 - 6 * s) * x0 + (3 * s2 - 4 * s + 1) * v0 * dt + (-6 * s2 + 6 * s) * x1 +
+                            (3 * s2 - 2 * s) * v1 * dt;
+          s -= p / dp;
+        }
+        crossings.push_back(t0 + s * dt);
+      }
+      x0 = x1;
+      v0 = v1;
+    }
+    const double period = (crossings[10] - crossings[0]) / 5;
+    EXPECT_NEAR(period, expected, 1e-5 * expected) << "k " << k;
+    std::printf("k %.3f: period %.9f s, expected %.9f s (%.2g)\n", k, period, expected, period / expected - 1);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Floors, WorldOnCurvedFloors,
                          ::testing::Values(WorldCase{"bowl_free", bowl(3, 0.3), Vec2(0.8, 0.4), Vec3(-1.0, 1.5, 0), false},
                                            WorldCase{"bowl_rolling", bowl(3, 0.3), Vec2(0.8, 0.4), Vec3(-1.0, 1.5, 0), true},
