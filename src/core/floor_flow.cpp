@@ -103,6 +103,7 @@ FloorFlow::Rates FloorFlow::rates(const State& s, const Law& law) const
     }
   }
   out.acceleration += push * n;
+  out.support = push + g_n;
   return out;
 }
 
@@ -168,9 +169,9 @@ FloorFlow::End FloorFlow::advance(State& state, double duration, int substeps, c
   const double h = duration / substeps;
   double t = 0.0;
   int approach = 0, steps = 0;
+  Rates d = rates(state, law);
   while (t < duration)
   {
-    const Rates d = rates(state, law);
     // (no step shorter than kEndTime, in which nothing moves by more than round-off; past
     // the cap, the substeps as they are)
     const double turning = ++steps > step_cap ? kNever : turnTime(law, d, turn);
@@ -187,7 +188,19 @@ FloorFlow::End FloorFlow::advance(State& state, double duration, int substeps, c
       }
       step = kApproach * to_end;
     }
-    state = rungeKutta(state, step, law, d);
+    const State next = rungeKutta(state, step, law, d);
+    const Rates there = rates(next, law);
+    if (there.support < 0 && d.support >= 0)
+    {
+      // (the floor lets go within the step: where, on the side past it)
+      double taken = 0.0;
+      state = takeOff(state, d, step, law, taken);
+      t += taken;
+      end.ends = kTakesOff;
+      break;
+    }
+    state = next;
+    d = there;
     t += step;
   }
   end.time = std::min(t, duration);
@@ -196,6 +209,29 @@ FloorFlow::End FloorFlow::advance(State& state, double duration, int substeps, c
   if (law.kind == Kind::kSliding)
     state.spin -= state.spin.dot(end.normal) * end.normal;  // (along the floor, to round-off)
   return end;
+}
+
+FloorFlow::State FloorFlow::takeOff(const State& before, const Rates& rates_before, double step, const Law& law,
+                                   double& time) const
+{
+  double lo = 0.0, hi = step;
+  State past = rungeKutta(before, hi, law, rates_before);
+  while (hi - lo > kEndTime)
+  {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi))
+      break;
+    const State there = rungeKutta(before, mid, law, rates_before);
+    if (rates(there, law).support < 0)
+    {
+      hi = mid;
+      past = there;
+    }
+    else
+      lo = mid;
+  }
+  time = hi;
+  return past;
 }
 
 int FloorFlow::substepsFor(double duration, double speed, double curvature, double gravity, double turn)

@@ -25,7 +25,10 @@ namespace ball_collision_sim::core
 /// Classical Runge-Kutta of fourth order. A sliding phase ends where the slip reaches 0,
 /// a rolling one where the velocity does, either where the spin about the normal does;
 /// each is found by steps of half the time the rates there give it (so that no step
-/// crosses it, where the laws turn), down to 1e-12 of the quantity's scale.
+/// crosses it, where the laws turn), down to 1e-12 of the quantity's scale. Any law's
+/// motion ends where the floor would have to pull the ball to keep it (its support, the
+/// push less gravity's pull along n, falls below zero, as over a crest): found by
+/// halving the step that crossed it, to within 1e-12 s, on the side past it.
 class FloorFlow
 {
 public:
@@ -92,6 +95,7 @@ private:
     double spin_n;
     Vec3 q, q_rate;
     double spin_n_rate;
+    double support;  ///< what the floor must push with along n, per mass: push + g_n [m/s^2]
   };
   Rates rates(const State& s, const Law& law) const;
   State rungeKutta(const State& s, double h, const Law& law, const Rates& first) const;
@@ -101,6 +105,9 @@ private:
   /// The time in which q turns by `turn` at its rate across it, taking in that a
   /// shrinking q turns faster as it goes (infinite for a free ball).
   static double turnTime(const Law& law, const Rates& d, double turn);
+  /// From `before` (its rates `rates`), the state where a step of at most `step` first
+  /// has the floor's support below zero, within 1e-12 s on that side; its time in `time`.
+  State takeOff(const State& before, const Rates& rates, double step, const Law& law, double& time) const;
 
   const Floor& floor_;
   Vec3 gravity_;

@@ -27,6 +27,9 @@ enum PhaseEnd : std::uint8_t
   kSlipStops = 1,  ///< the contact point's slip reaches zero
   kBallStops = 2,  ///< the ball's velocity reaches zero
   kSpinStops = 4,  ///< the spin about the floor's normal reaches zero
+  /// (a motion integrated on a curved floor, FloorFlow) the floor would have to pull the
+  /// ball to keep it on its bend: it leaves the floor
+  kTakesOff = 8,
 };
 
 /// A sliding or rolling phase on a tilted plane whose direction turns: the slip (sliding)

@@ -161,6 +161,7 @@ Vec3 StepContext::chordOver(std::size_t i, const Vec3& p, const Vec3& v, double 
   FloorFlow::Law law;
   FlowEnd& end = flow_ends_[i];
   end.x = -1.0;
+  end.ends = kPhaseRuns;
   const double span = x1 - x0;
   if (!spin_->flowLaw(*this, i, law) || !(span > 0))
     return span > 0 ? Vec3((predictedEnd(i, p, v, span * dt_) - p) / span) : Vec3(dt_ * v);
@@ -200,13 +201,16 @@ Vec3 StepContext::chordOver(std::size_t i, const Vec3& p, const Vec3& v, double 
   end.normal = reached.normal;
   end.spin = law.kind == FloorFlow::Kind::kSliding ? Vec3(state.spin + state.spin_n * reached.normal) : state.spin;
   end.spin_n = state.spin_n;
-  // (where its phase ends on the way, its chord ends there: the phase's end, an event)
+  // (where its phase ends on the way, its chord ends there: the phase's end, an event;
+  // where it leaves the floor, its take-off, an event: searchTakeOff())
   end.x = reached.ends == kPhaseRuns ? x1 : x0 + reached.time / dt_;
+  end.ends = reached.ends;
   if (law.kind != FloorFlow::Kind::kFree)
   {
     SpinMotion& sm = spin_motions_[i];
-    sm.x_end = reached.ends == kPhaseRuns ? 2.0 : end.x;
-    sm.ends = reached.ends;
+    const bool phase_ends = reached.ends != kPhaseRuns && reached.ends != kTakesOff;
+    sm.x_end = phase_ends ? end.x : 2.0;
+    sm.ends = phase_ends ? reached.ends : static_cast<std::uint8_t>(kPhaseRuns);
   }
   return end.x > x0 ? Vec3((reached.centre - p) / (end.x - x0)) : Vec3(dt_ * v);
 }

@@ -168,6 +168,7 @@ struct StepState
     Vec3 spin = Vec3::Zero();     ///< sliding, free: the spin there
     double spin_n = 0.0;          ///< rolling: the spin about the normal there
     double x = -1.0;
+    std::uint8_t ends = kPhaseRuns;  ///< what ended it there (PhaseEnd bits; kTakesOff: it leaves the floor)
   };
   std::vector<FlowEnd> flow_ends_;
   Vec2 no_foot_ = Vec2(0.5, 0.5);  ///< the foot point where the ground keeps none

@@ -72,6 +72,14 @@ void searchTakeOff(StepContext& c, std::size_t i)
   const double end = c.chordEnd(i);
   if (!(end > m.x0) || c.grouped(i))
     return;
+  // Where the ball's laws took it (FloorFlow), the integrated motion found where the
+  // floor lets go, on the side past it.
+  const StepContext::FlowEnd& flow = c.flow_ends_[i];
+  if (flow.x > m.x0 && flow.ends == kTakesOff)
+  {
+    c.queueMotionEnd(i, flow.x, MotionEnd::kTakeOff);
+    return;
+  }
   // The floor's push where the motion is at x, on the floor under it, with the velocity
   // it has there: where it falls below zero within the motion, found to neighbouring
   // doubles, the ball takes off.
