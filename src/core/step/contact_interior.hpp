@@ -31,8 +31,10 @@ PushingSystem pushingSystem(const std::vector<Vec3>& u_free, const std::vector<d
 /// M + J^T (eps D + W / Lambda)^-1 J. It stops where the mean lambda w falls below 1e-24
 /// of the problem's own scale (rows on the fence, where both go to zero, have them near
 /// its square root: 1e-12) and the residual below 1e-13 of the closings, or after
-/// `iterations`. Out: lambda, its impulses there (> 0 where a row pushes more than it
-/// opens: lambda > w), and true where it converged.
+/// `iterations`. Out: lambda, its impulses there (every one > 0: within the problem,
+/// each row opening by w > 0 and lambda w at most about 1e-24 of the scale), `pushes`,
+/// the rows it found to push (those its impulse closes by more than they open, lambda A_ii
+/// > w), and true where it converged.
 bool solveInterior(const std::vector<Vec3>& u_free, const std::vector<double>& inv, const std::vector<ContactRow>& rows,
-                   std::vector<double>& lambda, double regularization, int iterations);
+                   std::vector<double>& lambda, std::vector<char>& pushes, double regularization, int iterations);
 }  // namespace ball_collision_sim::core::step

@@ -199,17 +199,35 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
   {
     // Where that does not settle, the problem with A's diagonal a little larger: the
     // interior-point method finds which rows push, and pivoting from there settles
-    // which of those it left on the fence push; where that does not settle either, the
-    // primal active-set method, which ends, from the interior-point method's impulses
-    // (or the sweeps'). Then A's own impulses with the rows found, where they are right
-    // too.
+    // which of those it left on the fence push. Where the direct solves cannot tell
+    // (rows whose impulses are below what they resolve, in a jam's near singular
+    // matrix), the interior-point method's own impulses stand where no row is wrong with
+    // them; else the primal active-set method, which ends, from the sweeps' impulses.
+    // Then A's own impulses with the rows found, where they are right too.
     std::vector<double> interior(rows.size());
-    const bool ipm = solveInterior(u_free, inv, rows, interior, settings.regularization, settings.interior_iterations);
-    bool okr = ipm && pivotBlocks(u_free, inv, rows, interior, lambda, trial, slack, settings, 0, solves);
+    std::vector<char> pushes;
+    const bool ipm =
+        solveInterior(u_free, inv, rows, interior, pushes, settings.regularization, settings.interior_iterations);
+    std::vector<double> start(rows.size());
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      start[r] = pushes[r] ? 1.0 : 0.0;
+    bool okr = ipm && pivotBlocks(u_free, inv, rows, start, lambda, trial, slack, settings, 0, solves);
+    if (!okr && ipm)
+    {
+      const std::vector<Vec3> within = pushedBy(u_free, inv, rows, interior);
+      if (wrongRows(rows, std::vector<char>(rows.size(), 1), within, interior, slack).empty() &&
+          wrongRows(rows, std::vector<char>(rows.size(), 0), within, interior, slack).empty())
+      {
+        u = within;
+        for (std::size_t r = 0; r < rows.size(); ++r)
+          rows[r].impulse = interior[r];
+        return true;
+      }
+    }
     if (!okr)
     {
       for (std::size_t r = 0; r < rows.size(); ++r)
-        lambda[r] = ipm ? interior[r] : std::max(rows[r].impulse, 0.0);
+        lambda[r] = std::max(rows[r].impulse, 0.0);
       okr = solveRegularized(u_free, inv, rows, lambda, slack, settings, solves);
     }
     if (!okr)
