@@ -6,7 +6,7 @@
 // without it (the primal active-set method alone), and prints CSV: balls, rows, start,
 // method, ms, solved, kinetic energy after / before.
 // Usage: exact_stage [BASE TOP]...   (default: 7 1, 8 1, 14 4: 140, 204 and 1001 balls)
-#include "step/contact_solver.hpp"
+#include "jam_rows.hpp"
 
 #include <array>
 #include <chrono>
@@ -22,58 +22,6 @@ using namespace ball_collision_sim::core::step;
 
 namespace
 {
-struct Jam
-{
-  std::vector<Vec3> free;
-  std::vector<double> inv;
-  std::vector<ContactRow> rows;
-};
-
-Jam squareJam(int base, int top, std::uint64_t seed)
-{
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  const double r = 1, side = 2 * r * base, jiggle = 1e-6, near = 3 * jiggle;
-  std::vector<Vec3> at;
-  for (int layer = 0; base - layer >= top; ++layer)
-    for (int i = 0; i < base - layer; ++i)
-      for (int j = 0; j < base - layer; ++j)
-        at.push_back(Vec3((2 * i + 1 + layer) * r, (2 * j + 1 + layer) * r, (1 + layer * std::sqrt(2.0)) * r) +
-                     jiggle * Vec3(unit(rng), unit(rng), unit(rng)));
-  Jam jam;
-  const std::size_t n = at.size();
-  for (std::size_t k = 0; k < n; ++k)
-  {
-    jam.inv.push_back(1 / (1.5 + unit(rng)));
-    jam.free.push_back(Vec3(unit(rng), unit(rng), unit(rng) - 1));
-  }
-  const std::array<Vec3, 5> walls = {Vec3(0, 0, -1), Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(0, 1, 0)};
-  for (std::uint32_t a = 0; a < n; ++a)
-  {
-    for (std::uint32_t b = a + 1; b < n; ++b)
-      if ((at[b] - at[a]).norm() < 2 * r + near)
-      {
-        ContactRow row;
-        row.a = a;
-        row.b = b;
-        row.push_a = row.push_b = (at[b] - at[a]).normalized();
-        row.target = 1e-16 * unit(rng);
-        jam.rows.push_back(row);
-      }
-    const std::array<double, 5> gaps = {at[a].z(), at[a].x(), side - at[a].x(), at[a].y(), side - at[a].y()};
-    for (std::size_t w = 0; w < walls.size(); ++w)
-      if (gaps[w] < r + near)
-      {
-        ContactRow row;
-        row.a = a;
-        row.push_a = row.push_b = walls[w];
-        row.target = 1e-16 * unit(rng);
-        jam.rows.push_back(row);
-      }
-  }
-  return jam;
-}
-
 double kinetic(const std::vector<Vec3>& u, const std::vector<double>& inv)
 {
   double sum = 0.0;
@@ -99,7 +47,8 @@ int main(int argc, char** argv)
   for (const auto& [base, top] : sizes)
     for (std::uint64_t start = 1; start <= 4; ++start)
     {
-      const Jam jam = squareJam(base, top, 100 + start);
+      std::mt19937_64 rng(100 + start);
+      const ball_collision_sim::test::JamRows jam = ball_collision_sim::test::jamRows(base, top, rng);
       // (the sweeps' guess, as the step gives it to the exact stage)
       std::vector<ContactRow> swept = jam.rows;
       std::vector<Vec3> u_swept = jam.free;

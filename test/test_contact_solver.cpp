@@ -2,6 +2,7 @@
 // jams at rest, and the unique solution of a linear complementarity problem found by
 // trying every set of active contacts, by its sweeps and by its exact stage.
 #include "core/step/contact_solver.hpp"
+#include "jam_rows.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,6 +13,8 @@
 using namespace ball_collision_sim::core;
 using step::ContactRow;
 using step::solveContacts;
+using ball_collision_sim::test::JamRows;
+using ball_collision_sim::test::jamRows;
 
 namespace
 {
@@ -264,51 +267,13 @@ TEST(ContactSolver, TheExactStageFindsWhichContactsPush)
 TEST(ContactSolver, TheExactStageSettlesAJamWhoseContactsSayTheSame)
 {
   std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  const int layers = 4;
-  const double r = 1, side = 2 * r * layers, jiggle = 1e-6, near = 3 * jiggle;
   for (int trial = 0; trial < 10; ++trial)
   {
-    std::vector<Vec3> at;
-    for (int layer = 0; layer < layers; ++layer)
-      for (int i = 0; i < layers - layer; ++i)
-        for (int j = 0; j < layers - layer; ++j)
-          at.push_back(Vec3((2 * i + 1 + layer) * r, (2 * j + 1 + layer) * r, (1 + layer * std::sqrt(2.0)) * r) +
-                       jiggle * Vec3(unit(rng), unit(rng), unit(rng)));
-    const std::size_t n = at.size();
-    std::vector<double> inv(n);
-    std::vector<Vec3> free(n);
-    for (std::size_t k = 0; k < n; ++k)
-    {
-      inv[k] = 1 / (1.5 + unit(rng));
-      free[k] = Vec3(unit(rng), unit(rng), unit(rng) - 1);
-    }
-    std::vector<ContactRow> rows;
-    const std::array<Vec3, 5> walls = {Vec3(0, 0, -1), Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(0, 1, 0)};
-    for (std::uint32_t a = 0; a < n; ++a)
-    {
-      for (std::uint32_t b = a + 1; b < n; ++b)
-        if ((at[b] - at[a]).norm() < 2 * r + near)
-        {
-          const Vec3 normal = (at[b] - at[a]).normalized();
-          ContactRow row;
-          row.a = a;
-          row.b = b;
-          row.push_a = row.push_b = normal;
-          row.target = 1e-16 * unit(rng);  // (round-off of the gap)
-          rows.push_back(row);
-        }
-      const std::array<double, 5> gaps = {at[a].z(), at[a].x(), side - at[a].x(), at[a].y(), side - at[a].y()};
-      for (std::size_t w = 0; w < walls.size(); ++w)
-        if (gaps[w] < r + near)
-        {
-          ContactRow row;
-          row.a = a;
-          row.push_a = row.push_b = walls[w];
-          row.target = 1e-16 * unit(rng);
-          rows.push_back(row);
-        }
-    }
+    const JamRows jam = jamRows(4, 1, rng);
+    const std::vector<Vec3>& free = jam.free;
+    const std::vector<double>& inv = jam.inv;
+    const std::vector<ContactRow>& rows = jam.rows;
+    const std::size_t n = free.size();
     ASSERT_GT(rows.size(), 3 * n) << "trial " << trial;  // (more contacts than the balls can move along)
     std::vector<std::vector<Vec3>> answers;
     for (const bool guess : {true, false})
