@@ -148,5 +148,7 @@ TEST(Threads, FlightGivesTheSameBits)
   };
   const WorldStats stats = sameOnEveryCount("flight", scene, 200, strike);
   EXPECT_GT(stats.floor_impacts, 50u);
-  EXPECT_GT(stats.transitions, 50u);  // (take-offs and landings)
+  // (take-offs and landings: 21 and 3; found along the chord, one ball took off and
+  // landed 257 times at one instant)
+  EXPECT_GE(stats.transitions, 20u);
 }

@@ -59,6 +59,7 @@ FloorFlow::Rates FloorFlow::rates(const State& s, const Law& law) const
   out.spin = Vec3::Zero();
   out.spin_n = 0.0;
   out.q = out.q_rate = Vec3::Zero();
+  out.drag = 0.0;
   switch (law.kind)
   {
     case Kind::kFree:
@@ -76,6 +77,7 @@ FloorFlow::Rates FloorFlow::rates(const State& s, const Law& law) const
       out.spin_n = -sign(s.spin_n) * out.spin_n_rate;
       out.q = v;
       out.q_rate = out.acceleration;
+      out.drag = drag;
       break;
     }
     case Kind::kSliding:
@@ -99,6 +101,7 @@ FloorFlow::Rates FloorFlow::rates(const State& s, const Law& law) const
       out.q = u;
       out.q_rate = out.acceleration + r * (n_rate.cross(s.spin) + n.cross(out.spin));
       out.q_rate -= out.q_rate.dot(n) * n;
+      out.drag = law.sliding * g_n * (1 + 1 / k);
       break;
     }
   }
@@ -144,10 +147,13 @@ double FloorFlow::timeToEnd(const State& s, const Law& law, const Rates& d, std:
   return best;
 }
 
-double FloorFlow::turnTime(const Law& law, const Rates& d, double turn)
+double FloorFlow::turnTime(const Rates& d, double turn) const
 {
-  if (law.kind == Kind::kFree)
+  // (only the drag turns with q, and its error with it: as turn^3 times the drag, so
+  // that a drag of g takes `turn`, a weaker one more; none, none)
+  if (!(d.drag > 0))
     return kNever;
+  turn *= std::cbrt(gravity_.norm() / d.drag);
   const double size = d.q.norm();
   if (!(size > 0))
     return kNever;  // (from nothing it grows along its rate, and does not turn)
@@ -174,7 +180,7 @@ FloorFlow::End FloorFlow::advance(State& state, double duration, int substeps, c
   {
     // (no step shorter than kEndTime, in which nothing moves by more than round-off; past
     // the cap, the substeps as they are)
-    const double turning = ++steps > step_cap ? kNever : turnTime(law, d, turn);
+    const double turning = ++steps > step_cap ? kNever : turnTime(d, turn);
     double step = std::min({h, duration - t, std::max(kEndTime, turning)});
     std::uint8_t which = kPhaseRuns;
     const double to_end = timeToEnd(state, law, d, which);

@@ -96,15 +96,18 @@ private:
     Vec3 q, q_rate;
     double spin_n_rate;
     double support;  ///< what the floor must push with along n, per mass: push + g_n [m/s^2]
+    double drag;     ///< the part of q's rate along -q/|q| (friction's, whose direction turns with q) [m/s^2]
   };
   Rates rates(const State& s, const Law& law) const;
   State rungeKutta(const State& s, double h, const Law& law, const Rates& first) const;
   /// The time until the first of the phase's ends at the rates `d` (infinite where none
   /// comes), and which it is.
   double timeToEnd(const State& s, const Law& law, const Rates& d, std::uint8_t& which) const;
-  /// The time in which q turns by `turn` at its rate across it, taking in that a
-  /// shrinking q turns faster as it goes (infinite for a free ball).
-  static double turnTime(const Law& law, const Rates& d, double turn);
+  /// The time in which q turns by `turn` (for a drag of g; by turn (g / drag)^(1/3) for
+  /// another, the error of a step going as the drag times the turn cubed) at its rate
+  /// across it, taking in that a shrinking q turns faster as it goes (infinite without a
+  /// drag: a free ball, or rolling without rolling resistance).
+  double turnTime(const Rates& d, double turn) const;
   /// From `before` (its rates `rates`), the state where a step of at most `step` first
   /// has the floor's support below zero, within 1e-12 s on that side; its time in `time`.
   State takeOff(const State& before, const Rates& rates, double step, const Law& law, double& time) const;

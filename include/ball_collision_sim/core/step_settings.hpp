@@ -148,10 +148,13 @@ struct StepSettings
   /// 1e-9 m of the exact motion on the test floors (test_floor_flow) [rad].
   double flow_turn = 0.05;
   /// ... and in steps that each turn a sliding ball's slip (or a rolling one's velocity
-  /// under rolling resistance) by at most this, where friction's direction turns with it,
-  /// fastest near the slip's end: the slip's end is then found within about 1e-9 s
-  /// (its error goes as this cubed: 2e-6 s at 0.05, 1e-9 s at 0.005) [rad].
-  double slip_turn = 0.004;
+  /// under rolling resistance) by at most this where friction's drag on it is g, where
+  /// friction's direction turns with it, fastest near the slip's end; by this times
+  /// (g / drag)^(1/3) under another drag (the step's error goes as the drag times the turn
+  /// cubed: a rolling ball's resistance of 0.01 g turns 4.6 times as far), and without
+  /// one, freely. The slip's end is then found within about 1e-9 s (2e-6 s at 0.05, 1e-9
+  /// s at 0.005 for the slip's drag of 0.2 g (1 + 1/k) on the test floors) [rad].
+  double slip_turn = 0.0035;
   /// ... in at most this many steps a chord: a ball all but at rest in a pile, whose tiny
   /// velocity or slip the pull and its contacts turn about, would take ever shorter ones;
   /// past the cap its flow goes on in the substeps flow_turn gives. A single ball's slip
