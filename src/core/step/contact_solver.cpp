@@ -214,11 +214,15 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
     bool okr = ipm && pivotBlocks(u_free, inv, rows, start, lambda, trial, slack, settings, 0, solves);
     if (!okr && ipm)
     {
-      const std::vector<Vec3> within = pushedBy(u_free, inv, rows, interior);
-      if (wrongRows(rows, std::vector<char>(rows.size(), 1), within, interior, slack).empty() &&
-          wrongRows(rows, std::vector<char>(rows.size(), 0), within, interior, slack).empty())
+      // (its rows that push close past their targets by the regularization's share, as
+      // a direct solve's do; those it found not to push push nothing, and may not close
+      // past theirs)
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        interior[r] = pushes[r] ? interior[r] : 0.0;
+      std::vector<Vec3> within = pushedBy(u_free, inv, rows, interior);
+      if (wrongRows(rows, pushes, within, interior, slack).empty())
       {
-        u = within;
+        u.swap(within);
         for (std::size_t r = 0; r < rows.size(); ++r)
           rows[r].impulse = interior[r];
         return true;

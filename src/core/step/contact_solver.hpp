@@ -151,9 +151,12 @@ struct ExactSettings
 /// the problem with A's diagonal a little larger (definite: one answer) is solved by an
 /// interior-point method over all rows (solveInterior(): some thirty factorizations on one
 /// pattern, whatever the jam), and pivoting from the rows it found to push settles those
-/// it left on the fence; where that does not settle, the primal active-set method from
-/// its impulses, which lowers its objective at each solve and so ends (it takes one row at
-/// a time once adding several made no progress). A's own impulses for the rows found are
+/// it left on the fence; where the direct solves cannot (impulses below what they
+/// resolve), its own impulses stand where no row is wrong with them (those it found to
+/// push close past their targets by the regularization's share, as a direct solve's
+/// do); where neither settles, the primal active-set method from the sweeps' impulses,
+/// which lowers its objective at each solve and so ends (it takes one row at a time once
+/// adding several made no progress). A's own impulses for the rows found are
 /// kept where they are right too. At most `settings.rounds` direct solves in all, and that
 /// one more. True, with u and the impulses set, where no row is wrong; false with neither
 /// changed.
