@@ -241,7 +241,7 @@ bool solveInterior(const std::vector<Vec3>& u_free, const std::vector<double>& i
   // (A + E, E = eps D + W / Lambda: through the bodies)
   const Eigen::VectorXd regularized = regularization * system.diagonal;
   BodySystem newton(inv, rows, movable);
-  const double mu_done = 1e-24 * closing_scale * impulse_scale, residual_done = 1e-13 * closing_scale;
+  const double mu_done = 1e-30 * closing_scale * impulse_scale, residual_done = 1e-13 * closing_scale;
   bool converged = false;
   for (int iteration = 0; iteration < iterations; ++iteration)
   {

@@ -28,11 +28,12 @@ PushingSystem pushingSystem(const std::vector<Vec3>& u_free, const std::vector<d
 /// = 0, by Mehrotra's predictor-corrector interior-point method on that linear
 /// complementarity problem (Wright, Primal-Dual Interior-Point Methods, 1997, ch. 8 and
 /// 10). Each iteration solves (A + W / Lambda) d = r twice, through the bodies' system
-/// M + J^T (eps D + W / Lambda)^-1 J. It stops where the mean lambda w falls below 1e-24
+/// M + J^T (eps D + W / Lambda)^-1 J. It stops where the mean lambda w falls below 1e-30
 /// of the problem's own scale (rows on the fence, where both go to zero, have them near
-/// its square root: 1e-12) and the residual below 1e-13 of the closings, or after
-/// `iterations`. Out: lambda, its impulses there (every one > 0: within the problem,
-/// each row opening by w > 0 and lambda w at most about 1e-24 of the scale), `pushes`,
+/// its square root: 1e-15, so that taking their impulses away moves no other row by more
+/// than round-off) and the residual below 1e-13 of the closings, or after `iterations`.
+/// Out: lambda, its impulses there (every one > 0: within the problem, each row opening
+/// by w > 0 and lambda w at most about 1e-30 of the scale), `pushes`,
 /// the rows it found to push (those its impulse closes by more than they open, lambda A_ii
 /// > w), and true where it converged.
 bool solveInterior(const std::vector<Vec3>& u_free, const std::vector<double>& inv, const std::vector<ContactRow>& rows,
