@@ -213,7 +213,7 @@ private:
 }  // namespace
 
 bool solveInterior(const std::vector<Vec3>& u_free, const std::vector<double>& inv, const std::vector<ContactRow>& rows,
-                   std::vector<double>& lambda, std::vector<char>& pushes, double regularization, int iterations)
+                   std::vector<double>& lambda, double regularization, int iterations)
 {
   // (rows that no body can give way along take no impulse, and are left out)
   std::vector<int> movable;
@@ -226,7 +226,6 @@ bool solveInterior(const std::vector<Vec3>& u_free, const std::vector<double>& i
       movable.push_back(static_cast<int>(r));
   }
   std::fill(lambda.begin(), lambda.end(), 0.0);
-  pushes.assign(rows.size(), 0);
   const Eigen::Index n = static_cast<Eigen::Index>(movable.size());
   if (n == 0)
     return true;
@@ -274,11 +273,8 @@ bool solveInterior(const std::vector<Vec3>& u_free, const std::vector<double>& i
   }
   // (a row pushes where its impulse closes it by more than it opens: lambda D > w)
   for (Eigen::Index i = 0; i < n; ++i)
-  {
-    const auto r = static_cast<std::size_t>(movable[static_cast<std::size_t>(i)]);
-    lambda[r] = x[i];
-    pushes[r] = x[i] * system.diagonal[i] > w[i] ? 1 : 0;
-  }
+    if (x[i] * system.diagonal[i] > w[i])
+      lambda[static_cast<std::size_t>(movable[static_cast<std::size_t>(i)])] = x[i];
   return converged;
 }
 }  // namespace ball_collision_sim::core::step

@@ -32,10 +32,9 @@ PushingSystem pushingSystem(const std::vector<Vec3>& u_free, const std::vector<d
 /// of the problem's own scale (rows on the fence, where both go to zero, have them near
 /// its square root: 1e-15, so that taking their impulses away moves no other row by more
 /// than round-off) and the residual below 1e-13 of the closings, or after `iterations`.
-/// Out: lambda, its impulses there (every one > 0: within the problem, each row opening
-/// by w > 0 and lambda w at most about 1e-30 of the scale), `pushes`,
-/// the rows it found to push (those its impulse closes by more than they open, lambda A_ii
-/// > w), and true where it converged.
+/// Out: lambda, its impulses there on the rows it found to push (those its impulse closes
+/// by more than they open, lambda A_ii > w; within the problem, lambda w is at most about
+/// 1e-30 of the scale), 0 on the others; and true where it converged.
 bool solveInterior(const std::vector<Vec3>& u_free, const std::vector<double>& inv, const std::vector<ContactRow>& rows,
-                   std::vector<double>& lambda, std::vector<char>& pushes, double regularization, int iterations);
+                   std::vector<double>& lambda, double regularization, int iterations);
 }  // namespace ball_collision_sim::core::step

@@ -205,20 +205,16 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
     // them; else the primal active-set method, which ends, from the sweeps' impulses.
     // Then A's own impulses with the rows found, where they are right too.
     std::vector<double> interior(rows.size());
-    std::vector<char> pushes;
-    const bool ipm =
-        solveInterior(u_free, inv, rows, interior, pushes, settings.regularization, settings.interior_iterations);
-    std::vector<double> start(rows.size());
-    for (std::size_t r = 0; r < rows.size(); ++r)
-      start[r] = pushes[r] ? 1.0 : 0.0;
-    bool okr = ipm && pivotBlocks(u_free, inv, rows, start, lambda, trial, slack, settings, 0, solves);
+    const bool ipm = solveInterior(u_free, inv, rows, interior, settings.regularization, settings.interior_iterations);
+    bool okr = ipm && pivotBlocks(u_free, inv, rows, interior, lambda, trial, slack, settings, 0, solves);
     if (!okr && ipm)
     {
       // (its rows that push close past their targets by the regularization's share, as
       // a direct solve's do; those it found not to push push nothing, and may not close
       // past theirs)
+      std::vector<char> pushes(rows.size());
       for (std::size_t r = 0; r < rows.size(); ++r)
-        interior[r] = pushes[r] ? interior[r] : 0.0;
+        pushes[r] = interior[r] > 0 ? 1 : 0;
       std::vector<Vec3> within = pushedBy(u_free, inv, rows, interior);
       if (wrongRows(rows, pushes, within, interior, slack).empty())
       {
