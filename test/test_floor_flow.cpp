@@ -101,6 +101,17 @@ void advanceThrough(const FloorFlow& flow, FloorFlow::State& s, double duration,
   }
 }
 
+/// A ball of radius r where `flow` puts its centre over `start`'s foot point, at its
+/// velocity; the floor's normal there in `normal`.
+BallDef ballAt(const FloorFlow& flow, const FloorFlow::State& start, double r, Vec3* normal = nullptr)
+{
+  BallDef b;
+  b.radius = r;
+  b.position = flow.centre(start.foot, normal);
+  b.velocity = start.velocity;
+  return b;
+}
+
 /// A start on the floor at foot (u, v) with velocity w along it.
 FloorFlow::State startAt(const Floor& floor, const Vec2& foot, const Vec3& w)
 {
@@ -252,10 +263,7 @@ TEST_P(WorldOnCurvedFloors, WithinAMicrometreAfterOneSecond)
   const Floor floor(c.floor, kGravity);
   const FloorFlow flow(floor, kGravity, r);
   const FloorFlow::State start = startAt(floor, c.foot, c.velocity);
-  BallDef b;
-  b.radius = r;
-  b.position = flow.centre(start.foot);
-  b.velocity = start.velocity;
+  BallDef b = ballAt(flow, start, r);
   if (c.friction)
   {
     scene.friction = friction(0.5, 0.01);
@@ -294,9 +302,7 @@ TEST(WorldOnCurvedFloor, SmallOscillationPeriodsInTheBowl)
   {
     Scene scene;
     scene.floor = bowl(L, h);
-    BallDef b;
-    b.radius = r;
-    b.position = flow.centre(startAt(floor, Vec2(0.5 + 0.003, 0.5), Vec3::Zero()).foot);
+    BallDef b = ballAt(flow, startAt(floor, Vec2(0.5 + 0.003, 0.5), Vec3::Zero()), r);
     if (k > 0)
     {
       scene.friction = friction(0.5, 0.0);
@@ -501,10 +507,7 @@ TEST_P(SlidingOnCurvedFloors, SlipsEndAndRollAsTheReference)
   const FloorFlow flow(floor, kGravity, r);
   const FloorFlow::State start = startAt(floor, c.foot, c.velocity);
   Vec3 n;
-  BallDef b;
-  b.radius = r;
-  b.position = flow.centre(start.foot, &n);
-  b.velocity = start.velocity;
+  BallDef b = ballAt(flow, start, r, &n);
   b.inertia = k;
   b.angular_velocity = c.spin_about_normal * n;
   scene.balls = {b};
