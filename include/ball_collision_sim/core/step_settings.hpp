@@ -88,6 +88,12 @@ struct StepSettings
   /// jam of 204 balls takes about 30) before the active-set method finishes from there,
   /// in a solve or a few [iterations].
   int exact_interior_iterations = 100;
+  /// With friction at resting contacts (the `ball_ball` and `wall` coefficients), where the
+  /// sweeps over a group's contacts and their friction do not converge: solves of its
+  /// contacts exactly with friction held, each followed by friction again under the
+  /// contacts' impulses found, until friction stops changing (staggered projections;
+  /// step::solveFrictionally()) [solves].
+  int friction_passes = 8;
   /// Sweeps of the contact solver over a group with rolling resistance, each followed by
   /// the members' resistance, before its contacts are solved exactly with the resistance
   /// found (what is left is a resistance a little off its cap) [sweeps].

@@ -1,9 +1,10 @@
 // A group of balls joined by resting contacts, as the contact solver takes it: the
-// balls by a local index, their vectors and inverse masses, and one row per contact. Reused from step to step, so that it allocates only as
-// it grows. Not part of the public interface.
+// balls by a local index, their vectors and inverse masses, and one row per contact
+// (with friction, the balls' spins and the contacts' friction). Reused from step to
+// step, so that it allocates only as it grows. Not part of the public interface.
 #pragma once
 
-#include "contact_solver.hpp"
+#include "contact_friction.hpp"
 #include "step_types.hpp"
 
 namespace ball_collision_sim::core
@@ -13,6 +14,11 @@ struct StepState::ContactGroup
   std::vector<Vec3> u;
   std::vector<double> inv_mass;
   std::vector<step::ContactRow> rows;
+  /// with friction at the contacts: each ball's spin [rad/s] and what an impulse turns it
+  /// by, and the contacts' friction (none without)
+  std::vector<Vec3> w;
+  std::vector<double> inv_inertia;
+  std::vector<step::FrictionPair> friction;
 
   std::size_t size() const { return balls_.size(); }
   /// The visiting index of the group's k-th ball.
@@ -28,6 +34,8 @@ struct StepState::ContactGroup
       balls_.push_back(static_cast<std::uint32_t>(i));
       u.emplace_back(Vec3::Zero());
       inv_mass.push_back(0.0);
+      w.emplace_back(Vec3::Zero());
+      inv_inertia.push_back(0.0);
     }
     return local_[i];
   }
@@ -50,6 +58,9 @@ struct StepState::ContactGroup
     u.clear();
     inv_mass.clear();
     rows.clear();
+    w.clear();
+    inv_inertia.clear();
+    friction.clear();
   }
 
 private:

@@ -61,9 +61,65 @@ struct ContactSolve
   bool converged = false;
 };
 
+/// What an impulse along `row` moves body k by per unit (0 for a wall).
+inline double inverseMassOf(const std::vector<double>& inv_mass, std::uint32_t k)
+{
+  return k == ContactRow::kImmovable ? 0.0 : inv_mass[k];
+}
+
+/// u moved by an impulse d along `row`.
+inline void applyRow(std::vector<Vec3>& u, const std::vector<double>& inv_mass, const ContactRow& row, double d)
+{
+  u[row.a] -= (d * inverseMassOf(inv_mass, row.a)) * row.push_a;
+  if (row.b != ContactRow::kImmovable)
+    u[row.b] += (d * inverseMassOf(inv_mass, row.b)) * row.push_b;
+}
+
+/// The rows' warm start (their impulses, at least zero) applied to u, and each row's
+/// effective inverse mass: how much a unit impulse opens it.
+inline std::vector<double> startRows(std::vector<Vec3>& u, const std::vector<double>& inv_mass,
+                                     std::vector<ContactRow>& rows)
+{
+  std::vector<double> opens(rows.size());
+  for (std::size_t r = 0; r < rows.size(); ++r)
+  {
+    ContactRow& row = rows[r];
+    opens[r] = inverseMassOf(inv_mass, row.a) * row.push_a.squaredNorm() +
+               (row.b == ContactRow::kImmovable ? 0.0 : inverseMassOf(inv_mass, row.b) * row.push_b.squaredNorm());
+    row.impulse = std::max(row.impulse, 0.0);
+    if (row.impulse > 0 && opens[r] > 0)
+      applyRow(u, inv_mass, row, row.impulse);
+    else
+      row.impulse = 0.0;
+  }
+  return opens;
+}
+
+/// One sweep of projected Gauss-Seidel over `rows` in their order: for each row in turn,
+/// the impulse that takes its closing to its target, clamped so that the accumulated
+/// impulse stays >= 0. The largest change of a row's closing it made.
+inline double sweepRows(std::vector<Vec3>& u, const std::vector<double>& inv_mass, std::vector<ContactRow>& rows,
+                        const std::vector<double>& opens)
+{
+  double change = 0.0;
+  for (std::size_t r = 0; r < rows.size(); ++r)
+  {
+    ContactRow& row = rows[r];
+    if (!(opens[r] > 0))
+      continue;  // neither body can give way along it
+    const double next = std::max(row.impulse + (closingOf(u, row) - row.target) / opens[r], 0.0);
+    const double d = next - row.impulse;
+    if (d == 0)
+      continue;
+    applyRow(u, inv_mass, row, d);
+    row.impulse = next;
+    change = std::max(change, std::abs(d) * opens[r]);
+  }
+  return change;
+}
+
 /// Projected Gauss-Seidel over `rows` in their order (the caller's order makes it
-/// deterministic): for each row in turn, the impulse that takes its closing to its target,
-/// clamped so that the accumulated impulse stays >= 0. After each sweep `project(u)` may
+/// deterministic): sweepRows() from the warm start. After each sweep `project(u)` may
 /// put the bodies' vectors back where they must lie (on the floor); sweeps go on until a
 /// sweep changes no row's closing by more than `tolerance` and none closes by more than
 /// `tolerance` past its target, or `max_sweeps` have run.
@@ -71,43 +127,12 @@ template <class Project>
 ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double>& inv_mass, std::vector<ContactRow>& rows,
                            double tolerance, int max_sweeps, Project&& project)
 {
-  const auto invOf = [&](std::uint32_t k) { return k == ContactRow::kImmovable ? 0.0 : inv_mass[k]; };
-  const auto apply = [&](const ContactRow& row, double d) {
-    u[row.a] -= (d * invOf(row.a)) * row.push_a;
-    if (row.b != ContactRow::kImmovable)
-      u[row.b] += (d * invOf(row.b)) * row.push_b;
-  };
-  // (the warm start, then the impulses' effective masses: how much a unit impulse opens)
-  std::vector<double> opens(rows.size());
-  for (std::size_t r = 0; r < rows.size(); ++r)
-  {
-    ContactRow& row = rows[r];
-    opens[r] = invOf(row.a) * row.push_a.squaredNorm() +
-               (row.b == ContactRow::kImmovable ? 0.0 : invOf(row.b) * row.push_b.squaredNorm());
-    row.impulse = std::max(row.impulse, 0.0);
-    if (row.impulse > 0 && opens[r] > 0)
-      apply(row, row.impulse);
-    else
-      row.impulse = 0.0;
-  }
+  const std::vector<double> opens = startRows(u, inv_mass, rows);
   ContactSolve out;
   while (out.sweeps < max_sweeps)
   {
     ++out.sweeps;
-    double change = 0.0;
-    for (std::size_t r = 0; r < rows.size(); ++r)
-    {
-      ContactRow& row = rows[r];
-      if (!(opens[r] > 0))
-        continue;  // neither body can give way along it
-      const double next = std::max(row.impulse + (closingOf(u, row) - row.target) / opens[r], 0.0);
-      const double d = next - row.impulse;
-      if (d == 0)
-        continue;
-      apply(row, d);
-      row.impulse = next;
-      change = std::max(change, std::abs(d) * opens[r]);
-    }
+    const double change = sweepRows(u, inv_mass, rows, opens);
     project(u);
     out.residual = 0.0;
     for (const ContactRow& row : rows)

@@ -23,6 +23,7 @@ void StepContext::solveGroup(std::size_t i, double x)
   if (span > 0)
   {
     makeRows(span);
+    makeFrictionRows(x);
     solveRows(span);
   }
   finishGroup(x, span);
@@ -218,10 +219,20 @@ void StepContext::solveGroupContacts(ContactGroup& group, double span, double sl
   for (int pass = 0; pass < settings_.group_passes; ++pass)
   {
     if (pass > 0)
+    {
       group.u = free_u_;
+      group.w = free_w_;
+    }
     // (the solve is linear, on the rows as they are; the ends go back on the floor after it)
-    if (!solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.group_sweeps).converged &&
-        !solveContactsExactly(free_u_, group.inv_mass, group.rows, group.u, slack, exactSettings()))
+    if (!group.friction.empty())
+    {
+      if (!solveFrictionally(free_u_, free_w_, group.u, group.inv_mass, group.rows, Spins{group.w, group.inv_inertia},
+                             group.friction, slack, settings_.group_sweeps, settings_.friction_passes,
+                             exactSettings()))
+        ++stats_.unsettled_contacts;
+    }
+    else if (!solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.group_sweeps).converged &&
+             !solveContactsExactly(free_u_, group.inv_mass, group.rows, group.u, slack, exactSettings()))
     {
       // (more sweeps give the exact solve a better guess of which rows push)
       solveContacts(group.u, group.inv_mass, group.rows, slack, settings_.group_retry_sweeps);
@@ -271,7 +282,9 @@ void StepContext::finishGroup(double x, double span)
     // (a member rolls: its spin along the floor is rolling's, its spin about the normal
     // stays)
     const Vec3& n = member_normals_[m];
-    const Vec3 spin_about_n = member_rolls_[m] ? Vec3(spinAt(b, x).dot(n) * n) : Vec3::Zero();
+    const bool turned = !group.friction.empty();  // (by friction at its contacts: group.w)
+    const Vec3 spin_about_n = !member_rolls_[m] ? Vec3::Zero() : turned ? group.w[m] : Vec3(spinAt(b, x).dot(n) * n);
+    const Vec3 spin = turned && !member_rolls_[m] ? group.w[m] : Vec3::Zero();
     beginMotion(b, x, member_positions_[m], v);
     motions_[b].b = group.u[m];
     if (!chord_ends_.empty())
@@ -280,6 +293,8 @@ void StepContext::finishGroup(double x, double span)
     motions_[b].become(MotionType::kGrouped);
     if (member_rolls_[m])
       spin_motions_[b].w0 = n.cross(v) / balls_[b].radius + spin_about_n;
+    else if (turned)
+      spin_motions_[b].w0 = spin;
     spin_->followGroup(*this, b, member_rolls_[m]);
     if (x > 0)
     {

@@ -192,6 +192,8 @@ struct StepState
   std::vector<Vec3> member_normals_;
   std::vector<Vec3> member_velocities_;
   std::vector<Vec3> free_u_;
+  /// with friction at the contacts, the members' spins before the solve [rad/s]
+  std::vector<Vec3> free_w_;
   /// per member of the group being solved: its motion before rolling resistance [m],
   /// gravity's pull [m/s per unit of the step], the most resistance takes from it [m per
   /// unit of the step], whether it rolls, and what resistance took [m]

@@ -1,0 +1,122 @@
+// Friction at resting contacts against closed forms: a ball pressed against a wall
+// across a slope rolls along it turning about the floor's normal as well, held by the
+// wall's friction where that can hold it (its effective mass (1 + 2k) m), and slides along
+// the wall at the rate Coulomb's law gives where it cannot.
+#include "fixtures.hpp"
+
+#include "ball_collision_sim/core/friction.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace ball_collision_sim::core;
+using namespace ball_collision_sim::test;
+
+namespace
+{
+constexpr double kG = 9.81;
+
+/// A plane `side` [m] square sloped `degrees` downhill along +x, with friction.
+struct Slope
+{
+  Scene scene;
+  Vec3 down;    // the fall line, unit
+  Vec3 across;  // +y, unit
+  Vec3 normal;  // the floor's, up
+  double g_t = 0;  // gravity along the floor [m/s^2]
+
+  Slope(double degrees, const FrictionDef& f, double side = 8)
+  {
+    const double a = degrees * M_PI / 180;
+    FloorDef floor;
+    floor.point = Vec3(-side / 2, -side / 2, side / 2 * std::tan(a));
+    floor.u = Vec3(side, 0, -side * std::tan(a));
+    floor.v = Vec3(0, side, 0);
+    scene.floor = floor;
+    scene.friction = f;
+    down = floor.u.normalized();
+    across = Vec3::UnitY();
+    normal = floor.u.cross(floor.v).normalized();
+    g_t = kG * std::sin(a);
+  }
+  /// The point of the floor over (x, y).
+  Vec3 at(double x, double y) const { return Vec3(x, y, -x * (down.z() / down.x())); }
+};
+
+/// A wall on `slope` through the floor's point over the origin, along t (downhill, phi
+/// from the fall line toward +y), and a ball of radius r at rest on the floor against it
+/// on the side gravity presses it to.
+struct WallRun
+{
+  Vec3 t, q, start;
+};
+WallRun wallAcross(Slope& slope, double phi, double r, double k)
+{
+  WallRun run;
+  run.t = std::cos(phi) * slope.down + std::sin(phi) * slope.across;
+  run.q = slope.normal.cross(run.t);  // the wall's normal along the floor
+  // (gravity along the floor presses toward -q: the ball lies on the +q side)
+  const Vec3 w0 = slope.at(0, 0);
+  slope.scene.walls.push_back({w0 - 3 * run.t, 6 * run.t, 0.5 * slope.normal, {}});
+  run.start = w0 + r * run.q + r * slope.normal;
+  BallDef b = ball(0, 0, 0, 0, r);
+  b.position = run.start;
+  b.inertia = k;
+  slope.scene.balls = {b};
+  return run;
+}
+
+void runFor(World& world, double t)
+{
+  while (world.time() < t - 1e-9)
+    world.step();
+}
+}  // namespace
+
+struct AgainstAWall
+{
+  double phi;
+  double mu_wall;
+  double k;
+};
+class BallAgainstAWall : public ::testing::TestWithParam<AgainstAWall>
+{
+};
+
+// Pressed with N = m g_t sin(phi), pulled along the wall by m g_t cos(phi). Friction holds
+// the wall's touching point where k cos / (1 + 2k) <= mu_w sin: the ball then turns about
+// the axis through both of its touching points, a = g_t cos / (1 + 2k), its spin about the
+// floor's normal a t / r (velocity and spin exact; position as a group's time step
+// gives it). Else it slips along the wall: a = g_t (cos - mu_w sin) / (1 + k),
+// its spin about the normal growing at mu_w g_t sin / (k r).
+TEST_P(BallAgainstAWall, RollsOrSlipsAlongItAsTheLawsSay)
+{
+  const AgainstAWall c = GetParam();
+  const double r = 0.1;
+  Slope slope(10, friction(0.5, 0.0));
+  slope.scene.friction->wall = c.mu_wall;
+  const WallRun run = wallAcross(slope, c.phi, r, c.k);
+  World world(slope.scene);
+  const double T = 1.0;
+  runFor(world, T);
+  const double press = slope.g_t * std::sin(c.phi), pull = slope.g_t * std::cos(c.phi);
+  const bool holds = c.k * pull / (1 + 2 * c.k) <= c.mu_wall * press;
+  const double a = holds ? pull / (1 + 2 * c.k) : (pull - c.mu_wall * press) / (1 + c.k);
+  const double spin_rate = holds ? a / r : c.mu_wall * press / (c.k * r);
+  const Ball& b = world.balls()[0];
+  // (a group's time step moves it with its velocity at the step's end, Moreau's: after N
+  // steps of dt from rest, a dt^2 N (N + 1) / 2)
+  EXPECT_NEAR((b.position - run.start).dot(run.t), 0.5 * a * T * (T + world.dt()), 1e-9);
+  EXPECT_NEAR((b.position - run.start).dot(run.q), 0.0, 1e-9);
+  EXPECT_NEAR(b.velocity.dot(run.t), a * T, 1e-9);
+  EXPECT_NEAR(std::abs(world.angularVelocity(0).dot(slope.normal)), spin_rate * T, 1e-9);
+  EXPECT_EQ(world.stats().unsettled_contacts, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Walls, BallAgainstAWall,
+                         ::testing::Values(AgainstAWall{M_PI / 6, 0.3, kSolidInertia},
+                                           AgainstAWall{M_PI / 6, 0.1, kSolidInertia},
+                                           AgainstAWall{M_PI / 4, 0.5, kHollowInertia},
+                                           AgainstAWall{M_PI / 4, 0.05, kHollowInertia},
+                                           AgainstAWall{M_PI / 6, 0.0, kSolidInertia}));
