@@ -66,7 +66,12 @@ void StepContext::makeFrictionRows(double x)
     e1 = e1.squaredNorm() > settings_.wall_along_floor_squared ? Vec3(e1.normalized()) : d.unitOrthogonal();
     const Vec3 e2 = d.cross(e1);
     const Vec3 rho_a = balls_[members_[row.a]].radius * d;
-    for (std::size_t k = 0; k < 2; ++k)
+    // (where both roll, motion toward the contact moves their touching points across the
+    // floor's plane only as it closes the contact: a resting contact holds that, and a row
+    // across the floor would share the contact's push, which is then no longer determined,
+    // and take from its bound. Impacts give that friction.)
+    const bool rolls = member_rolls_[row.a] && (wall || member_rolls_[row.b]);
+    for (std::size_t k = 0; k < (rolls ? 1u : 2u); ++k)
     {
       const Vec3& e = k == 0 ? e1 : e2;
       FrictionRow& f = pair.rows[k];
