@@ -186,3 +186,54 @@ TEST(SlopePile, SettlesWithFrictionAtItsContacts)
     EXPECT_LT(fastest, 1e-6) << seed;
   }
 }
+
+// Three balls jammed in a funnel on a 10 degree slope (walls converging downhill at 30
+// degrees to the fall line, to an outlet 2.5 r wide): two abreast where it narrows to
+// their width, one a little ahead of the other, and one dropped on them. Without friction
+// the two slip past each other and all three run out through the outlet; with friction at
+// the contacts (0.3, and at walls) the jam holds and comes to rest above the outlet
+// within 5 s (the top ball first rolls around one below, turning about the axis through
+// its touching points on the floor and on that ball, until it sits in the gap).
+TEST(FunnelJam, FrictionHoldsWhatRunsOutWithout)
+{
+  const double r = 0.1, alpha = M_PI / 6, w0 = 1.25 * r;
+  for (const double mu : {0.0, 0.3})
+  {
+    Slope slope(10, friction(0.5, 0.01, 0.044), 6);
+    slope.scene.restitution = 0.5;
+    slope.scene.friction->ball_ball = mu;
+    slope.scene.friction->wall = mu;
+    const Vec3 o = slope.at(0, 0);
+    const auto at = [&](double s, double c) { return o + s * slope.down + c * slope.across + r * slope.normal; };
+    const Vec3 left = -std::cos(alpha) * slope.down - std::sin(alpha) * slope.across;
+    const Vec3 right = -std::cos(alpha) * slope.down + std::sin(alpha) * slope.across;
+    slope.scene.walls.push_back({o - w0 * slope.across, 3 * left, 0.5 * slope.normal, {}});
+    slope.scene.walls.push_back({o + w0 * slope.across, 3 * right, 0.5 * slope.normal, {}});
+    // (where the funnel is 4r wide between the centres' reach: both balls touch a wall and each other)
+    const double s_arch = -((r + r / std::cos(alpha)) - w0) / std::tan(alpha);
+    BallDef a = ball(0, 0, 0, 0, r);
+    BallDef b = a, c = a;
+    a.position = at(s_arch, -r);
+    b.position = at(s_arch - 0.05, r);
+    c.position = at(s_arch - 3.5 * r, 0);
+    slope.scene.balls = {a, b, c};
+    World world(slope.scene);
+    const WorstOfRun worst = stepWatching(world, 500, [](int) { return true; });
+    double fastest = 0, lowest = -1e300;
+    for (const Ball& x : world.balls())
+    {
+      fastest = std::max(fastest, x.velocity.norm());
+      lowest = std::max(lowest, (x.position - o).dot(slope.down));
+    }
+    EXPECT_LE(worst.energy_rise, 1e-9) << mu;
+    EXPECT_LE(worst.overlap, 1e-9) << mu;
+    EXPECT_EQ(world.stats().unsettled_contacts, 0) << mu;
+    if (mu > 0)
+    {
+      EXPECT_LT(lowest, 0.0) << "the jam runs out";
+      EXPECT_LT(fastest, 1e-6);
+    }
+    else
+      EXPECT_GT(lowest + world.lostBalls(), 0.5) << "the jam holds without friction";
+  }
+}
