@@ -21,9 +21,9 @@ constexpr double kG = 9.81;
 struct Slope
 {
   Scene scene;
-  Vec3 down;    // the fall line, unit
-  Vec3 across;  // +y, unit
-  Vec3 normal;  // the floor's, up
+  Vec3 down;       // the fall line, unit
+  Vec3 across;     // +y, unit
+  Vec3 normal;     // the floor's, up
   double g_t = 0;  // gravity along the floor [m/s^2]
 
   Slope(double degrees, const FrictionDef& f, double side = 8)
@@ -69,8 +69,7 @@ WallRun wallAcross(Slope& slope, double phi, double r, double k)
 
 void runFor(World& world, double t)
 {
-  while (world.time() < t - 1e-9)
-    world.step();
+  while (world.time() < t - 1e-9) world.step();
 }
 }  // namespace
 
@@ -114,13 +113,11 @@ TEST_P(BallAgainstAWall, RollsOrSlipsAlongItAsTheLawsSay)
   EXPECT_EQ(world.stats().unsettled_contacts, 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Walls, BallAgainstAWall,
-                         ::testing::Values(AgainstAWall{M_PI / 6, 0.3, kSolidInertia},
-                                           AgainstAWall{M_PI / 4, 0.3, kSolidInertia},
-                                           AgainstAWall{M_PI / 6, 0.1, kSolidInertia},
-                                           AgainstAWall{M_PI / 4, 0.5, kHollowInertia},
-                                           AgainstAWall{M_PI / 4, 0.05, kHollowInertia},
-                                           AgainstAWall{M_PI / 6, 0.0, kSolidInertia}));
+INSTANTIATE_TEST_SUITE_P(
+    Walls, BallAgainstAWall,
+    ::testing::Values(AgainstAWall{M_PI / 6, 0.3, kSolidInertia}, AgainstAWall{M_PI / 4, 0.3, kSolidInertia},
+                      AgainstAWall{M_PI / 6, 0.1, kSolidInertia}, AgainstAWall{M_PI / 4, 0.5, kHollowInertia},
+                      AgainstAWall{M_PI / 4, 0.05, kHollowInertia}, AgainstAWall{M_PI / 6, 0.0, kSolidInertia}));
 
 // Two balls against the wall, B pressing A (N_ab = m g_t sin, N_w = 2 m g_t sin), over
 // the step where their contacts are first solved. Where friction holds at both, A turns
@@ -181,8 +178,7 @@ TEST(SlopePile, SettlesWithFrictionAtItsContacts)
     EXPECT_LE(worst.overlap, 1e-9) << seed;
     EXPECT_EQ(world.stats().unsettled_contacts, 0) << seed;
     double fastest = 0;
-    for (const Ball& b : world.balls())
-      fastest = std::max(fastest, b.velocity.norm());
+    for (const Ball& b : world.balls()) fastest = std::max(fastest, b.velocity.norm());
     EXPECT_LT(fastest, 1e-6) << seed;
   }
 }

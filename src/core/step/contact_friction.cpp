@@ -92,8 +92,7 @@ std::vector<std::array<double, 2>> responses(const Bodies& bodies, const std::ve
 {
   std::vector<std::array<double, 2>> out(pairs.size());
   for (std::size_t p = 0; p < pairs.size(); ++p)
-    for (std::size_t k = 0; k < 2; ++k)
-      out[p][k] = bodies.responseOf(rows[pairs[p].normal], pairs[p].rows[k]);
+    for (std::size_t k = 0; k < 2; ++k) out[p][k] = bodies.responseOf(rows[pairs[p].normal], pairs[p].rows[k]);
   return out;
 }
 }  // namespace
@@ -103,8 +102,7 @@ void applyFriction(std::vector<Vec3>& u, const std::vector<double>& inv_mass, co
 {
   Bodies bodies{u, inv_mass, spins};
   for (const FrictionPair& pair : pairs)
-    for (const FrictionRow& f : pair.rows)
-      bodies.apply(rows[pair.normal], f, f.impulse);
+    for (const FrictionRow& f : pair.rows) bodies.apply(rows[pair.normal], f, f.impulse);
 }
 
 ContactSolve solveWithFriction(std::vector<Vec3>& u, const std::vector<double>& inv_mass, std::vector<ContactRow>& rows,
@@ -120,8 +118,7 @@ ContactSolve solveWithFriction(std::vector<Vec3>& u, const std::vector<double>& 
     ++out.sweeps;
     const double change = std::max(sweepRows(u, inv_mass, rows, opens), sweepFriction(bodies, rows, pairs, response));
     out.residual = 0.0;
-    for (const ContactRow& row : rows)
-      out.residual = std::max(out.residual, closingOf(u, row) - row.target);
+    for (const ContactRow& row : rows) out.residual = std::max(out.residual, closingOf(u, row) - row.target);
     if (change <= tolerance && out.residual <= tolerance)
     {
       out.converged = true;

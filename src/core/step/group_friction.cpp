@@ -13,23 +13,26 @@ namespace ball_collision_sim::core
 {
 using namespace step;
 
-Vec3 StepContext::touchPush(std::size_t m, const Vec3& rho, const Vec3& e) const
+namespace
 {
-  const Vec3& n = member_normals_[m];
-  if (!member_rolls_[m])
-    return ground_.along(e, n);
+/// A member's touching point at rho [m] from its centre, under a floor of normal n: what
+/// moving the member along the floor moves the point by along e ...
+Vec3 touchPush(const Ground& ground, const Vec3& n, bool rolls, double radius, const Vec3& rho, const Vec3& e)
+{
+  if (!rolls)
+    return ground.along(e, n);
   // (a motion v rolls the ball at n x v / r: the point moves by v + (n x v) x rho / r)
-  const double r = balls_[members_[m]].radius;
-  return ground_.along(e + (e * n.dot(rho) - rho * e.dot(n)) / r, n);
+  return ground.along(e + (e * n.dot(rho) - rho * e.dot(n)) / radius, n);
 }
 
-Vec3 StepContext::touchTurn(std::size_t m, const Vec3& rho, const Vec3& e) const
+/// ... and what turning it does, over a step of dt (where it rolls, its spin along the
+/// floor is its motion's: ContactGroup::w holds its spin about the normal)
+Vec3 touchTurn(double dt, const Vec3& n, bool rolls, const Vec3& rho, const Vec3& e)
 {
-  // (a spin w [rad/s] moves the point by dt w x rho over the step)
-  const Vec3 turn = dt_ * rho.cross(e);
-  const Vec3& n = member_normals_[m];
-  return member_rolls_[m] ? Vec3(turn.dot(n) * n) : turn;
+  const Vec3 turn = dt * rho.cross(e);
+  return rolls ? Vec3(turn.dot(n) * n) : turn;
 }
+}  // namespace
 
 void StepContext::makeFrictionRows(double x)
 {
@@ -75,13 +78,15 @@ void StepContext::makeFrictionRows(double x)
     {
       const Vec3& e = k == 0 ? e1 : e2;
       FrictionRow& f = pair.rows[k];
-      f.push_a = touchPush(row.a, rho_a, e);
-      f.turn_a = touchTurn(row.a, rho_a, e);
+      f.push_a =
+          touchPush(ground_, member_normals_[row.a], member_rolls_[row.a], balls_[members_[row.a]].radius, rho_a, e);
+      f.turn_a = touchTurn(dt_, member_normals_[row.a], member_rolls_[row.a], rho_a, e);
       if (wall)
         continue;
       const Vec3 rho_b = -balls_[members_[row.b]].radius * d;
-      f.push_b = touchPush(row.b, rho_b, e);
-      f.turn_b = touchTurn(row.b, rho_b, e);
+      f.push_b =
+          touchPush(ground_, member_normals_[row.b], member_rolls_[row.b], balls_[members_[row.b]].radius, rho_b, e);
+      f.turn_b = touchTurn(dt_, member_normals_[row.b], member_rolls_[row.b], rho_b, e);
     }
     group.friction.push_back(pair);
   }

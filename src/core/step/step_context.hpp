@@ -225,11 +225,6 @@ public:
   /// member's spin at x and what an impulse turns it by, and each row's friction
   /// (contact_group_'s w, inv_inertia and friction; free_w_).
   void makeFrictionRows(double x);
-  /// Member m's touching point at rho [m] from its centre: what moving it along the floor
-  /// and turning it move the point by along e (where it rolls, its spin along the floor is
-  /// its motion's: ContactGroup::w holds its spin about the normal).
-  Vec3 touchPush(std::size_t m, const Vec3& rho, const Vec3& e) const;
-  Vec3 touchTurn(std::size_t m, const Vec3& rho, const Vec3& e) const;
   /// Ball i rolls in its group, under a floor of normal n: friction holds rolling there.
   bool rollsInGroup(std::size_t i, const Vec3& n) const;
   /// What an impulse along the floor moves ball i by, in a group: 1 / m, and where it
