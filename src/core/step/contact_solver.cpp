@@ -202,7 +202,7 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
     // which of those it left on the fence push. Where the direct solves cannot tell
     // (rows whose impulses are below what they resolve, in a jam's near singular
     // matrix), the interior-point method's own impulses stand where no row is wrong with
-    // them; else the primal active-set method, which ends, from the sweeps' impulses.
+    // them; else the primal active-set method, which ends, from its impulses.
     // Then A's own impulses with the rows found, where they are right too.
     std::vector<double> interior(rows.size());
     const bool ipm = solveInterior(u_free, inv, rows, interior, settings.regularization, settings.interior_iterations);
@@ -226,8 +226,10 @@ bool solveContactsExactly(const std::vector<Vec3>& u_free, const std::vector<dou
     }
     if (!okr)
     {
+      // (from the interior-point method's impulses where it ended: all >= 0, and all but
+      // the answer of the same problem; else from the sweeps')
       for (std::size_t r = 0; r < rows.size(); ++r)
-        lambda[r] = std::max(rows[r].impulse, 0.0);
+        lambda[r] = ipm ? interior[r] : std::max(rows[r].impulse, 0.0);
       okr = solveRegularized(u_free, inv, rows, lambda, slack, settings, solves);
     }
     if (!okr)
