@@ -124,14 +124,16 @@ INSTANTIATE_TEST_SUITE_P(
 // about the axis through its two touching points on the floor and the wall (spin about
 // the normal s_A = -v_A / r) and B rolls on A as a gear does (r s_B = 2 v_A - v_B): with
 // g' = g_t cos the kinetic energy (m/2)((1 + 2k) v_A^2 + (1 + k) v_B^2 + k (2 v_A - v_B)^2)
-// gives a_A = g' (1 + 4k) / D and a_B = g' (1 + 8k) / D, D = 1 + 8k + 8k^2; the frictions
-// needed, k m (2 a_A - a_B) between them and less at the wall, are within mu N. Without
-// friction between them B rolls on at g' / (1 + k) with no spin about the normal, and A at
-// g' / (1 + 2k).
-TEST(TwoBallsAgainstAWall, TurnAsTheirFrictionsHold)
+// gives a_A = g' (1 + 4k) / D and a_B = g' (1 + 8k) / D, D = 1 + 8k + 8k^2; that needs
+// k m g' / D of friction between them (and less than the wall's bound at the wall). Where
+// mu_b N_ab is less, B slips on A, pushed on by F = mu_b N_ab: a_B = (g' + F/m) / (1 + k),
+// r s_B' = F / (k m), while A, its touching point on B moving at 2 v_A, is held back by
+// 2F: a_A = (g' - 2F/m) / (1 + 2k). Without friction between them B rolls on at
+// g' / (1 + k) with no spin about the normal, and A at g' / (1 + 2k).
+TEST(TwoBallsAgainstAWall, TurnOrSlipAsTheirFrictionsHold)
 {
   const double r = 0.1, k = kSolidInertia, phi = M_PI / 4;
-  for (const double mu_ball : {0.6, 0.0})
+  for (const double mu_ball : {0.6, 0.02, 0.0})
   {
     Slope slope(10, friction(0.5, 0.0));
     slope.scene.friction->wall = 0.6;
@@ -143,8 +145,11 @@ TEST(TwoBallsAgainstAWall, TurnAsTheirFrictionsHold)
     World world(slope.scene);
     world.step();
     const double g = slope.g_t * std::cos(phi), D = 1 + 8 * k + 8 * k * k, dt = world.dt();
-    const double a_a = mu_ball > 0 ? g * (1 + 4 * k) / D : g / (1 + 2 * k);
-    const double a_b = mu_ball > 0 ? g * (1 + 8 * k) / D : g / (1 + k);
+    const double F = mu_ball * slope.g_t * std::sin(phi);  // (per unit mass)
+    const bool holds = k * g / D <= F;
+    const double a_a = holds ? g * (1 + 4 * k) / D : (g - 2 * F) / (1 + 2 * k);
+    const double a_b = holds ? g * (1 + 8 * k) / D : (g + F) / (1 + k);
+    const double spin_b = holds ? (2 * a_a - a_b) / r : F / (k * r);
     const std::size_t ia = world.indexOf(1), ib = world.indexOf(2);
     const Ball& A = world.balls()[ia];
     const Ball& B = world.balls()[ib];
@@ -152,7 +157,7 @@ TEST(TwoBallsAgainstAWall, TurnAsTheirFrictionsHold)
     EXPECT_NEAR(B.velocity.dot(run.t), a_b * dt, 1e-15) << mu_ball;
     const double s_a = world.angularVelocity(ia).dot(slope.normal), s_b = world.angularVelocity(ib).dot(slope.normal);
     EXPECT_NEAR(s_a, -a_a * dt / r, 1e-14) << mu_ball;
-    EXPECT_NEAR(s_b, mu_ball > 0 ? (2 * a_a - a_b) * dt / r : 0.0, 1e-14) << mu_ball;
+    EXPECT_NEAR(s_b, spin_b * dt, 1e-14) << mu_ball;
     EXPECT_NEAR(A.velocity.dot(run.q), 0.0, 1e-15);
     EXPECT_NEAR(B.velocity.dot(run.q), 0.0, 1e-14);
     EXPECT_EQ(world.stats().unsettled_contacts, 0);
