@@ -86,9 +86,9 @@ class BallAgainstAWall : public ::testing::TestWithParam<AgainstAWall>
 // Pressed with N = m g_t sin(phi), pulled along the wall by m g_t cos(phi). Friction holds
 // the wall's touching point where k cos / (1 + 2k) <= mu_w sin: the ball then turns about
 // the axis through both of its touching points, a = g_t cos / (1 + 2k), its spin about the
-// floor's normal a t / r (velocity to 1e-12, spin to 1e-10 rad/s after 1 s; position as
-// a group's time step gives it). Else it slips along the wall: a = g_t (cos - mu_w sin) / (1 + k),
-// its spin about the normal growing at mu_w g_t sin / (k r).
+// floor's normal a t / r. Else it slips along the wall, a = g_t (cos - mu_w sin) / (1 + k),
+// its spin about the normal growing at mu_w g_t sin / (k r). Velocity to 1e-12 m/s and spin
+// to 1e-10 rad/s after 1 s; the position as a group's time step gives it.
 TEST_P(BallAgainstAWall, RollsOrSlipsAlongItAsTheLawsSay)
 {
   const AgainstAWall c = GetParam();
