@@ -4,6 +4,7 @@
 
 #include "simulate_options.hpp"
 
+#include "ball_collision_sim/core/format.hpp"
 #include "ball_collision_sim/core/world.hpp"
 #include "ball_collision_sim/ros/run_bag.hpp"
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
@@ -30,6 +31,7 @@
 namespace
 {
 using ball_collision_sim::core::Ball;
+using ball_collision_sim::core::formatNumber;
 using ball_collision_sim::core::Scene;
 using ball_collision_sim::core::World;
 using ball_collision_sim::tools::SimulateOptions;
@@ -102,7 +104,7 @@ int reportBadCommandLine(const std::string& message)
   return kExitBadInput;
 }
 
-// One row per ball per sample. %.17g so that every double reads back to the same bits:
+// One row per ball per sample, each number the shortest that reads back to the same bits:
 // the CSV is ground truth, not a plot.
 class CsvWriter
 {
@@ -131,17 +133,22 @@ public:
 
   void writeSample(const World& world)
   {
-    const double t = world.time();
+    const std::string t = formatNumber(world.time());
+    const auto put = [&](const ball_collision_sim::core::Vec3& v) {
+      for (int c = 0; c < 3; ++c)
+      {
+        std::fputc(',', file_.get());
+        std::fputs(formatNumber(v[c]).c_str(), file_.get());
+      }
+    };
     for (std::size_t k = 0; k < world.balls().size(); ++k)
     {
       const Ball& ball = world.balls()[k];
-      std::fprintf(file_.get(), "%.17g,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", t, ball.id, ball.position.x(),
-                   ball.position.y(), ball.position.z(), ball.velocity.x(), ball.velocity.y(), ball.velocity.z());
+      std::fprintf(file_.get(), "%s,%d", t.c_str(), ball.id);
+      put(ball.position);
+      put(ball.velocity);
       if (spin_)
-      {
-        const ball_collision_sim::core::Vec3 w = world.angularVelocity(k);
-        std::fprintf(file_.get(), ",%.17g,%.17g,%.17g", w.x(), w.y(), w.z());
-      }
+        put(world.angularVelocity(k));
       std::fputc('\n', file_.get());
     }
   }
@@ -197,8 +204,8 @@ std::string stepsOf(const SimulateOptions& options, double dt, std::uint64_t& st
   if (!(exact_steps <= kMaxSteps))
   {
     char message[160];
-    std::snprintf(message, sizeof(message), "--duration: %g s at dt = %g s is more than %g steps", options.duration,
-                  dt, kMaxSteps);
+    std::snprintf(message, sizeof(message), "--duration: %s s at dt = %s s is more than %s steps",
+                  formatNumber(options.duration).c_str(), formatNumber(dt).c_str(), formatNumber(kMaxSteps).c_str());
     return message;
   }
   steps = static_cast<std::uint64_t>(std::max(0.0, std::ceil(exact_steps - 1e-9)));
@@ -266,9 +273,10 @@ std::size_t stepOnce(const SimulateOptions& options, Run& run, std::uint64_t ste
   for (const ball_collision_sim::core::LostBall& ball : gone)
   {
     progress.finish();
-    std::fprintf(stderr, "simulate: t = %.17g s: ball %d %s at (%g, %g, %g) m; removed from the world\n",
-                 world.time(), ball.ball.id, ball.reason.c_str(), ball.ball.position.x(), ball.ball.position.y(),
-                 ball.ball.position.z());
+    std::fprintf(stderr, "simulate: t = %s s: ball %d %s at (%s, %s, %s) m; removed from the world\n",
+                 formatNumber(world.time()).c_str(), ball.ball.id, ball.reason.c_str(),
+                 formatNumber(ball.ball.position.x()).c_str(), formatNumber(ball.ball.position.y()).c_str(),
+                 formatNumber(ball.ball.position.z()).c_str());
   }
   if (run.bag && !gone.empty())
     run.bag->lost(world, gone);
@@ -291,16 +299,17 @@ int finishRun(Run& run, double energy_start, std::uint64_t lost, double wall_sec
     return kExitInternalError;
   }
   std::printf(
-      "summary: steps=%llu events=%llu floor_impacts=%llu wall_s=%.6f energy_start=%.17g energy_end=%.17g "
+      "summary: steps=%llu events=%llu floor_impacts=%llu wall_s=%.6f energy_start=%s energy_end=%s "
       "balls_lost=%d\n",
       static_cast<unsigned long long>(world.stats().steps), static_cast<unsigned long long>(world.stats().events),
-      static_cast<unsigned long long>(world.stats().floor_impacts), wall_seconds, energy_start,
-      world.energy().total(), static_cast<int>(lost) + world.lostBalls());
+      static_cast<unsigned long long>(world.stats().floor_impacts), wall_seconds, formatNumber(energy_start).c_str(),
+      formatNumber(world.energy().total()).c_str(), static_cast<int>(lost) + world.lostBalls());
   if (std::fflush(stdout) != 0)
     return kExitInternalError;
   if (g_interrupted)
   {
-    std::fprintf(stderr, "simulate: interrupted at t = %.17g s; outputs hold the run so far\n", world.time());
+    std::fprintf(stderr, "simulate: interrupted at t = %s s; outputs hold the run so far\n",
+                 formatNumber(world.time()).c_str());
     return kExitInterrupted;
   }
   return 0;

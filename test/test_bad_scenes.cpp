@@ -157,9 +157,11 @@ TEST(BadScenes, EachGivesOneLineNamingTheKeyAndTheReason)
       {"random balls that cannot fit", withExtra("random_balls: {count: 100000, radius: [0.1, 0.1]}"),
        "random_balls.count", "room for only"},
       // geometry
+      // (numbers in their shortest form: 0.25 - 0.1875 is 0.0625 exactly; 0.2 - 0.15 would
+      // print as 0.05000000000000002)
       {"ball overlaps a ball",
-       scene("{position: [0, 0, 0.1], radius: 0.1}\n  - {position: [0.15, 0, 0.1], radius: 0.1}"), "balls[1]",
-       "overlaps balls[0] by 0.05 m"},
+       scene("{position: [0, 0, 0.125], radius: 0.125}\n  - {position: [0.1875, 0, 0.125], radius: 0.125}"),
+       "balls[1]", "overlaps balls[0] by 0.0625 m"},
       {"ball overlaps a wall", scene("{position: [0, -0.95, 0.1], radius: 0.1}"), "balls[0]", "overlaps walls[0] by"},
       {"ball off the floor", scene("{position: [5, 0, 0.1], radius: 0.1}"), "balls[0].position", "off the floor"},
       {"ball below the floor", scene("{position: [0, 0, -0.5], radius: 0.1}"), "balls[0].position",

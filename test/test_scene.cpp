@@ -1,6 +1,14 @@
 #include "fixtures.hpp"
 
+#include "ball_collision_sim/core/format.hpp"
+
 #include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <random>
 
 using namespace ball_collision_sim::core;
 using namespace ball_collision_sim::test;
@@ -200,4 +208,46 @@ TEST(Check, GivesEachBallItsOwnSpinAndInertiaWithFriction)
   EXPECT_NEAR(world.energy().rotational, rotational, 1e-12 * rotational);
   // (the random balls move, so their inertia counts: a tenth of the total here or more)
   EXPECT_GT(of_random, 0.1 * rotational);
+}
+
+// Messages print numbers in their shortest round-trip form: each reads back to the same
+// double, and one significant digit fewer would not (over 20,000 random doubles of every
+// magnitude); NaN is "nan" whatever its sign bit.
+TEST(FormatNumber, ShortestThatReadsBackTheSame)
+{
+  EXPECT_EQ(formatNumber(0.1), "0.1");
+  EXPECT_EQ(formatNumber(0.1 + 0.2), "0.30000000000000004");
+  EXPECT_EQ(formatNumber(137 * 0.001), "0.137");
+  EXPECT_EQ(formatNumber(1e300), "1e+300");
+  EXPECT_EQ(formatNumber(-2.5), "-2.5");
+  EXPECT_EQ(formatNumber(std::numeric_limits<double>::quiet_NaN()), "nan");
+  EXPECT_EQ(formatNumber(-std::numeric_limits<double>::quiet_NaN()), "nan");
+  EXPECT_EQ(formatNumber(std::numeric_limits<double>::infinity()), "inf");
+  EXPECT_EQ(formatNumber(-std::numeric_limits<double>::infinity()), "-inf");
+  std::mt19937_64 rng(7);
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    double x = 0;
+    do
+    {
+      const std::uint64_t bits = rng();
+      std::memcpy(&x, &bits, sizeof x);
+    } while (!std::isfinite(x));
+    const std::string text = formatNumber(x);
+    ASSERT_EQ(std::strtod(text.c_str(), nullptr), x) << text;
+    // (its significant digits, and whether one fewer still reads back)
+    const std::string mantissa = text.substr(0, text.find_first_of("eE"));
+    const std::size_t first = mantissa.find_first_not_of("-0.");
+    int digits = 0;
+    for (std::size_t k = first; k < mantissa.size(); ++k)
+      digits += mantissa[k] >= '0' && mantissa[k] <= '9';
+    // (a whole number is written out in full where that is the shorter text: its trailing
+    // digits are the number's, not more precision)
+    if (digits > 1 && text.find_first_of(".e") != std::string::npos)
+    {
+      char shorter[400];
+      std::snprintf(shorter, sizeof shorter, "%.*e", digits - 2, x);
+      EXPECT_NE(std::strtod(shorter, nullptr), x) << text << " reads back from " << shorter;
+    }
+  }
 }

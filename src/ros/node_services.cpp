@@ -2,6 +2,7 @@
 // requests.hpp (which does the checking), and publishes what changed.
 #include "ball_collision_sim/ros/simulator_node.hpp"
 
+#include "ball_collision_sim/core/format.hpp"
 #include "ball_collision_sim/ros/conversions.hpp"
 #include "ball_collision_sim/ros/requests.hpp"
 #include "ball_collision_sim/ros/scene_param.hpp"
@@ -208,7 +209,7 @@ bool SimulatorNode::onPause(std_srvs::SetBool::Request& req, std_srvs::SetBool::
   }
   paused_ = req.data;
   res.success = true;
-  res.message = (paused_ ? "paused at t = " : "running from t = ") + std::to_string(world_.time()) + " s";
+  res.message = (paused_ ? "paused at t = " : "running from t = ") + core::formatNumber(world_.time()) + " s";
   if (paused_)
     publishPresent();
   return true;

@@ -1,5 +1,6 @@
 #include "ball_collision_sim/ros/requests.hpp"
 
+#include "ball_collision_sim/core/format.hpp"
 #include "ball_collision_sim/ros/conversions.hpp"
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
 
@@ -164,7 +165,7 @@ void answerGetState(const core::World& world, bool paused, const std::string& fr
   res.walls.clear();
   for (const core::Wall& wall : world.walls())
     res.walls.push_back(toMsg(wall));
-  res.message = "t = " + std::to_string(res.time) + " s, " + std::to_string(res.balls.size()) + " balls, " +
+  res.message = "t = " + core::formatNumber(res.time) + " s, " + std::to_string(res.balls.size()) + " balls, " +
                 std::to_string(res.walls.size()) + " walls" + (paused ? ", paused" : "");
 }
 

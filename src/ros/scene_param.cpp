@@ -1,5 +1,6 @@
 #include "ball_collision_sim/ros/scene_param.hpp"
 
+#include "ball_collision_sim/core/format.hpp"
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
 
 #include <ros/param.h>
@@ -53,9 +54,7 @@ std::string real(double value)
     return ".nan";
   if (std::isinf(value))
     return value > 0 ? ".inf" : "-.inf";
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
-  std::string text = buffer;
+  std::string text = core::formatNumber(value);  // (the shortest that reads back the same)
   if (text.find_first_of(".e") == std::string::npos)
     text += ".0";  // a real stays a real: `count: 3.0` must still be refused
   return text;

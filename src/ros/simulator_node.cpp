@@ -2,6 +2,7 @@
 // its long steps in step_runner.cpp.
 #include "ball_collision_sim/ros/simulator_node.hpp"
 
+#include "ball_collision_sim/core/format.hpp"
 #include "ball_collision_sim/ros/conversions.hpp"
 #include "ball_collision_sim/ros/markers.hpp"
 #include "ball_collision_sim/ros/outputs.hpp"
@@ -68,8 +69,9 @@ SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh, yaml::Scen
   reconfigure_ = std::make_unique<dynamic_reconfigure::Server<SimulatorConfig>>(pnh_);
   reconfigure_->setCallback([this](SimulatorConfig& config, std::uint32_t level) { onReconfigure(config, level); });
 
-  ROS_INFO("ball_sim: %zu balls, %zu walls, dt = %g s, real time factor %g%s; tf frames %sball_<id>%s",
-           world_.balls().size(), world_.walls().size(), world_.dt(), settings_.node.real_time_factor,
+  ROS_INFO("ball_sim: %zu balls, %zu walls, dt = %s s, real time factor %s%s; tf frames %sball_<id>%s",
+           world_.balls().size(), world_.walls().size(), core::formatNumber(world_.dt()).c_str(),
+           core::formatNumber(settings_.node.real_time_factor).c_str(),
            paused_ ? ", paused" : "", settings_.frame_prefix.c_str(),
            settings_.publish_clock ? ", publishing /clock" : ", not publishing /clock (publish_clock is false)");
 
@@ -166,8 +168,8 @@ void SimulatorNode::onTimer(const ros::WallTimerEvent&)
     const double behind = static_cast<double>(due - std::min(due, world_.stats().steps)) * world_.dt() / factor;
     if (behind > 1.0)
     {
-      ROS_WARN_THROTTLE(5.0, "ball_sim: %.1f s behind real time; the scene is too heavy for real time factor %g",
-                        behind, factor);
+      ROS_WARN_THROTTLE(5.0, "ball_sim: %.1f s behind real time; the scene is too heavy for real time factor %s",
+                        behind, core::formatNumber(factor).c_str());
       anchorClock();
     }
     // (the view after each step where it is due: a tick that runs several steps to catch
@@ -199,7 +201,9 @@ void SimulatorNode::onStatus(const ros::WallTimerEvent&)
   const std::uint64_t events = world_.stats().events >= status_events_ ? world_.stats().events - status_events_ : 0;
   const std::string lost = lost_total_ > 0 ? " | " + std::to_string(lost_total_) + " lost" : "";
   const std::string stepping = running_ ? " | stepping " + std::to_string(run_done_) + " of " + std::to_string(run_total_) : "";
-  ROS_INFO("t = %.2f s | real-time factor %.2f | %zu balls | %.1f collisions/s%s%s%s", world_.time(),
+  // (the simulated time as it is; the rates measured on the wall clock, to the digits they have)
+  ROS_INFO("t = %s s | real-time factor %.2f | %zu balls | %.1f collisions/s%s%s%s",
+           core::formatNumber(world_.time()).c_str(),
            wall > 0 ? std::max(0.0, simulated) / wall : 0.0, world_.balls().size(),
            simulated > 0 ? static_cast<double>(events) / simulated : 0.0, lost.c_str(), stepping.c_str(),
            paused_ && !running_ ? " | paused" : "");
@@ -247,8 +251,9 @@ void SimulatorNode::removeLostBalls()
   for (const core::LostBall& gone : lost)
   {
     const core::Vec3& p = gone.ball.position;
-    ROS_WARN("ball_sim: ball %d %s at (%g, %g, %g) m, t = %.6g s; removed from the world", gone.ball.id,
-             gone.reason.c_str(), p.x(), p.y(), p.z(), world_.time());
+    ROS_WARN("ball_sim: ball %d %s at (%s, %s, %s) m, t = %s s; removed from the world", gone.ball.id,
+             gone.reason.c_str(), core::formatNumber(p.x()).c_str(), core::formatNumber(p.y()).c_str(),
+             core::formatNumber(p.z()).c_str(), core::formatNumber(world_.time()).c_str());
     lost_pub_.publish(lostBallMessage(gone, frame_id_, world_.time()));
   }
   lost_total_ += lost.size();

@@ -4,6 +4,7 @@
 // action's feedback and a log line every few seconds.
 #include "ball_collision_sim/ros/simulator_node.hpp"
 
+#include "ball_collision_sim/core/format.hpp"
 #include "ball_collision_sim/ros/requests.hpp"
 
 #include <chrono>
@@ -67,7 +68,7 @@ SimulatorNode::StepOutcome SimulatorNode::runSteps(std::uint32_t steps,
     if ((ros::WallTime::now() - logged).toSec() >= kProgressLogPeriod)
     {
       logged = ros::WallTime::now();
-      ROS_INFO("ball_sim: stepping: %u of %u steps, t = %.4g s", out.done, steps, out.time);
+      ROS_INFO("ball_sim: stepping: %u of %u steps, t = %s s", out.done, steps, core::formatNumber(out.time).c_str());
     }
     // Whoever waits for the lock goes first.
     while (waiting_.load() > 0)
@@ -79,9 +80,9 @@ SimulatorNode::StepOutcome SimulatorNode::runSteps(std::uint32_t steps,
   out.time = world_.time();
   publishPresent();
   out.success = stopped.empty();
-  out.message = stopped.empty() ? "at t = " + std::to_string(out.time) + " s"
+  out.message = stopped.empty() ? "at t = " + core::formatNumber(out.time) + " s"
                                 : "steps: " + stopped + " after " + std::to_string(out.done) + " of " +
-                                      std::to_string(steps) + " steps, at t = " + std::to_string(out.time) + " s";
+                                      std::to_string(steps) + " steps, at t = " + core::formatNumber(out.time) + " s";
   if (!stopped.empty() || (ros::WallTime::now() - start).toSec() >= kProgressLogPeriod)
     ROS_INFO("ball_sim: %s", out.message.c_str());
   return out;
