@@ -280,9 +280,10 @@ void StepContext::finishGroup(double x, double span)
       continue;
     const Vec3 v = group.u[m] / dt_;
     // (a member rolls: its spin along the floor is rolling's, its spin about the normal
-    // stays)
+    // stays, or is what friction at its contacts made it, group.w, as a sliding member's
+    // whole spin is)
     const Vec3& n = member_normals_[m];
-    const bool turned = !group.friction.empty();  // (by friction at its contacts: group.w)
+    const bool turned = !group.friction.empty();
     const Vec3 spin_about_n = !member_rolls_[m] ? Vec3::Zero() : turned ? group.w[m] : Vec3(spinAt(b, x).dot(n) * n);
     const Vec3 spin = turned && !member_rolls_[m] ? group.w[m] : Vec3::Zero();
     beginMotion(b, x, member_positions_[m], v);
