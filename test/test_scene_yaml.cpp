@@ -531,6 +531,35 @@ std::vector<std::filesystem::path> configFiles()
   return files;
 }
 
+// A click adds the scene's most common ball (by radius and mass) unless the scene sets
+// click_radius or click_mass: pool balls on a pool table, not the 0.1 m default.
+TEST(SceneYamlFile, ClicksAddTheScenesMostCommonBall)
+{
+  const std::string balls = "floor: {}\nballs:\n"
+                            "  - {position: [0.0, 0, 0], radius: 0.03, mass: 0.2}\n"
+                            "  - {position: [0.2, 0, 0], radius: 0.028575, mass: 0.17}\n"
+                            "  - {position: [0.4, 0, 0], radius: 0.028575, mass: 0.17}\n"
+                            "  - {position: [0.6, 0, 0], radius: 0.028575, mass: 0.17}\n";
+  auto file = parseSceneFile(balls);
+  EXPECT_EQ(file.node.click_radius, 0.028575);
+  EXPECT_EQ(file.node.click_mass, 0.17);
+  file = parseSceneFile(balls + "click_radius: 0.05\n");
+  EXPECT_EQ(file.node.click_radius, 0.05);
+  EXPECT_EQ(file.node.click_mass, 0.17);
+  file = parseSceneFile("floor: {}\nrandom_balls: {count: 5, radius: [0.02, 0.04], mass: [1, 3]}");
+  EXPECT_DOUBLE_EQ(file.node.click_radius, 0.03);
+  EXPECT_DOUBLE_EQ(file.node.click_mass, 2.0);
+  file = parseSceneFile("floor: {}");
+  EXPECT_EQ(file.node.click_radius, 0.1);
+  EXPECT_EQ(file.node.click_mass, 1.0);
+  // (the pool table: its object balls)
+  const auto pool = ball_collision_sim::yaml::loadValidSceneFile(kConfigDir + "/billiards.yaml");
+  const auto& last = pool.scene.balls.back();
+  EXPECT_EQ(pool.node.click_radius, last.radius);
+  EXPECT_EQ(pool.node.click_mass, last.mass);
+  EXPECT_LT(pool.node.click_radius, 0.05);
+}
+
 TEST(ConfigScenes, EveryConfigFileLoadsValidatesAndRuns)
 {
   const std::vector<std::filesystem::path> files = configFiles();

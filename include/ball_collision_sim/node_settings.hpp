@@ -39,8 +39,10 @@ struct NodeSettings
   double state_rate = 0.0;        ///< ball_states per simulated second [Hz]; 0 = every step
   bool publish_collisions = true; ///< one message per handled collision
   bool start_paused = false;      ///< wait for ~pause false (or ~step) before moving
-  double click_radius = 0.1;      ///< radius of balls added from rviz clicks [m]
-  double click_mass = 1.0;        ///< mass of balls added from rviz clicks [kg]
+  /// radius and mass of balls added from rviz clicks [m, kg]; a scene file that does not
+  /// set them gives its most common ball's (yaml::parseSceneFile())
+  double click_radius = 0.1;
+  double click_mass = 1.0;
   double status_period = 0.0;     ///< a status line every this many wall seconds [s]; 0 = none
   int max_balls = 100000;         ///< add_ball and clicks are refused past this many balls
   int marker_list_threshold = 1000;  ///< past this many balls, one sphere list per radius

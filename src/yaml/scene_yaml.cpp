@@ -36,11 +36,39 @@ using namespace values;
 
 using namespace sections;
 
+/// The scene's most common ball, by radius and mass: of its balls, the pair most of them
+/// share (the first such where several tie); with random balls only, the middle of their
+/// ranges; none without balls.
+std::optional<std::pair<double, double>> mostCommonBall(const core::Scene& scene)
+{
+  std::optional<std::pair<double, double>> best;
+  int most = 0;
+  for (const core::BallDef& ball : scene.balls)
+  {
+    const std::pair<double, double> kind{ball.radius, ball.mass};
+    const int count = static_cast<int>(std::count_if(scene.balls.begin(), scene.balls.end(),
+                                                     [&](const core::BallDef& b)
+                                                     { return b.radius == kind.first && b.mass == kind.second; }));
+    if (count > most)
+    {
+      most = count;
+      best = kind;
+    }
+  }
+  if (!best && scene.random_balls && scene.random_balls->count > 0)
+  {
+    const core::RandomBallsDef& rb = *scene.random_balls;
+    best = std::pair{0.5 * (rb.radius.min + rb.radius.max), 0.5 * (rb.mass.min + rb.mass.max)};
+  }
+  return best;
+}
+
 SceneFile readSceneFile(const YAML::Node& root)
 {
   if (!root.IsMap())
   {
-    fail("", "the scene must be a YAML map, got " + (root.IsNull() ? std::string("an empty document") : describe(root)));
+    fail("",
+         "the scene must be a YAML map, got " + (root.IsNull() ? std::string("an empty document") : describe(root)));
   }
   std::vector<std::string_view> allowed{"frame_id", "dt",    "gravity", "restitution", "floor",
                                         "friction", "walls", "balls",   "random_balls"};
@@ -88,6 +116,15 @@ SceneFile readSceneFile(const YAML::Node& root)
     scene.random_balls = readRandomBalls(*random, "random_balls");
   }
   readNodeSettings(fields, file.node);
+  // (balls added by clicks are, unless the scene says, its most common ball: a pool
+  // table's clicks add pool balls)
+  if (const auto common = mostCommonBall(scene))
+  {
+    if (!fields.find("click_radius"))
+      file.node.click_radius = common->first;
+    if (!fields.find("click_mass"))
+      file.node.click_mass = common->second;
+  }
   for (const auto& item : root)
   {
     const std::string key = item.first.Scalar();
@@ -100,7 +137,7 @@ SceneFile readSceneFile(const YAML::Node& root)
 // Sees a document's events and ignores them: for counting documents.
 class DocumentCounter : public YAML::EventHandler
 {
-public:
+ public:
   void OnDocumentStart(const YAML::Mark&) override {}
   void OnDocumentEnd() override {}
   void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
@@ -191,13 +228,15 @@ std::vector<core::SceneIssue> validateNodeSettings(const NodeSettings& node)
   using core::formatNumber;
   std::vector<core::SceneIssue> issues;
   const auto fail = [&](const char* key, const std::string& reason) { issues.push_back({key, reason}); };
-  const auto finite = [&](const char* key, double value) {
+  const auto finite = [&](const char* key, double value)
+  {
     if (!std::isfinite(value))
       fail(key, "must be finite (got " + formatNumber(value) + ")");
     return std::isfinite(value);
   };
   // > 0 and within [least, most]
-  const auto positive = [&](const char* key, double value, double least, double most, const char* unit) {
+  const auto positive = [&](const char* key, double value, double least, double most, const char* unit)
+  {
     if (!finite(key, value))
       return;
     if (!(value > 0))
