@@ -22,7 +22,7 @@ struct Bodies
       s -= u[n.b].dot(f.push_b) + spins.w[n.b].dot(f.turn_b);
     return s;
   }
-  double turnOf(std::uint32_t k) const { return k == ContactRow::kImmovable ? 0.0 : spins.inv_inertia[k]; }
+  double turnOf(std::uint32_t k) const { return inverseMassOf(spins.inv_inertia, k); }
   /// how much a unit impulse along f changes its slip
   double responseOf(const ContactRow& n, const FrictionRow& f) const
   {
@@ -117,8 +117,7 @@ ContactSolve solveWithFriction(std::vector<Vec3>& u, const std::vector<double>& 
   {
     ++out.sweeps;
     const double change = std::max(sweepRows(u, inv_mass, rows, opens), sweepFriction(bodies, rows, pairs, response));
-    out.residual = 0.0;
-    for (const ContactRow& row : rows) out.residual = std::max(out.residual, closingOf(u, row) - row.target);
+    out.residual = largestPastTarget(u, rows);
     if (change <= tolerance && out.residual <= tolerance)
     {
       out.converged = true;

@@ -53,6 +53,15 @@ inline double largestClosing(const std::vector<Vec3>& u, const std::vector<Conta
   return largest;
 }
 
+/// The most any of `rows` closes past its target (0 when none does).
+inline double largestPastTarget(const std::vector<Vec3>& u, const std::vector<ContactRow>& rows)
+{
+  double largest = 0.0;
+  for (const ContactRow& row : rows)
+    largest = std::max(largest, closingOf(u, row) - row.target);
+  return largest;
+}
+
 /// How a solve went: sweeps taken, and the largest closing left beyond a row's target.
 struct ContactSolve
 {
@@ -134,9 +143,7 @@ ContactSolve solveContacts(std::vector<Vec3>& u, const std::vector<double>& inv_
     ++out.sweeps;
     const double change = sweepRows(u, inv_mass, rows, opens);
     project(u);
-    out.residual = 0.0;
-    for (const ContactRow& row : rows)
-      out.residual = std::max(out.residual, closingOf(u, row) - row.target);
+    out.residual = largestPastTarget(u, rows);
     if (change <= tolerance && out.residual <= tolerance)
     {
       out.converged = true;
