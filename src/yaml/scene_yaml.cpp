@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -42,16 +43,18 @@ using namespace sections;
 std::optional<std::pair<double, double>> mostCommonBall(const core::Scene& scene)
 {
   std::optional<std::pair<double, double>> best;
+  // (counted once each, so that a scene of many balls loads as fast as ever; then the
+  // first ball of the most common kind)
+  std::map<std::pair<double, double>, int> counts;
+  for (const core::BallDef& ball : scene.balls)
+    ++counts[{ball.radius, ball.mass}];
   int most = 0;
   for (const core::BallDef& ball : scene.balls)
   {
     const std::pair<double, double> kind{ball.radius, ball.mass};
-    const int count = static_cast<int>(std::count_if(scene.balls.begin(), scene.balls.end(),
-                                                     [&](const core::BallDef& b)
-                                                     { return b.radius == kind.first && b.mass == kind.second; }));
-    if (count > most)
+    if (counts[kind] > most)
     {
-      most = count;
+      most = counts[kind];
       best = kind;
     }
   }
