@@ -350,7 +350,7 @@ TEST(SceneYaml, EachMistakeGivesOneLineNamingTheKeyAndTheReason)
      "  - {position: [2, 0, 0], radius: 1}\n  - {position: [3, 0, 0], radus: 1}\n",
      "t.yaml: balls[3].radus: unknown key (expected one of: position, velocity, radius, mass, angular_velocity, inertia, placement)"},
     {"dtt: 0.1", "t.yaml: dtt: unknown key (expected one of: frame_id, dt, gravity, restitution, floor, friction, walls, "
-                 "balls, random_balls, real_time_factor, marker_rate, tf_rate, tf_max_balls, state_rate, "
+                 "balls, random_balls, pockets, real_time_factor, marker_rate, tf_rate, tf_max_balls, state_rate, "
                  "publish_collisions, start_paused, click_radius, click_mass, status_period, max_balls, "
                  "marker_list_threshold, ball_color, speed_color_max, collision_flashes, publish_clock, frame_prefix, threads)"},
     {"floor: {type: plane, control_points: []}",
@@ -413,6 +413,12 @@ TEST(SceneYaml, EachMistakeGivesOneLineNamingTheKeyAndTheReason)
     {"floor: {type: biquadratic}", "t.yaml: floor.control_points: required"},
     {"random_balls: {seed: 3}", "t.yaml: random_balls.count: required"},
     {"random_balls: {count: 1, region: {min: [0, 0]}}", "t.yaml: random_balls.region.max: required"},
+    {"pockets: [{position: [0, 0]}]", "t.yaml: pockets[0].radius: required"},
+    {"pockets: [{position: [0, 0, 0], radius: 0.1}]",
+     "t.yaml: pockets[0].position: expected a list of 2 numbers [x, y], got a list of 3 items"},
+    {"pockets: [{position: [0, 0], radius: 0.1, depth: 1}]",
+     "t.yaml: pockets[0].depth: unknown key (expected one of: position, radius)"},
+    {"pockets: {position: [0, 0], radius: 0.1}", "t.yaml: pockets: expected a list, got a map"},
     // not a scene at all
     {"", "t.yaml: the scene must be a YAML map, got an empty document"},
     {"# only a comment\n", "t.yaml: the scene must be a YAML map, got an empty document"},

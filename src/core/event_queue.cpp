@@ -43,11 +43,21 @@ bool EventQueue::later(const Entry& qa, const Entry& qb) const
   const auto key = [&](const Queued& e) {
     // (ids are positive)
     const auto i = static_cast<std::uint32_t>((*balls_)[e.i].id);
-    const auto j = e.kind == EventKind::kBallWall ? e.j : static_cast<std::uint32_t>((*balls_)[e.j].id);
     using Key = std::array<std::uint32_t, 3>;
-    if (e.kind == EventKind::kMotionEnd)  // after the ball's wall events
-      return Key{i, 0, std::numeric_limits<std::uint32_t>::max() - (e.end == MotionEnd::kLanding ? 1 : 0)};
-    return e.kind == EventKind::kBallWall ? Key{i, 0, j} : Key{std::min(i, j), 1, std::max(i, j)};
+    constexpr std::uint32_t kLast = std::numeric_limits<std::uint32_t>::max();
+    switch (e.kind)
+    {
+      case EventKind::kBallWall:
+        return Key{i, 0, e.j};
+      case EventKind::kMotionEnd:  // after the ball's wall events
+        return Key{i, 0, kLast - (e.end == MotionEnd::kLanding ? 1 : 0)};
+      case EventKind::kPocket:  // after its walls, before its motion's end
+        return Key{i, 0, kLast - 2};
+      case EventKind::kBallBall:
+        break;
+    }
+    const auto j = static_cast<std::uint32_t>((*balls_)[e.j].id);
+    return Key{std::min(i, j), 1, std::max(i, j)};
   };
   return key(a) > key(b);
 }
@@ -68,7 +78,7 @@ void EventQueue::forget(std::uint32_t ball)
 {
   const auto of_ball = [&](const Entry& entry) {
     const Queued& q = pool_[entry.slot];
-    if (q.i != ball && (q.kind == EventKind::kBallWall || q.j != ball))
+    if (q.i != ball && (ofOneBall(q.kind) || q.j != ball))
       return false;
     free_slots_.push_back(entry.slot);
     if (q.kind == EventKind::kBallWall)

@@ -1,6 +1,6 @@
 // Balls that left the world (the ground says what that is: off the floor, or without a
 // floor outside the box the walls span). Reads balls_, feet_, walls_; removeLostBalls()
-// takes them out of balls_, feet_ and spins_.
+// takes them out of balls_, feet_ and spins_ (removeBalls(), which the step's pockets use too).
 #include "step/step_context.hpp"
 
 #include <utility>
@@ -51,34 +51,43 @@ std::vector<LostBall> World::removeLostBalls()
     any = !c.whyLost(s, bounds).empty();
   if (!any)
     return lost;
-  c.sortById();  // (then a ball's slot is its place in balls(), and the lost come in id order)
+  c.removeBalls([&](std::size_t s) {
+    std::string why = c.whyLost(s, bounds);
+    if (why.empty())
+      return false;
+    lost.push_back({c.balls_[s], angularVelocity(s), motionKind(s), inertia(s), std::move(why)});
+    return true;
+  });
+  return lost;
+}
+
+void StepContext::removeBalls(const std::function<bool(std::size_t)>& gone)
+{
+  sortById();  // (then a ball's slot is its place in balls(), and the gone come in id order)
   std::size_t kept = 0;
-  for (std::size_t k = 0; k < c.balls_.size(); ++k)
+  for (std::size_t k = 0; k < balls_.size(); ++k)
   {
-    std::string why = c.whyLost(k, bounds);
-    if (!why.empty())
+    if (gone(k))
     {
-      lost.push_back({c.balls_[k], angularVelocity(k), motionKind(k), inertia(k), std::move(why)});
-      c.wakeTouching(c.balls_[k].position, c.balls_[k].radius);  // what leaned on it
+      wakeTouching(balls_[k].position, balls_[k].radius);  // what leaned on it
       continue;
     }
     if (kept != k)
     {
-      c.balls_[kept] = c.balls_[k];
-      if (!c.feet_.empty())
-        c.feet_[kept] = c.feet_[k];
-      if (!c.spins_.empty())
-        c.spins_[kept] = c.spins_[k];
+      balls_[kept] = balls_[k];
+      if (!feet_.empty())
+        feet_[kept] = feet_[k];
+      if (!spins_.empty())
+        spins_[kept] = spins_[k];
     }
     ++kept;
   }
-  c.balls_.resize(kept);
-  c.by_id_.resize(kept);  // (in id order, slot k holds the k-th)
-  if (!c.feet_.empty())
-    c.feet_.resize(kept);
-  if (!c.spins_.empty())
-    c.spins_.resize(kept);
-  c.forgetOrder();
-  return lost;
+  balls_.resize(kept);
+  by_id_.resize(kept);  // (in id order, slot k holds the k-th)
+  if (!feet_.empty())
+    feet_.resize(kept);
+  if (!spins_.empty())
+    spins_.resize(kept);
+  forgetOrder();
 }
 }  // namespace ball_collision_sim::core

@@ -80,6 +80,24 @@ bool checkWall(Checker& check, const std::string& prefix, const WallDef& wall)
   return ok;
 }
 
+/// A pocket: its radius > 0, its centre over the floor (`floor`, where it is sound).
+void checkPocket(Checker& check, const std::string& prefix, const PocketDef& pocket, const std::optional<FloorDef>& floor,
+                 const Vec3& gravity)
+{
+  const Vec3 centre(pocket.position.x(), pocket.position.y(), 0.0);
+  const bool placed = check.bounded(prefix + "position", centre, kMaxLength, "m");
+  check.positive(prefix + "radius", pocket.radius, kMinLength, kMaxLength, "m");
+  if (!placed || !floor)
+    return;
+  // (over the floor: a point dropped along gravity from there lands on it)
+  BallDef probe;
+  probe.position = centre;
+  probe.radius = kMinLength;
+  const std::optional<Floor> surface(std::in_place, *floor, gravity);
+  if (const std::string why = placeOnFloor(probe, surface, nullptr, Landing::kUnder); !why.empty())
+    check.fail(prefix + "position", "must be over the floor: " + why);
+}
+
 /// Explicit balls that overlap one another, by a sweep over x (no all-pairs loop).
 void checkOverlaps(Checker& check, const std::vector<BallDef>& placed, const std::vector<bool>& usable)
 {
@@ -277,6 +295,12 @@ SceneCheck check(const Scene& scene)
   bool walls_ok = true;
   for (std::size_t i = 0; i < scene.walls.size(); ++i)
     walls_ok = checkWall(check, index("walls", i) + ".", scene.walls[i]) && walls_ok;
+
+  for (std::size_t i = 0; i < scene.pockets.size(); ++i)
+    checkPocket(check, index("pockets", i) + ".", scene.pockets[i], floor_ok && gravity_ok ? scene.floor : std::nullopt,
+                scene.gravity);
+  if (!scene.pockets.empty() && !scene.floor)
+    check.fail("pockets", "needs a floor (a pocket is a hole in it)");
 
   std::vector<bool> usable(scene.balls.size(), false);
   for (std::size_t i = 0; i < scene.balls.size(); ++i)

@@ -44,5 +44,6 @@ bool World::recordsEvents() const { return c_->record_events_; }
 const WorldStats& World::stats() const { return c_->stats_; }
 const std::optional<FrictionDef>& World::friction() const { return c_->scene_.friction; }
 const std::vector<MotionTransition>& World::lastTransitions() const { return c_->transitions_; }
+const std::vector<PocketedBall>& World::lastPocketed() const { return c_->pocketed_; }
 std::size_t World::indexOf(int id) const { return c_->rankOf(id); }
 }  // namespace ball_collision_sim::core

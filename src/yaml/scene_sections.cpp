@@ -93,6 +93,15 @@ core::WallDef readWall(const YAML::Node& node, const std::string& key)
   return wall;
 }
 
+core::PocketDef readPocket(const YAML::Node& node, const std::string& key)
+{
+  const MapFields fields(node, key, {"position", "radius"});
+  core::PocketDef pocket;
+  pocket.position = readVec2(fields.require("position"), fields.keyOf("position"));
+  pocket.radius = readNumber(fields.require("radius"), fields.keyOf("radius"));
+  return pocket;
+}
+
 /// `solid` (k = 2/5), `hollow` (k = 2/3) or a number k (checked to be in (0, 1] with the scene).
 double readInertia(const YAML::Node& node, const std::string& key)
 {

@@ -12,6 +12,7 @@ namespace ball_collision_sim::yaml::sections
 {
 core::FloorDef readFloor(const YAML::Node& node, const std::string& key);
 core::WallDef readWall(const YAML::Node& node, const std::string& key);
+core::PocketDef readPocket(const YAML::Node& node, const std::string& key);
 core::FrictionDef readFriction(const YAML::Node& node, const std::string& key);
 core::BallDef readBall(const YAML::Node& node, const std::string& key);
 core::RandomBallsDef readRandomBalls(const YAML::Node& node, const std::string& key);

@@ -142,6 +142,10 @@ std::string writeScene(const core::Scene& scene, const NodeSettings& node)
   }
   if (scene.random_balls)
     writeRandomBalls(out, *scene.random_balls);
+  if (!scene.pockets.empty())
+    out << "pockets:\n";
+  for (const core::PocketDef& pocket : scene.pockets)
+    out << "  - {position: " << vec(pocket.position) << ", radius: " << real(pocket.radius) << "}\n";
   writeNodeSettings(out, node);
   return out.str();
 }

@@ -74,7 +74,7 @@ SceneFile readSceneFile(const YAML::Node& root)
          "the scene must be a YAML map, got " + (root.IsNull() ? std::string("an empty document") : describe(root)));
   }
   std::vector<std::string_view> allowed{"frame_id", "dt",    "gravity", "restitution", "floor",
-                                        "friction", "walls", "balls",   "random_balls"};
+                                        "friction", "walls", "balls",   "random_balls", "pockets"};
   allowed.insert(allowed.end(), kNodeOnlyKeys.begin(), kNodeOnlyKeys.end());
   const MapFields fields(root, "", allowed);
 
@@ -117,6 +117,11 @@ SceneFile readSceneFile(const YAML::Node& root)
   if (const YAML::Node* random = fields.findSection("random_balls"))
   {
     scene.random_balls = readRandomBalls(*random, "random_balls");
+  }
+  const std::vector<YAML::Node> pockets = readList(fields.find("pockets"), "pockets");
+  for (std::size_t i = 0; i < pockets.size(); ++i)
+  {
+    scene.pockets.push_back(readPocket(pockets[i], indexKey("pockets", i)));
   }
   readNodeSettings(fields, file.node);
   // (balls added by clicks are, unless the scene says, its most common ball: a pool

@@ -21,14 +21,19 @@ enum class MotionEnd : std::uint8_t
   kTakeOff,
 };
 
-/// What a step's event is: an impact of two balls, or of a ball and a wall, or the end of
-/// a ball's motion (MotionEnd says why).
+/// What a step's event is: an impact of two balls, or of a ball and a wall, the end of
+/// a ball's motion (MotionEnd says why), or a ball's drop into a pocket.
 enum class EventKind : std::uint8_t
 {
   kBallBall,
   kBallWall,
   kMotionEnd,
+  kPocket,
 };
+
+/// Whether an event of this kind concerns one ball (j is a wall's or a pocket's index, or
+/// the ball itself), not two.
+inline bool ofOneBall(EventKind kind) { return kind != EventKind::kBallBall; }
 
 /// An impact predicted inside the step; stale once either ball's epoch has moved on (it
 /// has had an event since).
@@ -36,7 +41,7 @@ struct StepEvent
 {
   double x;                  ///< step fraction of the impact
   std::uint32_t i;           ///< visiting index of the ball (the lower one for ball-ball)
-  std::uint32_t j;           ///< visiting index of the other ball, or the wall's index
+  std::uint32_t j;           ///< visiting index of the other ball, or the wall's or pocket's index
   std::uint16_t epoch_i;     ///< the balls' epochs when it was found (World::Motion::epoch)
   std::uint16_t epoch_j;
   EventKind kind;

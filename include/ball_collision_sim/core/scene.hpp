@@ -108,6 +108,15 @@ struct RandomBallsDef
   std::optional<Region> region;
 };
 
+/// A pocket in the floor: a ball whose centre crosses its circle (in x and y) while on the
+/// floor drops into it at that time and leaves the world (World::lastPocketed()). A ball in
+/// flight passes over it, and drops where it lands inside the circle.
+struct PocketDef
+{
+  Vec2 position = Vec2::Zero();  ///< the circle's centre, x and y [m]; over the floor
+  double radius = 0.06;          ///< [m], > 0
+};
+
 /// Everything a simulation starts from. Defaults are the documented YAML defaults.
 struct Scene
 {
@@ -122,6 +131,7 @@ struct Scene
   std::vector<WallDef> walls;
   std::vector<BallDef> balls;
   std::optional<RandomBallsDef> random_balls;
+  std::vector<PocketDef> pockets;
 };
 
 /// One problem found in a scene: the key it concerns and why.

@@ -54,6 +54,15 @@ std::optional<double> firstRoot(const std::array<double, 5>& a, double t_max);
 std::optional<double> sphereSweepAccelerated(const Vec3& d, const Vec3& e, const Vec3& c, double reach, double t_max,
                                              double slop);
 
+/// The earliest t in [0, t_max] at which the point d + t e + t^2 c comes within `radius`
+/// of the origin (a pocket's circle, all three in its plane): 0 where it is within already.
+inline std::optional<double> circleEntry(const Vec3& d, const Vec3& e, const Vec3& c, double radius, double t_max)
+{
+  if (d.squaredNorm() <= radius * radius)
+    return 0.0;
+  return sphereSweepAccelerated(d, e, c, radius, t_max, 0.0);
+}
+
 /// First contact of a ball with a wall.
 struct WallHit
 {

@@ -66,6 +66,7 @@ struct WorldStats
   /// solves of a group's resting contacts that ran out of sweeps with closing left
   /// (StepSettings::contact_sweeps)
   std::uint64_t unsettled_contacts = 0;
+  std::uint64_t pocketed_balls = 0;  ///< balls dropped into pockets (Scene::pockets)
 };
 
 /// Result of adding or editing an object: ok, or the reason it was refused (the world
@@ -85,6 +86,18 @@ struct LostBall
   MotionKind motion = MotionKind::kStationary;  ///< as World::motionKind() gave it then
   double inertia = kSolidInertia;               ///< as World::inertia() gave it
   std::string reason;  ///< "left the floor (foot point at u = 1.02, v = 0.5)"
+};
+
+/// A ball that dropped into a pocket: its centre crossed the pocket's circle at `time`,
+/// and the step took it out of the world then.
+struct PocketedBall
+{
+  double time = 0.0;  ///< exact [s]
+  int pocket = 0;     ///< index into Scene::pockets
+  Ball ball;          ///< its state at that time
+  Vec3 angular_velocity = Vec3::Zero();         ///< [rad/s] then
+  MotionKind motion = MotionKind::kStationary;  ///< its kind of motion then
+  double inertia = kSolidInertia;               ///< k in I = k m r^2
 };
 
 /// Ids of balls and walls start here and only grow: 0, the value of a field left empty,
@@ -201,6 +214,9 @@ public:
   /// Changes of motion kind in the last step, in time order (without friction only take-offs
   /// and landings: a ball on the floor is rolling while it moves).
   const std::vector<MotionTransition>& lastTransitions() const;
+  /// The balls that dropped into pockets in the last step, in time order; they are out of
+  /// balls() already.
+  const std::vector<PocketedBall>& lastPocketed() const;
 
   Energy energy() const;
   Vec3 momentum() const;

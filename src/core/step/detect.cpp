@@ -39,6 +39,11 @@ void step::findFirstImpacts(StepContext& c)
       for (std::size_t i = begin; i < end; ++i)
         c.queueMotionEnds(i);
     });
+  if (!c.scene_.pockets.empty())
+    c.forEachBall([&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i)
+        c.queuePockets(i);
+    });
 }
 
 void StepContext::detect(std::size_t i, std::size_t done_with)
@@ -50,6 +55,8 @@ void StepContext::detect(std::size_t i, std::size_t done_with)
   });
   if (motionsEnd())
     queueMotionEnds(i);
+  if (!scene_.pockets.empty())
+    queuePockets(i);
 }
 
 void StepContext::detectWalls(std::size_t i)
@@ -101,8 +108,8 @@ std::optional<double> StepContext::linesMeet(std::size_t a, std::size_t b, doubl
 
 void StepContext::detectPairApart(std::size_t a, std::size_t b)
 {
-  if (motions_[a].frozen() && motions_[b].frozen())
-    return;  // neither moves (asleep, or stopped by the cap): no impact
+  if ((motions_[a].frozen() && motions_[b].frozen()) || motions_[a].gone() || motions_[b].gone())
+    return;  // neither moves (asleep, or stopped by the cap), or one dropped into a pocket: no impact
   if (grouped(a) && linked(a, static_cast<std::uint32_t>(b)))
     return;  // a resting contact: a constraint of their group
   const Motion& ma = motions_[a];

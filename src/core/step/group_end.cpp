@@ -38,6 +38,8 @@ StepState::ContactGroup& StepContext::endGroup()
   for (const std::uint32_t index : linksInKeyOrder())
   {
     const ContactLink& l = links_[index];
+    if (linkGone(l))
+      continue;  // (a ball in a pocket)
     if (l.rate > 0 && settings_.warm_start)
       warm_[linkKey(l.a, l.b)] = l.rate;
     const Ball& a = balls_[l.a];
@@ -79,8 +81,8 @@ void StepContext::boundGroupEnergies()
   for (const std::uint32_t i : by_id_)  // (summed in id order, whatever the records' order)
   {
     const std::uint32_t root = groupOf(i);
-    if (root == kNone32)
-      continue;
+    if (root == kNone32 || motions_[i].gone())
+      continue;  // (a ball in a pocket takes its energy with it)
     allowed[root] += energy_ref_[i];
     const Ball& ball = balls_[i];
     now[root] += energyOf(i, ball.position, ball.velocity);
@@ -107,6 +109,8 @@ double StepContext::separationRows()
   for (const std::uint32_t index : linksInKeyOrder())
   {
     const ContactLink& l = links_[index];
+    if (linkGone(l))
+      continue;  // (a ball in a pocket)
     const Ball& a = balls_[l.a];
     ContactRow row;
     Vec3 d;

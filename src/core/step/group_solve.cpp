@@ -18,6 +18,8 @@ using namespace step;
 void StepContext::solveGroup(std::size_t i, double x)
 {
   gatherGroup(i);
+  if (members_.empty())
+    return;  // (its last member dropped into a pocket)
   startMembers(x);
   const double span = groupSpan(x);
   if (span > 0)
@@ -36,7 +38,8 @@ void StepContext::gatherGroup(std::size_t i)
   std::uint32_t k = root;
   do
   {
-    members_.push_back(k);
+    if (!motions_[k].gone())  // (one that dropped into a pocket is no member any more)
+      members_.push_back(k);
     k = group_next_[k];
   } while (k != root);
   // (the solver's order: by id, so that the bits do not depend on the records' order)
@@ -116,8 +119,8 @@ void StepContext::makeRows(double span)
       const ContactLink& l = links_[r];
       const bool mine = l.a == a;
       r = mine ? l.next_a : l.next_b;
-      if (!mine)
-        continue;  // (each contact once, from its first ball)
+      if (!mine || linkGone(l))
+        continue;  // (each contact once, from its first ball; none with a ball in a pocket)
       ContactRow row;
       row.a = static_cast<std::uint32_t>(m);
       row.impulse = l.rate * span;  // (the warm start: its last solve's, at the rate it had)

@@ -43,6 +43,7 @@ Vec3 StepContext::motionVelocity(std::size_t i, double x, const Vec3& position, 
       return ground_.along(groupVelocityAt(i, x), normal);  // (its group's time step)
     case MotionType::kCapped:
     case MotionType::kAsleep:
+    case MotionType::kPocketed:
       return Vec3::Zero();
     case MotionType::kPhase:
     case MotionType::kPhaseChord:
@@ -253,6 +254,7 @@ void StepContext::queueMotionEnds(std::size_t i)
       return;
     case MotionType::kCapped:
     case MotionType::kAsleep:
+    case MotionType::kPocketed:
       return;
     default:  // on the floor: a line, a path, a phase, a group's chord
       spin_->queueEnd(*this, i);

@@ -28,12 +28,12 @@ void step::resolveEventsInTimeOrder(StepContext& c)
       };
       const auto& next = c.queue_.top();
       fetch(next.i);
-      if (next.kind != EventKind::kBallWall)
+      if (!ofOneBall(next.kind))
         fetch(next.j);
     }
     const Event event = c.queue_.pop();
     if (c.motions_[event.i].epoch != event.epoch_i ||
-        (event.kind != EventKind::kBallWall && c.motions_[event.j].epoch != event.epoch_j))
+        (!ofOneBall(event.kind) && c.motions_[event.j].epoch != event.epoch_j))
     {
       ++c.stats_.stale_events;  // a ball involved has had an event since this was found
       continue;
@@ -50,6 +50,8 @@ void StepContext::resolve(const Event& event)
       return resolveBallBall(event);
     case EventKind::kBallWall:
       return resolveBallWall(event);
+    case EventKind::kPocket:
+      return resolvePocket(event);
     case EventKind::kMotionEnd:
       break;
   }
@@ -169,7 +171,7 @@ void StepContext::goOnAfter(const Event& event)
     solveGroup(i, event.x);
   else
     detect(i);
-  if (event.kind == EventKind::kBallWall)
+  if (ofOneBall(event.kind))
     return;
   const bool group_j = grouped(j);
   if (group_j && !(group_i && groupOf(i) == groupOf(j)))

@@ -136,6 +136,7 @@ void step::startStep(StepContext& c)
 {
   c.events_.clear();
   c.transitions_.clear();
+  c.pocketed_.clear();
   // (each commit takes back what it kept of where balls started; a step cut short, or
   // balls added or removed since, leave that to do here)
   if (!c.step_starts_.empty() || c.step_start_of_.size() != c.balls_.size())
@@ -172,6 +173,7 @@ void StepContext::step()
   order_age_ = reorder ? 1 : order_age_ + 1;
   motions_ready_ = !reorder;
   ++stats_.steps;
+  removePocketed();  // (the balls that dropped into pockets leave the world)
 }
 
 // ---- queries -------------------------------------------------------------------------

@@ -43,6 +43,9 @@ public:
   /// is put on the floor as `landing` says, `foot` gets its foot point (u, v) and
   /// `flying` whether it is in flight there (Landing::kAsGiven).
   std::string place(BallDef& def, Landing landing, int ignore_id, Vec2& foot, bool& flying) const;
+  /// Takes the balls whose slots in id order `gone` names out of the records (waking what
+  /// leaned on them); the next step visits the rest in id order.
+  void removeBalls(const std::function<bool(std::size_t)>& gone);
   /// The box the walls span, which a ball without a floor must not leave; empty without walls.
   Ground::Bounds wallBounds() const;
   /// Why the ball in slot s is out of the world (Ground::whyOff()), or "".
@@ -138,6 +141,16 @@ public:
   std::optional<double> linesMeet(std::size_t a, std::size_t b, double xs) const;
   /// Queues the impact of balls a < b at x.
   void pushPairEvent(std::size_t a, std::size_t b, double x);
+  /// Queues ball i's drop into the first pocket its motion's centre enters within the step
+  /// (pockets.cpp).
+  void queuePockets(std::size_t i);
+  /// Ball i drops into the pocket at the event: its state there is recorded (pocketed_),
+  /// and it is out of the step (MotionType::kPocketed), its group solved again without it.
+  void resolvePocket(const Event& event);
+  /// A contact of a ball that dropped into a pocket: no constraint any more.
+  bool linkGone(const ContactLink& link) const;
+  /// The step's pocketed balls out of the world, at its end.
+  void removePocketed();
   /// The event as its kind, and a motion end as its end, says.
   void resolve(const Event& event);
   void resolveBallWall(const Event& event);

@@ -218,5 +218,7 @@ struct StepState
   std::vector<BallSpin> spins_;
   std::vector<SpinMotion> spin_motions_;
   std::vector<MotionTransition> transitions_;
+  /// The step's pocketed balls, in time order (World::lastPocketed()).
+  std::vector<PocketedBall> pocketed_;
 };
 }  // namespace ball_collision_sim::core

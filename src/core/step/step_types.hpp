@@ -41,6 +41,9 @@ enum class MotionType : std::uint8_t
   kCapped,
   /// no motion, immovable: the ball sleeps, until an impact or an edit wakes it
   kAsleep,
+  /// dropped into a pocket: no motion, and nothing meets it for the rest of the step,
+  /// at whose end it leaves the world
+  kPocketed,
   /// a friction phase's chord on a curved floor, or a still phase's stay there: kLine's
   /// path, its velocity its phase's (SpinPhase::velocity()), not the free motion's
   kPhaseChord,
@@ -71,9 +74,14 @@ struct StepState::Motion
   std::uint16_t events : 12;
   MotionType type = MotionType::kLine;
 
-  /// No motion for the rest of the step, immovable: capped or asleep.
-  bool frozen() const { return type == MotionType::kCapped || type == MotionType::kAsleep; }
+  /// No motion for the rest of the step, immovable: capped, asleep or pocketed.
+  bool frozen() const
+  {
+    return type == MotionType::kCapped || type == MotionType::kAsleep || type == MotionType::kPocketed;
+  }
   bool asleep() const { return type == MotionType::kAsleep; }
+  /// Out of the step: dropped into a pocket (kPocketed).
+  bool gone() const { return type == MotionType::kPocketed; }
   /// Its path is a parabola (kPath, kPhase, kFlight), not a line.
   bool accelerates() const { return type >= MotionType::kPath; }
   /// It moves as its resting group's solve says (kGrouped).
