@@ -280,6 +280,8 @@ std::size_t stepOnce(const SimulateOptions& options, Run& run, std::uint64_t ste
   }
   if (run.bag && !gone.empty())
     run.bag->lost(world, gone);
+  if (run.bag && !world.lastPocketed().empty())
+    run.bag->pocketed(world);
   if (run.csv.isOpen() && step % options.sample_every == 0)
     run.csv.writeSample(world);
   if (run.bag)
@@ -300,10 +302,11 @@ int finishRun(Run& run, double energy_start, std::uint64_t lost, double wall_sec
   }
   std::printf(
       "summary: steps=%llu events=%llu floor_impacts=%llu wall_s=%.6f energy_start=%s energy_end=%s "
-      "balls_lost=%d\n",
+      "balls_lost=%d balls_pocketed=%llu\n",
       static_cast<unsigned long long>(world.stats().steps), static_cast<unsigned long long>(world.stats().events),
       static_cast<unsigned long long>(world.stats().floor_impacts), wall_seconds, formatNumber(energy_start).c_str(),
-      formatNumber(world.energy().total()).c_str(), static_cast<int>(lost) + world.lostBalls());
+      formatNumber(world.energy().total()).c_str(), static_cast<int>(lost) + world.lostBalls(),
+      static_cast<unsigned long long>(world.stats().pocketed_balls));
   if (std::fflush(stdout) != 0)
     return kExitInternalError;
   if (g_interrupted)

@@ -630,10 +630,21 @@ TEST(ConfigScenes, BilliardsRackLeavesAGap)
   const Scene scene = loadValidScene(kConfigDir + "/billiards.yaml");
   ASSERT_EQ(scene.balls.size(), 16u);
   EXPECT_EQ(scene.restitution, 0.95);
-  EXPECT_EQ(scene.walls.size(), 4u);
+  // six cushions, open at the pockets, around the 2.54 m x 1.27 m playing surface
+  ASSERT_EQ(scene.walls.size(), 6u);
+  ball_collision_sim::core::Vec3 lo = scene.walls[0].point, hi = lo;
+  for (const auto& wall : scene.walls)
+    for (const auto& corner : {wall.point, ball_collision_sim::core::Vec3(wall.point + wall.u)})
+    {
+      lo = lo.cwiseMin(corner);
+      hi = hi.cwiseMax(corner);
+    }
+  EXPECT_NEAR(hi.x() - lo.x(), 2.54, 1e-12);
+  EXPECT_NEAR(hi.y() - lo.y(), 1.27, 1e-12);
+  ASSERT_EQ(scene.pockets.size(), 6u);
+  for (std::size_t k = 0; k < 6; ++k)
+    EXPECT_EQ(scene.pockets[k].radius, k < 4 ? 0.062 : 0.0645) << "pocket " << k;
   ASSERT_TRUE(scene.floor.has_value());
-  EXPECT_NEAR(scene.floor->u.norm(), 2.54, 1e-12);
-  EXPECT_NEAR(scene.floor->v.norm(), 1.27, 1e-12);
   for (const auto& ball : scene.balls)
   {
     EXPECT_EQ(ball.radius, 0.028575);
@@ -645,7 +656,7 @@ TEST(ConfigScenes, BilliardsRackLeavesAGap)
   EXPECT_EQ(scene.friction->sliding, 0.2);
   EXPECT_EQ(scene.friction->rolling, 0.01);
   EXPECT_EQ(scene.friction->spinning, 0.044);
-  EXPECT_NEAR(scene.balls[0].velocity.norm(), 6.0, 1e-12);
+  EXPECT_NEAR(scene.balls[0].velocity.norm(), 8.0, 1e-12);
   for (std::size_t i = 1; i < scene.balls.size(); ++i)
   {
     for (std::size_t j = i + 1; j < scene.balls.size(); ++j)
@@ -657,7 +668,8 @@ TEST(ConfigScenes, BilliardsRackLeavesAGap)
 }
 
 // The break on the pool table with friction: every ball slides, rolls and stops within
-// 30 s, with the energy (spins' included) never rising in a step and no ball lost.
+// 30 s, with the energy (spins' included) never rising in a step and no ball lost; at
+// least one drops into a pocket, its centre then on the pocket's circle.
 TEST(ConfigScenes, BilliardsBreakComesToRest)
 {
   using ball_collision_sim::core::MotionKind;
@@ -667,9 +679,18 @@ TEST(ConfigScenes, BilliardsBreakComesToRest)
   double rise = 0;
   bool all_still = false;
   std::set<MotionKind> seen;
+  std::size_t pocketed = 0;
+  const auto& pockets = world.scene().pockets;
   for (int step = 0; step < 15000 && !all_still; ++step)
   {
     world.step();
+    for (const auto& dropped : world.lastPocketed())
+    {
+      ++pocketed;
+      const auto& pocket = pockets.at(static_cast<std::size_t>(dropped.pocket));
+      const double off = (dropped.ball.position.head<2>() - pocket.position).norm();
+      EXPECT_NEAR(off, pocket.radius, 1e-12) << "ball " << dropped.ball.id;
+    }
     const double now = world.energy().total();
     rise = std::max(rise, now - energy);
     energy = now;
@@ -681,6 +702,8 @@ TEST(ConfigScenes, BilliardsBreakComesToRest)
     }
   }
   EXPECT_TRUE(all_still);
+  EXPECT_GE(pocketed, 1u);
+  EXPECT_EQ(world.balls().size() + pocketed, 16u);
   EXPECT_LE(rise, 1e-13);
   EXPECT_EQ(world.energy().kinetic + world.energy().rotational, 0.0);
   EXPECT_EQ(world.lostBalls(), 0);

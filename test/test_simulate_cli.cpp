@@ -6,6 +6,7 @@
 
 #include <ball_collision_sim/BallStateArray.h>
 #include <ball_collision_sim/MotionTransition.h>
+#include <ball_collision_sim/PocketedBall.h>
 #include <gtest/gtest.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
@@ -439,6 +440,7 @@ struct Summary
   double energy_start = 0.0;
   double energy_end = 0.0;
   int balls_lost = -1;
+  std::uint64_t balls_pocketed = 0;
 };
 
 /// The summary line: exactly these keys, in this order, every value parsing whole.
@@ -446,7 +448,7 @@ Summary parseSummary(const std::string& line)
 {
   static const std::regex pattern(
       R"(^summary: steps=([0-9]+) events=([0-9]+) floor_impacts=([0-9]+) wall_s=(\S+) energy_start=(\S+) )"
-      R"(energy_end=(\S+) balls_lost=([0-9]+)$)");
+      R"(energy_end=(\S+) balls_lost=([0-9]+) balls_pocketed=([0-9]+)$)");
   std::smatch match;
   Summary summary;
   EXPECT_TRUE(std::regex_match(line, match, pattern)) << line;
@@ -468,6 +470,7 @@ Summary parseSummary(const std::string& line)
   summary.energy_start = number(5);
   summary.energy_end = number(6);
   summary.balls_lost = std::stoi(match[7].str());
+  summary.balls_pocketed = std::stoull(match[8].str());
   return summary;
 }
 
@@ -732,7 +735,10 @@ TEST_F(SimulateCli, FrictionAppendsTheSpinAndTransitions)
   EXPECT_EQ(all[0], "t,id,x,y,z,vx,vy,vz,wx,wy,wz");
   const ball_collision_sim::core::Scene scene = ball_collision_sim::yaml::loadValidScene(scene_path);
   const std::size_t balls = scene.balls.size();
-  double start = 0, end = 0;
+  // (the energies of the first sample's rows and of the last's: a ball in a pocket has
+  // no row after it dropped)
+  double start = 0, end = 0, first_t = -1, last_t = -1;
+  std::size_t last_rows = 0;
   for (std::size_t i = 1; i < all.size(); ++i)
   {
     double t, x, y, z, vx, vy, vz, wx, wy, wz;
@@ -746,20 +752,39 @@ TEST_F(SimulateCli, FrictionAppendsTheSpinAndTransitions)
     const double e = 0.5 * b.mass * (vx * vx + vy * vy + vz * vz) +
                      0.5 * b.inertia * b.mass * b.radius * b.radius * (wx * wx + wy * wy + wz * wz) +
                      b.mass * 9.81 * z;
-    if (i <= balls)
+    if (first_t < 0)
+      first_t = t;
+    if (t == first_t)
       start += e;
-    if (i + balls >= all.size())
+    if (t != last_t)
     {
-      end += e;
-      EXPECT_EQ(vx * vx + vy * vy + wx * wx + wy * wy + wz * wz, 0.0) << "ball " << id << " still moves at the end";
+      last_t = t;
+      end = 0;
+      last_rows = 0;
     }
+    end += e;
+    ++last_rows;
+    EXPECT_TRUE(t < 12 - 1e-9 || vx * vx + vy * vy + wx * wx + wy * wy + wz * wz == 0.0)
+        << "ball " << id << " still moves at the end";
   }
   const Summary summary = parseSummary(lines(result.out).back());
   EXPECT_NEAR(summary.energy_start, start, 1e-12 * start);
   EXPECT_NEAR(summary.energy_end, end, 1e-12 * end);
   EXPECT_LT(summary.energy_end, summary.energy_start);
+  EXPECT_GE(summary.balls_pocketed, 1u);
+  EXPECT_EQ(last_rows + summary.balls_pocketed, balls);
 
   rosbag::Bag bag(path("break.bag"));
+  std::uint64_t pocketed = 0;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/ball_sim/pocketed")))
+    if (const auto msg = m.instantiate<ball_collision_sim::PocketedBall>())
+    {
+      ++pocketed;
+      EXPECT_EQ(m.getTime(), msg->header.stamp);
+      EXPECT_GE(msg->pocket, 0);
+      EXPECT_LT(msg->pocket, 6);
+    }
+  EXPECT_EQ(pocketed, summary.balls_pocketed);
   int transitions = 0;
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/ball_sim/motion_transitions")))
     if (const auto msg = m.instantiate<ball_collision_sim::MotionTransition>())

@@ -48,6 +48,11 @@ Trace run(const Scene& scene, unsigned threads, int steps, const std::function<v
       trace.numbers.push_back(t.time);
       trace.ids.insert(trace.ids.end(), {t.ball, static_cast<int>(t.from), static_cast<int>(t.to)});
     }
+    for (const PocketedBall& p : world.lastPocketed())
+    {
+      trace.numbers.insert(trace.numbers.end(), {p.time, p.ball.position.x(), p.ball.position.y()});
+      trace.ids.insert(trace.ids.end(), {p.ball.id, p.pocket});
+    }
   }
   trace.stats = world.stats();
   return trace;
@@ -112,6 +117,18 @@ TEST(Threads, FrictionGivesTheSameBits)
   scene.friction->wall = 0.1;
   const WorldStats stats = sameOnEveryCount("friction", scene, 150);
   EXPECT_GT(stats.transitions, 200u);  // (sliding to rolling, rolling to stationary, ...)
+}
+
+TEST(Threads, PocketsGiveTheSameBits)
+{
+  // (the friction plane with a pocket in each corner and one in the middle)
+  Scene scene = plane(200, 0.95);
+  scene.friction = pileFriction();
+  for (const auto& [x, y] : {std::pair{-1.4, -1.4}, std::pair{1.4, -1.4}, std::pair{-1.4, 1.4}, std::pair{1.4, 1.4},
+                             std::pair{0.0, 0.0}})
+    scene.pockets.push_back({Vec2(x, y), 0.12});
+  const WorldStats stats = sameOnEveryCount("pockets", scene, 150);
+  EXPECT_GT(stats.pocketed_balls, 10u);
 }
 
 TEST(Threads, PilesGiveTheSameBits)

@@ -1,6 +1,7 @@
 #include "ball_collision_sim/ros/markers.hpp"
 
 #include "ball_collision_sim/ros/conversions.hpp"
+#include "ball_collision_sim/core/placement.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -96,6 +97,28 @@ visualization_msgs::Marker wallMarker(const core::Wall& wall, const std::string&
     m.colors.push_back(k < 2 ? rgba(0.6, 0.8, 1.0, 0.45) : rgba(0.6, 0.8, 1.0, 0.2));
   }
   m.color = rgba(0.6, 0.8, 1.0, 1.0);  // rviz multiplies each vertex's alpha by this one
+  return m;
+}
+
+visualization_msgs::Marker pocketMarker(const core::PocketDef& pocket, int index, const std::optional<core::Floor>& floor,
+                                        const std::string& frame_id)
+{
+  visualization_msgs::Marker m = base(kPocketsNs, index, visualization_msgs::Marker::CYLINDER, frame_id);
+  // (on the floor under its centre, as a ball of no size would stand there)
+  core::BallDef probe;
+  probe.position = core::Vec3(pocket.position.x(), pocket.position.y(), 0.0);
+  probe.radius = 1e-4;
+  core::placeOnFloor(probe, floor, nullptr, core::Landing::kUnder);
+  const core::Vec3 up = floor ? floor->up() : core::Vec3(core::Vec3::UnitZ());
+  m.pose.position = toPoint(probe.position - 0.5 * probe.radius * up);
+  const core::Quat turn = core::Quat::FromTwoVectors(core::Vec3::UnitZ(), up);
+  m.pose.orientation.x = turn.x();
+  m.pose.orientation.y = turn.y();
+  m.pose.orientation.z = turn.z();
+  m.pose.orientation.w = turn.w();
+  m.scale.x = m.scale.y = 2 * pocket.radius;
+  m.scale.z = probe.radius;
+  m.color = rgba(0.02, 0.02, 0.02, 1.0);
   return m;
 }
 

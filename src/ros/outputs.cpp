@@ -105,6 +105,9 @@ visualization_msgs::MarkerArray staticMarkers(const core::World& world, const st
     msg.markers.push_back(floorMarker(*world.floor(), frame_id));
   for (const core::Wall& wall : world.walls())
     msg.markers.push_back(wallMarker(wall, frame_id));
+  const std::vector<core::PocketDef>& pockets = world.scene().pockets;
+  for (std::size_t k = 0; k < pockets.size(); ++k)
+    msg.markers.push_back(pocketMarker(pockets[k], static_cast<int>(k), world.floor(), frame_id));
   return msg;
 }
 

@@ -145,6 +145,16 @@ LostBall lostBallMessage(const core::LostBall& gone, const std::string& frame_id
   return msg;
 }
 
+PocketedBall pocketedMessage(const core::PocketedBall& dropped, const std::string& frame_id)
+{
+  PocketedBall msg;
+  msg.header.stamp = ros::Time(dropped.time);
+  msg.header.frame_id = frame_id;
+  msg.ball = toMsg(dropped.ball, dropped.angular_velocity, dropped.motion, dropped.inertia);
+  msg.pocket = dropped.pocket;
+  return msg;
+}
+
 BallState ballState(const core::World& world, int id)
 {
   return toMsg(world, world.indexOf(id));

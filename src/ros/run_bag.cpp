@@ -45,6 +45,12 @@ void RunBag::lost(const core::World& world, const std::vector<core::LostBall>& b
     write("/ball_sim/lost_balls", stamp, lostBallMessage(gone, frame_id_, world.time()));
 }
 
+void RunBag::pocketed(const core::World& world)
+{
+  for (const core::PocketedBall& dropped : world.lastPocketed())
+    write("/ball_sim/pocketed", ros::Time(dropped.time), pocketedMessage(dropped, frame_id_));
+}
+
 RunBag::~RunBag()
 {
   if (!closed_)

@@ -114,6 +114,7 @@ void SimulatorNode::advertise()
       "ball_states", 100, [this](const ros::SingleSubscriberPublisher& s) { onStatesSubscriber(s); });
   collisions_pub_ = pnh_.advertise<ball_collision_sim::CollisionEvent>("collisions", 1000);
   lost_pub_ = pnh_.advertise<ball_collision_sim::LostBall>("lost_balls", 100);
+  pocketed_pub_ = pnh_.advertise<ball_collision_sim::PocketedBall>("pocketed", 100);
   transitions_pub_ = pnh_.advertise<ball_collision_sim::MotionTransition>("motion_transitions", 1000);
   tf_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf", 100,
                                                [this](const ros::SingleSubscriberPublisher& s) { onTfSubscriber(s); });
@@ -238,6 +239,12 @@ void SimulatorNode::stepOnce()
   if (transitions_pub_.getNumSubscribers() > 0)
     for (const core::MotionTransition& transition : world_.lastTransitions())
       transitions_pub_.publish(toMsg(transition, frame_id_));
+  for (const core::PocketedBall& dropped : world_.lastPocketed())
+  {
+    ROS_INFO("ball_sim: ball %d dropped into pocket %d at t = %s s", dropped.ball.id, dropped.pocket,
+             core::formatNumber(dropped.time).c_str());
+    pocketed_pub_.publish(pocketedMessage(dropped, frame_id_));
+  }
   removeLostBalls();
   if (world_.stats().steps % state_every_ == 0 && states_pub_.getNumSubscribers() > 0)
     publishStates(stamp);

@@ -19,6 +19,8 @@ namespace ball_collision_sim::bridge
 /// Marker namespaces; within each the marker id is the object's id.
 constexpr const char* kFloorNs = "floor";
 constexpr const char* kWallsNs = "walls";
+/// Pockets: the marker id is the pocket's index in the scene.
+constexpr const char* kPocketsNs = "pockets";
 constexpr const char* kBallsNs = "balls";
 /// Many balls: one SPHERE_LIST per radius, id = the radius' rank.
 constexpr const char* kBallListsNs = "ball_lists";
@@ -49,6 +51,9 @@ std_msgs::ColorRGBA ballColor(const core::Ball& ball, const BallColoring& colori
 visualization_msgs::Marker floorMarker(const core::Floor& floor, const std::string& frame_id, int resolution = 24);
 /// A translucent wall: two triangles, pale blue, more transparent toward point + v.
 visualization_msgs::Marker wallMarker(const core::Wall& wall, const std::string& frame_id);
+/// A pocket as a black disc on the floor under its centre.
+visualization_msgs::Marker pocketMarker(const core::PocketDef& pocket, int index, const std::optional<core::Floor>& floor,
+                                        const std::string& frame_id);
 /// A sphere with the ball's radius and orientation, coloured by ballColor().
 visualization_msgs::Marker ballMarker(const core::Ball& ball, const std::string& frame_id, const ros::Time& stamp,
                                       const BallColoring& coloring,

@@ -11,6 +11,7 @@
 #include <ball_collision_sim/GetState.h>
 #include <ball_collision_sim/LoadScene.h>
 #include <ball_collision_sim/LostBall.h>
+#include <ball_collision_sim/PocketedBall.h>
 #include <ball_collision_sim/RemoveObject.h>
 #include <ball_collision_sim/SetBallState.h>
 #include <ball_collision_sim/Step.h>
@@ -53,6 +54,8 @@ std::string whyNoSteps(bool paused, std::uint32_t steps);
 
 /// A ball that left the world, for ~lost_balls, stamped with the world's time.
 LostBall lostBallMessage(const core::LostBall& gone, const std::string& frame_id, double time);
+/// The message of a ball that dropped into a pocket, stamped with the drop's time.
+PocketedBall pocketedMessage(const core::PocketedBall& dropped, const std::string& frame_id);
 
 /// The world now, for get_state.
 void answerGetState(const core::World& world, bool paused, const std::string& frame_prefix, GetState::Response& res);

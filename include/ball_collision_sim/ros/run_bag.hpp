@@ -17,7 +17,7 @@ namespace ball_collision_sim::bridge
 /// scene's state_rate, /tf at its tf_rate (first tf_max_balls balls), /ball_sim/markers
 /// at `marker_rate` (with the flashes of the collisions since the last set when the
 /// scene's collision_flashes is on), each ball that left the world on
-/// /ball_sim/lost_balls, and the scene's YAML once on /ball_sim/scene. The
+/// /ball_sim/lost_balls, each ball that dropped into a pocket on /ball_sim/pocketed, and the scene's YAML once on /ball_sim/scene. The
 /// bag is written under PATH.active and renamed to PATH by close(): no run leaves a
 /// truncated bag under the final name.
 class RunBag
@@ -37,6 +37,9 @@ public:
   void afterStep(const core::World& world);
   /// Writes the balls that left `world` in its last step on /ball_sim/lost_balls.
   void lost(const core::World& world, const std::vector<core::LostBall>& balls);
+  /// Writes the balls that dropped into pockets in `world`'s last step on
+  /// /ball_sim/pocketed, each stamped with its drop's time.
+  void pocketed(const core::World& world);
   /// Closes the bag and moves it to PATH; throws std::runtime_error when the rename fails.
   void close();
 

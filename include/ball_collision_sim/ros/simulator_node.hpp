@@ -164,6 +164,7 @@ private:
   ros::Publisher states_pub_;
   ros::Publisher collisions_pub_;
   ros::Publisher lost_pub_;
+  ros::Publisher pocketed_pub_;
   ros::Publisher transitions_pub_;
   ros::Publisher clock_pub_;
   ros::Publisher tf_pub_;
