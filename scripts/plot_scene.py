@@ -79,7 +79,8 @@ class Scene:
             return ("plane", point, u, v)
         if kind == "biquadratic":
             rows = floor.get("control_points")
-            if not isinstance(rows, list) or len(rows) != 3 or not all(isinstance(r, list) and len(r) == 3 for r in rows):
+            if not isinstance(rows, list) or len(rows) != 3 or not all(
+                    isinstance(r, list) and len(r) == 3 for r in rows):
                 raise SceneError("floor.control_points: must be 3 rows of 3 points (got %r)" % (rows,))
             return ("biquadratic", [[vector(rows[i][j], "floor.control_points[%d][%d]" % (i, j)) for j in range(3)]
                                     for i in range(3)])

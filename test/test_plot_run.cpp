@@ -49,7 +49,8 @@ protected:
   /// test/check_plots passes the plots of a run of `balls` balls.
   void expectReadablePlots(int balls)
   {
-    const RunResult result = runProgram("/usr/bin/python3", {kCheckPlots, path("plots"), "--balls", std::to_string(balls)});
+    const RunResult result =
+        runProgram("/usr/bin/python3", {kCheckPlots, path("plots"), "--balls", std::to_string(balls)});
     EXPECT_EQ(result.exit_code, 0) << result.out << result.err;
   }
 
