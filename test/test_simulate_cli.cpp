@@ -3,6 +3,7 @@
 
 #include "ball_collision_sim/core/scene.hpp"
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
+#include "cli_helpers.hpp"
 
 #include <ball_collision_sim/BallStateArray.h>
 #include <ball_collision_sim/MotionTransition.h>
@@ -32,100 +33,12 @@
 #include <string>
 #include <vector>
 
+using namespace ball_collision_sim::test::cli;
+
 namespace
 {
-namespace fs = std::filesystem;
-
 const std::string kDataDir = BCS_TEST_DATA_DIR;
 const std::string kGoodScene = kDataDir + "/good_small.yaml";
-
-struct RunResult
-{
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string shellQuote(const std::string& text)
-{
-  std::string quoted = "'";
-  for (const char c : text)
-  {
-    quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  }
-  return quoted + "'";
-}
-
-std::string readFile(const fs::path& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::vector<std::string> lines(const std::string& text)
-{
-  std::vector<std::string> result;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line))
-  {
-    result.push_back(line);
-  }
-  return result;
-}
-
-bool startsWith(const std::string& text, const std::string& prefix)
-{
-  return text.rfind(prefix, 0) == 0;
-}
-
-bool contains(const std::string& text, const std::string& part)
-{
-  return text.find(part) != std::string::npos;
-}
-
-/// Runs the test in a fresh temporary folder, removed afterwards.
-class SimulateCli : public ::testing::Test
-{
-protected:
-  void SetUp() override
-  {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("bcs_simulate_cli_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override
-  {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-
-  RunResult run(const std::vector<std::string>& args)
-  {
-    const fs::path out = dir_ / "stdout.txt";
-    const fs::path err = dir_ / "stderr.txt";
-    std::string command = shellQuote(BCS_SIMULATE_EXE);
-    for (const std::string& arg : args)
-    {
-      command += " " + shellQuote(arg);
-    }
-    command += " >" + shellQuote(out.string()) + " 2>" + shellQuote(err.string()) + " </dev/null";
-    const int status = std::system(command.c_str());
-    RunResult result;
-    result.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-    result.out = readFile(out);
-    result.err = readFile(err);
-    return result;
-  }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  fs::path dir_;
-};
 
 /// A bad scene: exit 2, nothing on stdout, one stderr line naming the file and the key.
 void expectSceneError(const RunResult& result, const std::string& scene_path, const std::string& key)
@@ -251,40 +164,6 @@ TEST_F(SimulateCli, BagHoldsTheNodesTopicsStampedWithSimulatedTime)
   EXPECT_NEAR(last_clock, 0.5, 1e-9);
 }
 
-namespace
-{
-/// The value of `key=` in a line of key=value fields.
-double field(const std::string& line, const std::string& key)
-{
-  const std::size_t at = line.find(" " + key + "=");
-  EXPECT_NE(at, std::string::npos) << key << " in " << line;
-  return at == std::string::npos ? std::nan("") : std::stod(line.substr(at + key.size() + 2));
-}
-}  // namespace
-
-// plot_run reads a bag that simulate wrote: every plot is written, and the energy it
-// computes from the ball states is the summary's.
-TEST_F(SimulateCli, PlotRunDrawsABagAndAgreesOnTheEnergy)
-{
-  const RunResult sim = run({std::string(BCS_CONFIG_DIR) + "/random_gas.yaml", "--duration", "2", "--bag", path("gas.bag")});
-  ASSERT_EQ(sim.exit_code, 0) << sim.err;
-  const std::string summary = lines(sim.out).back();
-  const std::string command = "/usr/bin/python3 " + std::string(BCS_CONFIG_DIR) + "/../scripts/plot_run " +
-                              shellQuote(path("gas.bag")) + " --out " + shellQuote(path("plots")) + " > " +
-                              shellQuote(path("plot.txt")) + " 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << readFile(path("plot.txt"));
-  const std::string out = lines(readFile(path("plot.txt"))).back();
-  for (const char* name : {"energy.png", "momentum.png", "collisions.png", "trajectories.png", "speeds.png"})
-  {
-    ASSERT_TRUE(fs::exists(path("plots") + "/" + name)) << name;
-    EXPECT_GT(fs::file_size(path("plots") + "/" + name), 5000u) << name;
-  }
-  EXPECT_FALSE(fs::exists(path("plots") + "/heights.png")) << "no ball flies in random_gas";
-  const double e0 = field(summary, "energy_start"), e1 = field(summary, "energy_end");
-  EXPECT_NEAR(field(out, "energy_start"), e0, 1e-12 * std::abs(e0)) << out;
-  EXPECT_NEAR(field(out, "energy_end"), e1, 1e-12 * std::abs(e1)) << out;
-  EXPECT_EQ(field(out, "samples"), field(summary, "steps") + 1);  // a state per step and the start
-}
 
 // On a terminal a progress bar goes to stderr; into a file or pipe, nothing of it.
 TEST_F(SimulateCli, ProgressBarOnlyOnATerminal)
@@ -431,48 +310,6 @@ TEST_F(SimulateCli, UnwritableCsvIsAnErrorNamingThePath)
   EXPECT_TRUE(startsWith(result.err, "simulate: error: --csv: " + csv + ": cannot open")) << result.err;
 }
 
-struct Summary
-{
-  std::uint64_t steps = 0;
-  std::uint64_t events = 0;
-  std::uint64_t floor_impacts = 0;
-  double wall_s = 0.0;
-  double energy_start = 0.0;
-  double energy_end = 0.0;
-  int balls_lost = -1;
-  std::uint64_t balls_pocketed = 0;
-};
-
-/// The summary line: exactly these keys, in this order, every value parsing whole.
-Summary parseSummary(const std::string& line)
-{
-  static const std::regex pattern(
-      R"(^summary: steps=([0-9]+) events=([0-9]+) floor_impacts=([0-9]+) wall_s=(\S+) energy_start=(\S+) )"
-      R"(energy_end=(\S+) balls_lost=([0-9]+) balls_pocketed=([0-9]+)$)");
-  std::smatch match;
-  Summary summary;
-  EXPECT_TRUE(std::regex_match(line, match, pattern)) << line;
-  if (match.empty())
-  {
-    return summary;
-  }
-  auto number = [&](int i) {
-    const std::string text = match[i].str();
-    std::size_t used = 0;
-    const double value = std::stod(text, &used);
-    EXPECT_EQ(used, text.size()) << text;
-    return value;
-  };
-  summary.steps = std::stoull(match[1].str());
-  summary.events = std::stoull(match[2].str());
-  summary.floor_impacts = std::stoull(match[3].str());
-  summary.wall_s = number(4);
-  summary.energy_start = number(5);
-  summary.energy_end = number(6);
-  summary.balls_lost = std::stoi(match[7].str());
-  summary.balls_pocketed = std::stoull(match[8].str());
-  return summary;
-}
 
 struct CsvRow
 {
@@ -604,20 +441,13 @@ TEST_F(SimulateCli, TheSummaryCountsFloorImpacts)
            "balls:\n  - {position: [0, 0, 0.6], radius: 0.1, placement: as_given}\n";
   }
   // it falls 0.5 m in about 0.32 s
-  const RunResult result = run({scene, "--duration", "1", "--bag", path("drop.bag")});
+  const RunResult result = run({scene, "--duration", "1"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const std::vector<std::string> out = lines(result.out);
   ASSERT_FALSE(out.empty());
   const Summary summary = parseSummary(out.back());
   EXPECT_GE(summary.floor_impacts, 1u) << out.back();
   EXPECT_EQ(summary.balls_lost, 0);
-  // plot_run draws the heights of a run where a ball flies
-  const std::string command = "/usr/bin/python3 " + std::string(BCS_CONFIG_DIR) + "/../scripts/plot_run " +
-                              shellQuote(path("drop.bag")) + " --out " + shellQuote(path("plots")) + " > " +
-                              shellQuote(path("plot.txt")) + " 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << readFile(path("plot.txt"));
-  ASSERT_TRUE(fs::exists(path("plots") + "/heights.png")) << readFile(path("plot.txt"));
-  EXPECT_GT(fs::file_size(path("plots") + "/heights.png"), 5000u);
 }
 
 TEST_F(SimulateCli, StepAndSampleCounts)
@@ -721,8 +551,7 @@ TEST_F(SimulateCli, PeersTableChecksTheTargetsOfOneRun)
 
 // With friction the CSV appends the angular velocity, and the summary's energies count
 // the spins' k m r^2 |w|^2 / 2: the billiards break, 12 s, from the cue ball sliding
-// without spin to every ball at rest; the bag holds the motion transitions, and
-// plot_run draws the states.
+// without spin to every ball at rest; the bag holds the motion transitions.
 TEST_F(SimulateCli, FrictionAppendsTheSpinAndTransitions)
 {
   const std::string scene_path = std::string(BCS_CONFIG_DIR) + "/billiards.yaml";
@@ -795,11 +624,4 @@ TEST_F(SimulateCli, FrictionAppendsTheSpinAndTransitions)
     }
   bag.close();
   EXPECT_GE(transitions, static_cast<int>(balls));  // every ball stops at least
-  const std::string command = "/usr/bin/python3 " + std::string(BCS_CONFIG_DIR) + "/../scripts/plot_run " +
-                              shellQuote(path("break.bag")) + " --out " + shellQuote(path("plots")) + " > " +
-                              shellQuote(path("plot.txt")) + " 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << readFile(path("plot.txt"));
-  EXPECT_GT(fs::file_size(path("plots") + "/states.png"), 5000u);
-  EXPECT_NEAR(field(lines(readFile(path("plot.txt"))).back(), "energy_start"), summary.energy_start,
-              1e-12 * summary.energy_start);
 }
