@@ -107,10 +107,10 @@ TEST_F(PlotRun, AGasAgreesWithTheSummaryAboveItsRestingLevel)
   expectReadablePlots(200);
 }
 
-// The billiards break on a level table, 12 s until every ball rests: the potential energy is
-// 0 throughout, the energy starts as the cue ball's 1/2 m v^2 and ends at 0 (a ball in a pocket
-// takes its energy with it); the 16 balls
-// are drawn in 16 colours with their ids, the motion states counted in whole balls.
+// The billiards break on a level table, 12 s until every ball rests: the potential energy
+// is 0 throughout, the energy starts as the cue ball's 1/2 m v^2 and ends at 0 (a ball in
+// a pocket takes its energy with it); the 16 balls are drawn in 16 colours with their
+// ids, the motion states counted in whole balls.
 TEST_F(PlotRun, ABilliardsBreakEndsWithNoEnergyLeft)
 {
   const std::string scene_path = kConfigDir + "/billiards.yaml";
