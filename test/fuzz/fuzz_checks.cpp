@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -122,11 +123,14 @@ struct EnergyScale
   double scale = 0.0;
 };
 
-EnergyScale energyOf(const core::World& world)
+/// The energy of the balls of `world` but those with ids in `leaving`.
+EnergyScale energyOf(const core::World& world, const std::set<int>& leaving = {})
 {
   EnergyScale e;
   for (std::size_t k = 0; k < world.balls().size(); ++k)
   {
+    if (leaving.count(world.balls()[k].id) > 0)
+      continue;
     const core::Ball& b = world.balls()[k];
     double kinetic = 0.5 * b.mass * b.velocity.squaredNorm();
     if (world.friction())  // (the spins' too, where balls have their own)
@@ -331,6 +335,15 @@ StepCase decodeStepCase(const std::uint8_t* data, std::size_t size)
       }
     }
   }
+  // Pockets, from bytes after those: up to three, anywhere over the floor, of up to a
+  // quarter of its side.
+  const int pockets = in.u8() % 4;
+  for (int k = 0; k < pockets; ++k)
+  {
+    const double pu = in.range(0.0, 1.0);
+    const Vec3 at = surface.point(Vec2(pu, in.range(0.0, 1.0)));
+    scene.pockets.push_back({Vec2(at.x(), at.y()), in.range(0.01, 0.25) * side});
+  }
   return out;
 }
 
@@ -352,10 +365,29 @@ std::string checkStepping(const std::uint8_t* data, std::size_t size)
 
   for (int k = 1; k <= c.steps; ++k)
   {
+    // (the world before the step, where balls may drop into pockets in it)
+    const std::optional<core::World> start = c.scene.pockets.empty() ? std::nullopt : std::optional<core::World>(world);
     world.step();
     const std::string at = "step " + std::to_string(k) + ": ";
     if (const std::string bad = nonFinite(world); !bad.empty())
       return at + bad;
+    // A ball that drops into a pocket leaves with its energy, its centre on the circle
+    // (or inside it, where it started the step there).
+    std::set<int> dropped;
+    for (const core::PocketedBall& out : world.lastPocketed())
+    {
+      const core::PocketDef& pocket = c.scene.pockets.at(static_cast<std::size_t>(out.pocket));
+      const double off = (Vec2(out.ball.position.x(), out.ball.position.y()) - pocket.position).norm();
+      if (!(off <= pocket.radius * (1 + 1e-9) + kOverlapTolerance))
+        return at + "ball " + std::to_string(out.ball.id) + " dropped into pocket " + std::to_string(out.pocket) +
+               " " + str(off - pocket.radius) + " m outside its circle";
+      if (world.findBall(out.ball.id) != nullptr)
+        return at + "ball " + std::to_string(out.ball.id) + " dropped into a pocket and is still in the world";
+      dropped.insert(out.ball.id);
+    }
+    if (!dropped.empty())
+      before = energyOf(*start, dropped);
+    count -= dropped.size();
     const core::BallList balls = world.balls();
     if (balls.size() != count)
       return at + "the ball count changed";
