@@ -6,10 +6,6 @@
 #include "ball_collision_sim/core/format.hpp"
 #include "ball_collision_sim/ros/conversions.hpp"
 
-#include <ros/callback_queue.h>
-
-#include <boost/make_shared.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -22,25 +18,6 @@ namespace
 {
 using visualization_msgs::InteractiveMarkerFeedback;
 
-/// A feedback handed on to the node's queue.
-class PostedFeedback : public ros::CallbackInterface
-{
-public:
-  PostedFeedback(InteractivePlay::Handler handler, visualization_msgs::InteractiveMarkerFeedbackConstPtr feedback)
-      : handler_(std::move(handler)), feedback_(std::move(feedback))
-  {
-  }
-  CallResult call() override
-  {
-    handler_(*feedback_);
-    return Success;
-  }
-
-private:
-  InteractivePlay::Handler handler_;
-  visualization_msgs::InteractiveMarkerFeedbackConstPtr feedback_;
-};
-
 /// The floor's normal, up against gravity: a plane's own, else gravity's (+z without).
 core::Vec3 upOf(const core::World& world)
 {
@@ -52,23 +29,16 @@ core::Vec3 upOf(const core::World& world)
 
 }  // namespace
 
-InteractivePlay::InteractivePlay(const std::string& topic_ns, const std::string& frame_id, Handler handler,
-                                 ros::CallbackQueueInterface* queue)
-    : server_(topic_ns), frame_id_(frame_id), handler_(std::move(handler)), queue_(queue)
+InteractivePlay::InteractivePlay(const std::string& topic_ns, const std::string& frame_id, const Handler& handler)
+    : server_(topic_ns), frame_id_(frame_id)
 {
-}
-
-InteractivePlay::~InteractivePlay()
-{
-  if (auto* queue = dynamic_cast<ros::CallbackQueue*>(queue_))
-    queue->removeByID(reinterpret_cast<std::uint64_t>(this));
-}
-
-void InteractivePlay::onFeedback(const visualization_msgs::InteractiveMarkerFeedbackConstPtr& feedback)
-{
-  // (the server calls this under its lock; the node's handler takes the node's lock,
-  // under which the node calls sync() and so the server: handled from the queue instead)
-  queue_->addCallback(boost::make_shared<PostedFeedback>(handler_, feedback), reinterpret_cast<std::uint64_t>(this));
+  // The feedback topic read here rather than through the server's callbacks: the server
+  // drops a client's feedback while a marker is younger than 1 s of ROS time, which is
+  // simulated time and stands still while the world is paused; and it calls back under
+  // its own lock, which sync() takes under the node's.
+  feedback_sub_ = ros::NodeHandle().subscribe<visualization_msgs::InteractiveMarkerFeedback>(
+      topic_ns + "/feedback", 100,
+      [handler](const visualization_msgs::InteractiveMarkerFeedbackConstPtr& feedback) { handler(*feedback); });
 }
 
 void InteractivePlay::sync(const core::World& world, int max_balls)
@@ -98,8 +68,7 @@ void InteractivePlay::syncBalls(const core::World& world, int max_balls)
     for (; old != shown_.end() && old->id < ball.id; ++old) server_.erase(playMarkerName(old->id));
     const bool known = old != shown_.end() && old->id == ball.id;
     if (!known || old->radius != ball.radius)
-      server_.insert(ballPlayMarker(ball, frame_id_, up_),
-                     [this](const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f) { onFeedback(f); });
+      server_.insert(ballPlayMarker(ball, frame_id_, up_));
     else if (old->stale || old->position != ball.position)
     {
       geometry_msgs::Pose pose;
@@ -130,8 +99,7 @@ void InteractivePlay::syncCue(const core::World& world)
   const core::Ball& ball = world.balls()[k];
   const CuePose pose = seatedCue(ball.position, cue_->direction, cue_->offset, up_);
   if (!cue_->sent)
-    server_.insert(cuePlayMarker(pose, cue_->id, ball.radius, frame_id_, up_),
-                   [this](const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f) { onFeedback(f); });
+    server_.insert(cuePlayMarker(pose, cue_->id, ball.radius, frame_id_, up_));
   else if (!samePose(poseOf(*cue_->sent), poseOf(pose)))
     server_.setPose(kCueMarker, poseOf(pose));
   cue_->sent = pose;

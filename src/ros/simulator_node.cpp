@@ -58,8 +58,7 @@ SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh, yaml::Scen
   advertise();
   play_ = std::make_unique<InteractivePlay>(
       pnh_.resolveName("play"), frame_id_,
-      [this](const visualization_msgs::InteractiveMarkerFeedback& feedback) { onPlayFeedback(feedback); },
-      ros::getGlobalCallbackQueue());
+      [this](const visualization_msgs::InteractiveMarkerFeedback& feedback) { onPlayFeedback(feedback); });
 
   anchorClock();
   // The timer only wakes the loop; how many steps are due comes from the wall clock,

@@ -5,7 +5,7 @@
 #include "ball_collision_sim/ros/play_markers.hpp"
 
 #include <interactive_markers/interactive_marker_server.h>
-#include <ros/callback_queue_interface.h>
+#include <ros/subscriber.h>
 #include <visualization_msgs/InteractiveMarker.h>
 #include <visualization_msgs/InteractiveMarkerFeedback.h>
 
@@ -45,11 +45,8 @@ class InteractivePlay
 {
 public:
   using Handler = std::function<void(const visualization_msgs::InteractiveMarkerFeedback&)>;
-  /// Feedback reaches `handler` through `queue` (the node's), never from inside the
-  /// server's lock, which sync() takes under the node's.
-  InteractivePlay(const std::string& topic_ns, const std::string& frame_id, Handler handler,
-                  ros::CallbackQueueInterface* queue);
-  ~InteractivePlay();
+  /// Every feedback on `<topic_ns>/feedback` goes to `handler`, from the global queue.
+  InteractivePlay(const std::string& topic_ns, const std::string& frame_id, const Handler& handler);
   InteractivePlay(const InteractivePlay&) = delete;
   InteractivePlay& operator=(const InteractivePlay&) = delete;
 
@@ -83,7 +80,6 @@ private:
     std::optional<CuePose> sent;                 ///< pose last sent; none: insert it
   };
 
-  void onFeedback(const visualization_msgs::InteractiveMarkerFeedbackConstPtr& feedback);
   void syncBalls(const core::World& world, int max_balls);
   void syncCue(const core::World& world);
   void chooseCue(const core::World& world, int id);
@@ -93,8 +89,7 @@ private:
 
   interactive_markers::InteractiveMarkerServer server_;
   std::string frame_id_;
-  Handler handler_;
-  ros::CallbackQueueInterface* queue_;
+  ros::Subscriber feedback_sub_;
   core::Vec3 up_ = core::Vec3::UnitZ();  ///< the floor's normal, against gravity
   std::vector<Shown> shown_;             ///< ball markers in the server, by id
   bool over_limit_ = false;              ///< past max_balls at the last sync()
