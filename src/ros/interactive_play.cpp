@@ -53,7 +53,7 @@ void InteractivePlay::syncBalls(const core::World& world, int max_balls)
 {
   const auto balls = world.balls();
   const bool over = balls.size() > static_cast<std::size_t>(std::max(0, max_balls));
-  if (over && !over_limit_ && !shown_.empty())
+  if (over && !over_limit_)
     ROS_INFO("ball_sim: %zu balls, past play_max_balls (%d): no ball markers to drag or choose as the cue ball",
              balls.size(), max_balls);
   over_limit_ = over;
