@@ -714,8 +714,8 @@ TEST(SceneWriter, WritesWhatReadsBackToTheSameBits)
   using ball_collision_sim::core::World;
   using ball_collision_sim::yaml::writeScene;
   std::vector<std::string> paths;
-  for (const auto& entry : std::filesystem::directory_iterator(kConfigDir))
-    paths.push_back(entry.path().string());
+  for (const std::filesystem::path& config : configFiles())  // (the scenes: not config/*.rviz)
+    paths.push_back(config.string());
   paths.push_back(kDataDir + "/node_scene.yaml");
   paths.push_back(kDataDir + "/good_small.yaml");
   for (const std::string& path : paths)
