@@ -352,7 +352,7 @@ TEST(SceneYaml, EachMistakeGivesOneLineNamingTheKeyAndTheReason)
     {"dtt: 0.1", "t.yaml: dtt: unknown key (expected one of: frame_id, dt, gravity, restitution, floor, friction, walls, "
                  "balls, random_balls, pockets, real_time_factor, marker_rate, tf_rate, tf_max_balls, state_rate, "
                  "publish_collisions, start_paused, click_radius, click_mass, status_period, max_balls, "
-                 "marker_list_threshold, ball_color, speed_color_max, collision_flashes, publish_clock, frame_prefix, threads)"},
+                 "marker_list_threshold, play_max_balls, ball_color, speed_color_max, collision_flashes, publish_clock, frame_prefix, threads)"},
     {"floor: {type: plane, control_points: []}",
      "t.yaml: floor.control_points: unknown key (expected one of: type, point, u, v, restitution)"},
     {"random_balls: {count: 1, region: {min: [0, 0], max: [1, 1], mid: [0, 0]}}",
@@ -743,8 +743,8 @@ TEST(SceneWriter, WritesWhatReadsBackToTheSameBits)
   using ball_collision_sim::core::World;
   using ball_collision_sim::yaml::writeScene;
   std::vector<std::string> paths;
-  for (const auto& entry : std::filesystem::directory_iterator(kConfigDir))
-    paths.push_back(entry.path().string());
+  for (const std::filesystem::path& config : configFiles())  // (the scenes: not config/*.rviz)
+    paths.push_back(config.string());
   paths.push_back(kDataDir + "/node_scene.yaml");
   paths.push_back(kDataDir + "/good_small.yaml");
   for (const std::string& path : paths)

@@ -46,6 +46,9 @@ struct NodeSettings
   double status_period = 0.0;     ///< a status line every this many wall seconds [s]; 0 = none
   int max_balls = 100000;         ///< add_ball and clicks are refused past this many balls
   int marker_list_threshold = 1000;  ///< past this many balls, one sphere list per radius
+  /// past this many balls, none has an interactive marker (~play) to drag or choose as the
+  /// cue ball: rviz draws each with its controls, and slows down with hundreds
+  int play_max_balls = 100;
   int threads = 1;                ///< threads the step runs on (the same bits for any); 0 = every core
   BallColor ball_color = BallColor::kSpeed;  ///< how balls are coloured
   double speed_color_max = 0.0;  ///< speed at the top of the colour scale [m/s]; 0 = the fastest ball at the start

@@ -88,6 +88,12 @@ bool SimulatorNode::onApplyImpulse(ApplyImpulse::Request& req, ApplyImpulse::Res
 bool SimulatorNode::onStrike(Strike::Request& req, Strike::Response& res)
 {
   const Lock guard = lock();
+  strike(req, res);
+  return true;
+}
+
+void SimulatorNode::strike(const Strike::Request& req, Strike::Response& res)
+{
   const core::MotionKind before = kindOf(req.id);
   answerStrike(world_, req, res);
   if (res.success)
@@ -95,7 +101,6 @@ bool SimulatorNode::onStrike(Strike::Request& req, Strike::Response& res)
     publishPushTransition(req.id, before);
     publishEdit();
   }
-  return true;
 }
 
 core::MotionKind SimulatorNode::kindOf(int id) const

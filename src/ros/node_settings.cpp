@@ -60,6 +60,8 @@ void copyKeys(const std::vector<std::string>& keys, const NodeSettings& from, No
       to.max_balls = from.max_balls;
     else if (key == "marker_list_threshold")
       to.marker_list_threshold = from.marker_list_threshold;
+    else if (key == "play_max_balls")
+      to.play_max_balls = from.play_max_balls;
     else if (key == "ball_color")
       to.ball_color = from.ball_color;
     else if (key == "speed_color_max")
@@ -89,6 +91,7 @@ SimulatorConfig toConfig(const NodeSettings& node)
   config.status_period = node.status_period;
   config.max_balls = node.max_balls;
   config.marker_list_threshold = node.marker_list_threshold;
+  config.play_max_balls = node.play_max_balls;
   config.ball_color = ballColorName(node.ball_color);
   config.speed_color_max = node.speed_color_max;
   config.collision_flashes = node.collision_flashes;
@@ -120,6 +123,7 @@ std::vector<std::string> applyConfig(SimulatorConfig& config, NodeSettings& node
   node.tf_max_balls = config.tf_max_balls;
   node.max_balls = config.max_balls;
   node.marker_list_threshold = config.marker_list_threshold;
+  node.play_max_balls = config.play_max_balls;
   node.publish_collisions = config.publish_collisions;
   node.collision_flashes = config.collision_flashes;
   if (const std::optional<BallColor> color = ballColorNamed(config.ball_color))

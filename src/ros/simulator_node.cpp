@@ -4,6 +4,7 @@
 
 #include "ball_collision_sim/core/format.hpp"
 #include "ball_collision_sim/ros/conversions.hpp"
+#include "ball_collision_sim/ros/interactive_play.hpp"
 #include "ball_collision_sim/ros/markers.hpp"
 #include "ball_collision_sim/ros/outputs.hpp"
 #include "ball_collision_sim/ros/requests.hpp"
@@ -55,6 +56,9 @@ SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh, yaml::Scen
   // What the node runs, every default spelled out, back where the scene came from.
   writeSceneParams(pnh_, world_.scene(), settings_.node);
   advertise();
+  play_ = std::make_unique<InteractivePlay>(
+      pnh_.resolveName("play"), frame_id_,
+      [this](const visualization_msgs::InteractiveMarkerFeedback& feedback) { onPlayFeedback(feedback); });
 
   anchorClock();
   // The timer only wakes the loop; how many steps are due comes from the wall clock,
@@ -277,7 +281,10 @@ void SimulatorNode::publishView(bool force)
   const double now = ros::WallTime::now().toSec();
   const ros::Time stamp(world_.time());
   if (markers_due_.due(settings_.node.marker_rate, now, force))
+  {
     publishBalls(stamp);
+    syncPlay();
+  }
   if (tf_due_.due(settings_.node.tf_rate, now, force))
     publishTransforms(stamp);
 }
@@ -374,6 +381,7 @@ void SimulatorNode::redraw()
   shown_balls_.clear();
   shown_lists_ = 0;
   flashes_.clear();
+  play_->restart(frame_id_);
   publishStatic();
   if (settings_.publish_clock)
     clock_pub_.publish(clockMessage(ros::Time(world_.time())));
@@ -449,6 +457,8 @@ void SimulatorNode::applySettings(const NodeSettings& node)
     coloring_ = ballColoring(world_, node);
   if (!node.collision_flashes)
     flashes_.clear();
+  if (node.play_max_balls != old.play_max_balls)
+    syncPlay();
 }
 
 std::string SimulatorNode::roomForABall() const

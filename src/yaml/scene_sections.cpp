@@ -247,6 +247,8 @@ void readNodeSettings(const MapFields& fields, NodeSettings& node)
     node.max_balls = readInt(*value, "max_balls");
   if (const YAML::Node* value = fields.find("marker_list_threshold"))
     node.marker_list_threshold = readInt(*value, "marker_list_threshold");
+  if (const YAML::Node* value = fields.find("play_max_balls"))
+    node.play_max_balls = readInt(*value, "play_max_balls");
   if (const YAML::Node* value = fields.find("threads"))
     node.threads = readInt(*value, "threads");
   flag("publish_collisions", node.publish_collisions);

@@ -95,6 +95,7 @@ void writeNodeSettings(std::ostream& out, const NodeSettings& node)
       << "\nstart_paused: " << flag(node.start_paused) << "\nclick_radius: " << real(node.click_radius)
       << "\nclick_mass: " << real(node.click_mass) << "\nstatus_period: " << real(node.status_period)
       << "\nmax_balls: " << node.max_balls << "\nmarker_list_threshold: " << node.marker_list_threshold
+      << "\nplay_max_balls: " << node.play_max_balls
       << "\nball_color: " << ballColorName(node.ball_color)
       << "\nspeed_color_max: " << real(node.speed_color_max)
       << "\ncollision_flashes: " << flag(node.collision_flashes) << "\nthreads: " << node.threads << "\n";

@@ -262,6 +262,9 @@ std::vector<core::SceneIssue> validateNodeSettings(const NodeSettings& node)
       fail(key, "must be in [0, 1e6] Hz (got " + formatNumber(rate) + ")");
   if (node.marker_list_threshold < 0)
     fail("marker_list_threshold", "must be >= 0 (got " + std::to_string(node.marker_list_threshold) + ")");
+  if (node.play_max_balls < 0)
+    fail("play_max_balls", "must be >= 0 (0 = no ball markers to play with; got " +
+                               std::to_string(node.play_max_balls) + ")");
   if (node.max_balls < 1)
     fail("max_balls", "must be >= 1 (got " + std::to_string(node.max_balls) + ")");
   if (node.tf_max_balls < 0)

@@ -25,6 +25,7 @@
 #include <ros/ros.h>
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
+#include <visualization_msgs/InteractiveMarkerFeedback.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <atomic>
@@ -37,6 +38,10 @@
 
 namespace ball_collision_sim::bridge
 {
+class InteractivePlay;
+struct PlayMove;
+struct PlayStrike;
+
 /// The simulator on ROS: steps the core on a wall-clock timer with the scene's fixed dt,
 /// publishes markers, tf, ball states, collisions, lost balls and /clock (every stamp is
 /// simulated time), and takes services to read, edit, pause, step, reset and reload the
@@ -108,6 +113,8 @@ private:
   bool onSetBallState(SetBallState::Request& req, SetBallState::Response& res);
   bool onApplyImpulse(ApplyImpulse::Request& req, ApplyImpulse::Response& res);
   bool onStrike(Strike::Request& req, Strike::Response& res);
+  /// The strike service's work, under the lock: the strike, its motion transition, the edit.
+  void strike(const Strike::Request& req, Strike::Response& res);
   bool onGetState(GetState::Request& req, GetState::Response& res);
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onLoadScene(LoadScene::Request& req, LoadScene::Response& res);
@@ -118,6 +125,13 @@ private:
   void onStatesSubscriber(const ros::SingleSubscriberPublisher& subscriber);
   void onTfSubscriber(const ros::SingleSubscriberPublisher& subscriber);
   void onClockSubscriber(const ros::SingleSubscriberPublisher& subscriber);
+
+  // ---- playing in rviz: interactive markers (node_play.cpp) ----
+  void onPlayFeedback(const visualization_msgs::InteractiveMarkerFeedback& feedback);
+  void playMove(const PlayMove& move);
+  void playStrike(const PlayStrike& shot);
+  /// The interactive markers as the world is now.
+  void syncPlay();
 
   // ---- long steps (step_runner.cpp) ----
   /// How a run of steps ended.
@@ -187,6 +201,7 @@ private:
   std::vector<int> shown_balls_;  ///< ball ids drawn last time, to delete the removed
   int shown_lists_ = 0;           ///< sphere lists drawn last time (many balls)
   CollisionFlashes flashes_;      ///< collisions since the last ball markers
+  std::unique_ptr<InteractivePlay> play_;  ///< the balls and a cue as interactive markers (~play)
 
   // threads other than the global queue's, started last and stopped first
   std::unique_ptr<ros::AsyncSpinner> step_spinner_;

@@ -21,10 +21,10 @@ struct SceneError : std::runtime_error
 
 /// Top-level keys that only the ROS node uses (NodeSettings); the offline tool reads and
 /// checks them like every other key, and ignores them.
-inline constexpr std::array<std::string_view, 18> kNodeOnlyKeys{
+inline constexpr std::array<std::string_view, 19> kNodeOnlyKeys{
   "real_time_factor", "marker_rate", "tf_rate", "tf_max_balls", "state_rate", "publish_collisions",
   "start_paused", "click_radius", "click_mass", "status_period", "max_balls", "marker_list_threshold",
-  "ball_color", "speed_color_max", "collision_flashes", "publish_clock", "frame_prefix", "threads",
+  "play_max_balls", "ball_color", "speed_color_max", "collision_flashes", "publish_clock", "frame_prefix", "threads",
 };
 
 /// A scene file: the scene, and the node's settings beside it.
