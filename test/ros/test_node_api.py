@@ -103,7 +103,8 @@ class NodeApi(unittest.TestCase):
         states.wait_for(lambda all: len(all) >= 1)
         states.take()
         # any height: the centre lands on the floor under (x, y)
-        r = nh.call(NS + "set_ball_state", SetBallState, id=2, position=vec(1.2, 0.5, 3.0), velocity=vec(-0.4, 0.2, 1.0))
+        r = nh.call(NS + "set_ball_state", SetBallState, id=2, position=vec(1.2, 0.5, 3.0), set_position=True,
+                    velocity=vec(-0.4, 0.2, 1.0), set_velocity=True)
         self.assertTrue(r.success, r.message)
         self.assertEqual(r.state.id, 2)
         s = get()
@@ -128,12 +129,23 @@ class NodeApi(unittest.TestCase):
         before = get()
         cases = [
             ("set_ball_state", SetBallState, {}, "id"),  # empty
-            ("set_ball_state", SetBallState, {"id": 9, "position": vec(1.2, 0.5)}, "id"),
-            ("set_ball_state", SetBallState, {"id": 1, "position": vec(0.55, 0.05)}, "position"),  # onto ball 2
-            ("set_ball_state", SetBallState, {"id": 1, "position": vec(1.95, 0.0)}, "position"),  # into wall 4
-            ("set_ball_state", SetBallState, {"id": 1, "position": vec(2.6, 0.0)}, "position"),  # off the floor
-            ("set_ball_state", SetBallState, {"id": 1, "position": vec(float("nan"), 0.0)}, "position"),
-            ("set_ball_state", SetBallState, {"id": 1, "position": vec(1.2, 0.5), "velocity": vec(1e9)}, "velocity"),
+            ("set_ball_state", SetBallState, {"id": 9, "position": vec(1.2, 0.5), "set_position": True}, "id"),
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(0.55, 0.05), "set_position": True},
+             "position"),  # onto ball 2
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(1.95, 0.0), "set_position": True},
+             "position"),  # into wall 4
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(2.6, 0.0), "set_position": True},
+             "position"),  # off the floor
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(float("nan"), 0.0), "set_position": True},
+             "position"),
+            ("set_ball_state", SetBallState, {"id": 1, "velocity": vec(1e9), "set_velocity": True}, "velocity"),
+            # a value given without its flag is refused, never dropped; so is a request that sets nothing
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(1.2, 0.5)}, "position"),
+            ("set_ball_state", SetBallState, {"id": 1, "velocity": vec(0.5), "set_velocity": True,
+                                              "angular_velocity": vec(0.0, 5.0)}, "angular_velocity"),
+            ("set_ball_state", SetBallState, {"id": 1},
+             "set_position, set_velocity, set_angular_velocity, inertia"),
+            ("apply_impulse", ApplyImpulse, {"id": 1}, "impulse"),
             ("apply_impulse", ApplyImpulse, {}, "id"),
             ("apply_impulse", ApplyImpulse, {"id": 3, "impulse": vec(1.0)}, "id"),
             ("apply_impulse", ApplyImpulse, {"id": 1, "impulse": vec(float("inf"))}, "impulse"),
@@ -269,7 +281,7 @@ class NodeApi(unittest.TestCase):
                    ("strike", Strike, {"id": 7, "impulse": vec(1.0)}, "id"),
                    ("add_ball", AddBall, {"position": vec(1.0), "radius": 0.1, "mass": 1.0, "inertia": 1.5},
                     "inertia"),
-                   ("set_ball_state", SetBallState, {"id": 1, "position": vec(-1.0),
+                   ("set_ball_state", SetBallState, {"id": 1, "position": vec(-1.0), "set_position": True,
                                                      "angular_velocity": vec(float("inf")),
                                                      "set_angular_velocity": True}, "angular_velocity")]
             for service, srv_type, fields, field in bad:
@@ -310,7 +322,8 @@ class NodeApi(unittest.TestCase):
         lost.wait_connected()
         log.wait_connected()
         self.assertTrue(nh.call(NS + "remove_wall", RemoveObject, id=4).success)  # the east wall
-        r = nh.call(NS + "set_ball_state", SetBallState, id=2, position=vec(1.5, 0.5), velocity=vec(2.0))
+        r = nh.call(NS + "set_ball_state", SetBallState, id=2, position=vec(1.5, 0.5), set_position=True,
+                    velocity=vec(2.0), set_velocity=True)
         self.assertTrue(r.success, r.message)
         # its foot passes x = 2 at t = 0.25 s and it falls off the floor: its centre is r below
         # the floor sqrt(4 r / g) = 0.2258 s later, found at the end of the step at 0.48 s
