@@ -4,7 +4,9 @@ interfaces (test/data/node_scene.yaml, paused): get_state, set_ball_state,
 apply_impulse, load_scene, dynamic_reconfigure, empty requests, lost balls, the scene
 as YAML, and what a late or paused client sees."""
 import math
+import os
 import re
+import subprocess
 import sys
 import time
 import unittest
@@ -14,6 +16,7 @@ import rospy
 import rostest
 import tf2_ros
 import yaml
+from dynamic_reconfigure import DynamicReconfigureCallbackException
 from dynamic_reconfigure.client import Client
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import String
@@ -188,9 +191,6 @@ class NodeApi(unittest.TestCase):
         client = Client("/ball_sim", timeout=20)
         client.update_configuration({"marker_rate": 5.0})
         self.assertEqual(rospy.get_param(NS + "marker_rate"), 5.0)
-        # a ball colour that is not speed, id or motion is refused and the old one kept
-        config = client.update_configuration({"ball_color": "red"})
-        self.assertEqual(config["ball_color"], "speed")
         # real_time_factor: simulated time runs 4 times as fast as wall time, at once
         for factor in (4.0, 1.0):
             client.update_configuration({"real_time_factor": factor})
@@ -203,6 +203,41 @@ class NodeApi(unittest.TestCase):
             self.assertAlmostEqual((t1 - t0) / (w1 - w0), factor, delta=0.25 * factor)
         client.update_configuration({"marker_rate": 30.0})
         fresh()
+
+    def test_settings_out_of_range_are_refused_and_the_caller_told(self):
+        """A value outside its range in cfg/Simulator.cfg, not finite, or a ball colour
+        that is not speed, id or motion: the set_parameters call fails with the reason
+        (dynparam exits non-zero and prints it), and nothing changes."""
+        fresh()
+        client = Client("/ball_sim", timeout=20)
+        before = rospy.get_param(NS[:-1])
+        bad = [({"ball_color": "red"}, 'ball_color: expected speed, id or motion, got "red"'),
+               ({"real_time_factor": -1.0}, "real_time_factor: must be >= 0 (got -1)"),
+               ({"marker_rate": float("nan")}, "marker_rate: must be finite"),
+               ({"max_balls": 0}, "max_balls: must be >= 1 (got 0)"),
+               ({"marker_rate": 5.0, "tf_rate": 2e6}, "tf_rate: must be <= 1e+06 (got 2e+06)")]
+        for changes, reason in bad:
+            with self.assertRaises(DynamicReconfigureCallbackException, msg=changes) as refused:
+                client.update_configuration(changes)
+            self.assertIn(reason, str(refused.exception.__context__))
+            self.assertEqual(rospy.get_param(NS[:-1]), before)
+            self.assertEqual(client.get_configuration(timeout=5)["marker_rate"], before["marker_rate"])
+        env = dict(os.environ, PATH="/usr/bin:" + os.environ.get("PATH", ""))
+        for args, reason in [(["ball_color", "purple"], 'ball_color: expected speed, id or motion, got "purple"'),
+                             (["real_time_factor", "-2"], "real_time_factor: must be >= 0 (got -2)"),
+                             (["click_radius", "0"], "click_radius: must be >= 1e-06 (got 0)")]:
+            run = subprocess.run(["rosrun", "dynamic_reconfigure", "dynparam", "set", "/ball_sim"] + args, env=env,
+                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60)
+            out = run.stdout.decode()
+            self.assertNotEqual(run.returncode, 0, out)
+            self.assertIn(reason, out)
+            self.assertEqual(rospy.get_param(NS[:-1]), before)
+        # the same command with a good value is taken (exit 0)
+        run = subprocess.run(["rosrun", "dynamic_reconfigure", "dynparam", "set", "/ball_sim", "ball_color", "id"],
+                             env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60)
+        self.assertEqual(run.returncode, 0, run.stdout.decode())
+        self.assertEqual(rospy.get_param(NS + "ball_color"), "id")
+        client.update_configuration({"ball_color": before["ball_color"]})
 
     def test_scene_is_yaml_with_the_shortest_numbers(self):
         text = rospy.wait_for_message(NS + "scene", String, timeout=10).data
