@@ -275,6 +275,34 @@ TEST(SetBallState, WhatTheEditLeavesOutIsKept)
   EXPECT_TRUE(world.findBall(up.id)->flying());
 }
 
+// A k so small that k m r^2 is a denormal (1 / I infinite) is refused, nothing changed:
+// set on a sliding, spinning ball with friction it made the spin NaN at the next step.
+// The least k taken keeps every number finite.
+TEST(SetBallState, InertiaTooSmallForItsBallIsRefused)
+{
+  Scene scene = flatScene(-1.5, 1.5, -0.75, 0.75);
+  scene.friction = friction(0.2, 0.01, 0.044);
+  BallDef spinning = ball(0.2, -0.4, 0, 1, 0.05, 0.17);
+  spinning.angular_velocity = Vec3(0, 0, 30);
+  scene.balls = {spinning};
+  World world(scene);
+  const std::uint64_t before = world.stateHash();
+  BallEdit tiny;
+  tiny.inertia = std::numeric_limits<double>::min();
+  const AddResult refused = world.setBallState(1, tiny);
+  EXPECT_FALSE(refused.ok);
+  EXPECT_EQ(refused.error.rfind("inertia: ", 0), 0u) << refused.error;
+  EXPECT_EQ(world.stateHash(), before);
+  BallEdit least;
+  least.inertia = ball_collision_sim::core::kMinInertia;
+  ASSERT_TRUE(world.setBallState(1, least).ok);
+  for (int k = 0; k < 100; ++k)
+  {
+    world.step();
+    ASSERT_TRUE(world.angularVelocity(0).allFinite() && world.balls()[0].velocity.allFinite()) << "step " << k;
+  }
+}
+
 // apply_impulse: dv = J / m exactly; on a floor that does not bounce (floor.restitution
 // 0) the part into the floor goes into it, and momentum changes by the impulse along the
 // floor; refused without a ball or a finite impulse. On one that bounces (e = 1), the

@@ -1,9 +1,11 @@
 #include "ball_collision_sim/ros/node_settings.hpp"
 
 #include "ball_collision_sim/core/format.hpp"
+#include "ball_collision_sim/yaml/scene_yaml.hpp"
 
 #include <boost/any.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace ball_collision_sim::bridge
@@ -138,7 +140,18 @@ std::vector<std::string> checkConfig(const SimulatorConfig& config)
   }
   // (an enum of strings dynamic_reconfigure does not check)
   if (!ballColorNamed(config.ball_color))
+  {
     issues.push_back("ball_color: expected speed, id or motion, got \"" + config.ball_color + "\"");
+    return issues;
+  }
+  // what the scene's validation says besides the ranges (a status period of nearly 0), of
+  // the settings no range above refused
+  NodeSettings node;  // (the defaults, good, for the settings a config does not hold)
+  applyConfig(config, node);
+  for (const core::SceneIssue& issue : yaml::validateNodeSettings(node))
+    if (std::none_of(issues.begin(), issues.end(),
+                     [&](const std::string& seen) { return seen.rfind(issue.key + ": ", 0) == 0; }))
+      issues.push_back(issue.str());
   return issues;
 }
 

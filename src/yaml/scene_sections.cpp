@@ -93,7 +93,7 @@ core::WallDef readWall(const YAML::Node& node, const std::string& key)
   return wall;
 }
 
-/// `solid` (k = 2/5), `hollow` (k = 2/3) or a number k (checked to be in (0, 1] with the scene).
+/// `solid` (k = 2/5), `hollow` (k = 2/3) or a number k (checked to be in [0.01, 1] with the scene).
 double readInertia(const YAML::Node& node, const std::string& key)
 {
   if (node.IsScalar() && node.Scalar() == "solid")
@@ -106,7 +106,7 @@ double readInertia(const YAML::Node& node, const std::string& key)
   }
   catch (const KeyError&)
   {
-    fail(key, "expected solid, hollow or a number k in (0, 1], got " + describe(node));
+    fail(key, "expected solid, hollow or a number k in [0.01, 1], got " + describe(node));
   }
 }
 

@@ -89,7 +89,7 @@ struct BallEdit
   /// [rad/s] (a world with friction); unset: kept where the velocity is kept, else rolling
   /// without slip with the new velocity, n x v / r
   std::optional<Vec3> angular_velocity;
-  std::optional<double> inertia;  ///< k in I = k m r^2, in (0, 1]; unset: kept
+  std::optional<double> inertia;  ///< k in I = k m r^2, in [kMinInertia, 1]; unset: kept
   Landing landing = Landing::kUnder;
 };
 

@@ -19,7 +19,7 @@ namespace ball_collision_sim::bridge
 /// callback cannot refuse: it logs what the callback throws and takes the values anyway.
 class ReconfigureServer
 {
-public:
+ public:
   /// Takes a checked configuration: what the node runs with from then on.
   using Apply = std::function<void(const SimulatorConfig&)>;
 
@@ -31,7 +31,7 @@ public:
   /// A configuration set another way (load_scene): published and written back.
   void update(const SimulatorConfig& config);
 
-private:
+ private:
   /// Throws std::invalid_argument with the reasons of a refusal: roscpp answers the call
   /// with that text as its error (a `false` return would carry none).
   bool onSet(dynamic_reconfigure::Reconfigure::Request& req, dynamic_reconfigure::Reconfigure::Response& res);
