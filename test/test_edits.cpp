@@ -12,6 +12,7 @@
 using namespace ball_collision_sim::test;
 using ball_collision_sim::core::AddResult;
 using ball_collision_sim::core::Ball;
+using ball_collision_sim::core::BallEdit;
 using ball_collision_sim::core::kFirstId;
 using ball_collision_sim::core::Landing;
 using ball_collision_sim::core::Vec2;
@@ -21,6 +22,15 @@ namespace
 {
 /// The bowl z = a (x^2 + y^2) of fixtures' bowl(4, 0.5): a = 4 h / L^2.
 constexpr double kBowlA = 4 * 0.5 / 16;
+
+/// An edit that moves a ball to `position` with `velocity`, its spin rolling's.
+BallEdit moveTo(const Vec3& position, const Vec3& velocity)
+{
+  BallEdit edit;
+  edit.position = position;
+  edit.velocity = velocity;
+  return edit;
+}
 
 /// Distance from p to the paraboloid z = a (x^2 + y^2), by Newton's method on the foot's
 /// radius in the plane through the axis and p (the foot lies in it).
@@ -147,7 +157,7 @@ TEST(SetBallState, KeepsTheBallAndRunsFromTheNewState)
     world.step();
   const Ball before = *world.findBall(1);
   // to (0.5, -1), 1.5 m/s toward the south wall at y = -2 (z given wrong: it lands)
-  const AddResult set = world.setBallState(1, Vec3(0.5, -1, 3), Vec3(0, -1.5, 0.7));
+  const AddResult set = world.setBallState(1, moveTo(Vec3(0.5, -1, 3), Vec3(0, -1.5, 0.7)));
   ASSERT_TRUE(set.ok) << set.error;
   const Ball& b = *world.findBall(1);
   EXPECT_EQ(b.id, 1);
@@ -197,13 +207,100 @@ TEST(SetBallState, RefusedChangesNothing)
   };
   for (const Case& c : cases)
   {
-    const AddResult result = world.setBallState(c.id, c.position, c.velocity);
+    const AddResult result = world.setBallState(c.id, moveTo(c.position, c.velocity));
     EXPECT_FALSE(result.ok) << c.key;
     EXPECT_EQ(result.error.rfind(c.key, 0), 0u) << result.error;
     EXPECT_EQ(world.stateHash(), before) << c.key;
   }
   const Vec3 at = world.findBall(1)->position;
-  EXPECT_TRUE(world.setBallState(1, at + Vec3(0.05, 0, 0), Vec3::Zero()).ok);
+  EXPECT_TRUE(world.setBallState(1, moveTo(at + Vec3(0.05, 0, 0), Vec3::Zero())).ok);
+}
+
+// What an edit leaves out the ball keeps, bit for bit: its place (on the floor, and in
+// flight, where the default placement must not drop it onto the floor), its velocity, and
+// with friction its spin where its velocity is kept; a new velocity without a spin rolls.
+TEST(SetBallState, WhatTheEditLeavesOutIsKept)
+{
+  Scene scene = flatScene();
+  addBox(scene, -2, 2, -2, 2);
+  scene.friction = friction(0.2, 0.01);
+  BallDef spun = ball(-1, 0, 0.3, 0.2, 0.1, 2.0);
+  spun.angular_velocity = Vec3(1, -2, 3);
+  scene.balls = {spun, ball(1, 1, 0, 0, 0.2, 3.0)};
+  World world(scene);
+  world.step();
+  const Ball at = *world.findBall(1);
+  const Vec3 spin = world.angularVelocity(0);
+  ASSERT_NE(spin, Vec3::Zero());
+
+  BallEdit faster;
+  faster.velocity = Vec3(0.5, -0.25, 0.75);  // (its part off the floor is dropped)
+  ASSERT_TRUE(world.setBallState(1, faster).ok);
+  EXPECT_EQ(world.findBall(1)->position, at.position);
+  EXPECT_EQ(world.findBall(1)->velocity, Vec3(0.5, -0.25, 0));
+  EXPECT_NEAR((world.angularVelocity(0) - Vec3(0, 0, 1).cross(Vec3(0.5, -0.25, 0)) / 0.1).norm(), 0, 1e-13);
+
+  BallEdit spin_only;
+  spin_only.angular_velocity = spin;
+  ASSERT_TRUE(world.setBallState(1, spin_only).ok);
+  EXPECT_EQ(world.findBall(1)->position, at.position);
+  EXPECT_EQ(world.findBall(1)->velocity, Vec3(0.5, -0.25, 0));
+  EXPECT_EQ(world.angularVelocity(0), spin);
+
+  BallEdit moved;
+  moved.position = Vec3(0.5, -1, 0.7);
+  ASSERT_TRUE(world.setBallState(1, moved).ok);
+  EXPECT_EQ(world.findBall(1)->position, Vec3(0.5, -1, 0.1));
+  EXPECT_EQ(world.findBall(1)->velocity, Vec3(0.5, -0.25, 0));
+  EXPECT_EQ(world.angularVelocity(0), spin);
+  EXPECT_EQ(world.inertia(0), ball_collision_sim::core::kSolidInertia);
+
+  BallEdit hollow;
+  hollow.inertia = 2.0 / 3;
+  ASSERT_TRUE(world.setBallState(1, hollow).ok);
+  EXPECT_EQ(world.inertia(0), 2.0 / 3);
+  EXPECT_EQ(world.findBall(1)->position, Vec3(0.5, -1, 0.1));
+  EXPECT_EQ(world.angularVelocity(0), spin);
+
+  // in flight, a new velocity under the default placement: it stays up there and flies on
+  BallDef high = ball(0, 1, 0, 0);
+  high.position.z() = 0.4;
+  const AddResult up = world.addBall(high, Landing::kAsGiven);
+  ASSERT_TRUE(up.ok) << up.error;
+  BallEdit thrown;
+  thrown.velocity = Vec3(0.1, 0, 0.5);
+  ASSERT_TRUE(world.setBallState(up.id, thrown).ok);
+  EXPECT_EQ(world.findBall(up.id)->position, high.position);
+  EXPECT_EQ(world.findBall(up.id)->velocity, Vec3(0.1, 0, 0.5));
+  EXPECT_TRUE(world.findBall(up.id)->flying());
+}
+
+// A k so small that k m r^2 is a denormal (1 / I infinite) is refused, nothing changed:
+// set on a sliding, spinning ball with friction it made the spin NaN at the next step.
+// The least k taken keeps every number finite.
+TEST(SetBallState, InertiaTooSmallForItsBallIsRefused)
+{
+  Scene scene = flatScene(-1.5, 1.5, -0.75, 0.75);
+  scene.friction = friction(0.2, 0.01, 0.044);
+  BallDef spinning = ball(0.2, -0.4, 0, 1, 0.05, 0.17);
+  spinning.angular_velocity = Vec3(0, 0, 30);
+  scene.balls = {spinning};
+  World world(scene);
+  const std::uint64_t before = world.stateHash();
+  BallEdit tiny;
+  tiny.inertia = std::numeric_limits<double>::min();
+  const AddResult refused = world.setBallState(1, tiny);
+  EXPECT_FALSE(refused.ok);
+  EXPECT_EQ(refused.error.rfind("inertia: ", 0), 0u) << refused.error;
+  EXPECT_EQ(world.stateHash(), before);
+  BallEdit least;
+  least.inertia = ball_collision_sim::core::kMinInertia;
+  ASSERT_TRUE(world.setBallState(1, least).ok);
+  for (int k = 0; k < 100; ++k)
+  {
+    world.step();
+    ASSERT_TRUE(world.angularVelocity(0).allFinite() && world.balls()[0].velocity.allFinite()) << "step " << k;
+  }
 }
 
 // apply_impulse: dv = J / m exactly; on a floor that does not bounce (floor.restitution

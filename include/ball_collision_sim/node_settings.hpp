@@ -28,6 +28,10 @@ inline std::optional<BallColor> ballColorNamed(const std::string& name)
   return std::nullopt;
 }
 
+/// The shortest period of the status line [s]: a period of nearly 0 (a denormal rounds to
+/// 0 ns) would fire its timer without pause and flood the log.
+constexpr double kMinStatusPeriod = 0.01;
+
 /// Settings read only by the ROS node: what it publishes and how, not physics. They may
 /// sit in a scene file beside the scene; the offline tool reads, checks and ignores them.
 struct NodeSettings
@@ -43,7 +47,7 @@ struct NodeSettings
   /// set them gives its most common ball's (yaml::parseSceneFile())
   double click_radius = 0.1;
   double click_mass = 1.0;
-  double status_period = 0.0;     ///< a status line every this many wall seconds [s]; 0 = none
+  double status_period = 0.0;     ///< a status line every this many wall seconds [s], >= kMinStatusPeriod; 0 = none
   int max_balls = 100000;         ///< add_ball and clicks are refused past this many balls
   int marker_list_threshold = 1000;  ///< past this many balls, one sphere list per radius
   /// past this many balls, none has an interactive marker (~play) to drag or choose as the

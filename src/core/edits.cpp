@@ -76,35 +76,47 @@ AddResult World::addBall(const BallDef& def, Landing landing)
   return result;
 }
 
-AddResult World::setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing,
-                               const std::optional<Vec3>& angular_velocity, const std::optional<double>& inertia)
+AddResult World::setBallState(int id, const BallEdit& edit)
 {
   StepContext& c = *c_;
   const std::size_t k = indexOf(id);
   if (k == c.by_id_.size())
     return refused(id, "id: no ball has id " + std::to_string(id));
   const std::size_t s = c.by_id_[k];
+  const Ball& ball = c.balls_[s];
   AddResult result;
   result.id = id;
   BallDef def;
-  def.position = position;
-  def.velocity = velocity;
-  def.radius = c.balls_[s].radius;
-  def.mass = c.balls_[s].mass;
-  def.angular_velocity = angular_velocity;
-  def.inertia = inertia ? *inertia : this->inertia(k);
+  def.position = edit.position.value_or(ball.position);
+  def.velocity = edit.velocity.value_or(ball.velocity);
+  def.radius = ball.radius;
+  def.mass = ball.mass;
+  // a spin is kept with the velocity; a new velocity without one rolls (BallDef's default)
+  def.angular_velocity = edit.angular_velocity;
+  if (!edit.angular_velocity && !edit.velocity)
+    def.angular_velocity = angularVelocity(k);
+  def.inertia = edit.inertia.value_or(this->inertia(k));
+  // A ball left where it is stays there: resting on the floor it must rest there still
+  // (kExact, which under kUnder drops the velocity's part off the floor), in flight the
+  // floor is not to take it.
+  Landing landing = edit.landing;
+  if (!edit.position && landing != Landing::kAsGiven)
+    landing = ball.flying() ? Landing::kAsGiven : Landing::kExact;
   Vec2 foot(0.5, 0.5);
   bool flying = false;
   result.error = c.place(def, landing, id, foot, flying);
   if (!result.error.empty())
     return result;
+  if (!edit.position)
+    def.position = ball.position;  // (kExact's projection may move it by round-off)
   // (what leaned on it where it was wakes, and what it touches where it is, and itself)
-  c.wakeTouching(c.balls_[s].position, c.balls_[s].radius);
+  c.wakeTouching(ball.position, ball.radius);
   c.wakeTouching(def.position, def.radius);
-  c.balls_[s].position = def.position;
-  c.balls_[s].velocity = def.velocity;
-  c.balls_[s].support = flying ? Ball::Support::kAir : Ball::Support::kFloor;
-  c.balls_[s].quiet_steps = 0;  // (the ball the edit moved counts its still steps again)
+  Ball& set = c.balls_[s];
+  set.position = def.position;
+  set.velocity = def.velocity;
+  set.support = flying ? Ball::Support::kAir : Ball::Support::kFloor;
+  set.quiet_steps = 0;  // (the ball the edit moved counts its still steps again)
   c.spin_->setSpin(c, s, def, foot, flying);
   if (c.floor_motion_->keepsFeet())
     c.feet_[s] = foot;

@@ -72,14 +72,15 @@ public:
     }
     return true;
   }
-  /// k in I = k m r^2: in (0, 1]
+  /// k in I = k m r^2: in [kMinInertia, 1]
   bool inertia(const std::string& key, double value)
   {
     if (!finite(key, value))
       return false;
-    if (value > 0 && value <= 1)
+    if (value >= kMinInertia && value <= 1)
       return true;
-    fail(key, "must be solid, hollow or a number k in (0, 1] (got " + formatNumber(value) + ")");
+    fail(key, "must be solid, hollow or a number k in [" + formatNumber(kMinInertia) + ", 1] (got " +
+                  formatNumber(value) + ")");
     return false;
   }
   /// finite and in [0, limit]

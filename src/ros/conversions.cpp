@@ -170,7 +170,7 @@ core::BallDef fromMsg(const ball_collision_sim::AddBall::Request& request)
   if (request.set_angular_velocity)
     def.angular_velocity = toVec3(request.angular_velocity);
   if (request.inertia != 0)
-    def.inertia = request.inertia;  // (checked with the ball: in (0, 1])
+    def.inertia = request.inertia;  // (checked with the ball: in [0.01, 1])
   return def;
 }
 

@@ -198,7 +198,7 @@ bool SimulatorNode::onLoadScene(LoadScene::Request& req, LoadScene::Response& re
   // the master and dynamic_reconfigure's clients learn of it after the lock is let go
   writeSceneParams(pnh_, requested.scene, in_use);
   if (reconfigure_)
-    reconfigure_->updateConfig(toConfig(in_use));
+    reconfigure_->update(toConfig(in_use));
   res.success = true;
   ROS_INFO("ball_sim: %s", res.message.c_str());
   return true;
@@ -252,12 +252,11 @@ void SimulatorNode::onClickedPoint(const geometry_msgs::PointStamped& msg)
   publishEdit();
 }
 
-void SimulatorNode::onReconfigure(SimulatorConfig& config, std::uint32_t)
+void SimulatorNode::onReconfigure(const SimulatorConfig& config)
 {
   const Lock guard = lock();
   NodeSettings node = settings_.node;
-  for (const std::string& refused : applyConfig(config, node))
-    ROS_WARN("ball_sim: dynamic_reconfigure: %s; kept the value in use", refused.c_str());
-  applySettings(node);  // dynamic_reconfigure writes the values back to the parameters
+  applyConfig(config, node);  // (checked by reconfigure_, which writes them back to the parameters)
+  applySettings(node);
 }
 }  // namespace ball_collision_sim::bridge

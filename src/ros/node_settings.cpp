@@ -1,5 +1,11 @@
 #include "ball_collision_sim/ros/node_settings.hpp"
 
+#include "ball_collision_sim/core/format.hpp"
+#include "ball_collision_sim/yaml/scene_yaml.hpp"
+
+#include <boost/any.hpp>
+
+#include <algorithm>
 #include <cmath>
 
 namespace ball_collision_sim::bridge
@@ -98,41 +104,76 @@ SimulatorConfig toConfig(const NodeSettings& node)
   return config;
 }
 
-std::vector<std::string> applyConfig(SimulatorConfig& config, NodeSettings& node)
+namespace
 {
-  std::vector<std::string> kept;
-  // dynamic_reconfigure has clamped every number to its bounds, which are the scene's;
-  // a NaN passes its clamp, and is refused here
-  auto number = [&kept](const char* key, double& asked, double& value) {
-    if (std::isfinite(asked))
-      value = asked;
-    else
-    {
-      kept.push_back(std::string(key) + ": must be finite");
-      asked = value;
-    }
-  };
-  number("real_time_factor", config.real_time_factor, node.real_time_factor);
-  number("marker_rate", config.marker_rate, node.marker_rate);
-  number("tf_rate", config.tf_rate, node.tf_rate);
-  number("state_rate", config.state_rate, node.state_rate);
-  number("click_radius", config.click_radius, node.click_radius);
-  number("click_mass", config.click_mass, node.click_mass);
-  number("status_period", config.status_period, node.status_period);
-  number("speed_color_max", config.speed_color_max, node.speed_color_max);
+/// Why `value` is not in [low, high], or "".
+template <typename Number>
+std::string outOfRange(const std::string& key, Number value, Number low, Number high)
+{
+  const auto text = [](Number x) { return core::formatNumber(static_cast<double>(x)); };
+  if (!std::isfinite(static_cast<double>(value)))
+    return key + ": must be finite (got " + text(value) + ")";
+  if (value < low)
+    return key + ": must be >= " + text(low) + " (got " + text(value) + ")";
+  if (value > high)
+    return key + ": must be <= " + text(high) + " (got " + text(value) + ")";
+  return "";
+}
+}  // namespace
+
+std::vector<std::string> checkConfig(const SimulatorConfig& config)
+{
+  std::vector<std::string> issues;
+  const SimulatorConfig& low = SimulatorConfig::__getMin__();
+  const SimulatorConfig& high = SimulatorConfig::__getMax__();
+  for (const auto& param : SimulatorConfig::__getParamDescriptions__())
+  {
+    boost::any value, min, max;
+    param->getValue(config, value);
+    param->getValue(low, min);
+    param->getValue(high, max);
+    std::string why;
+    if (param->type == "double")
+      why = outOfRange(param->name, boost::any_cast<double>(value), boost::any_cast<double>(min),
+                       boost::any_cast<double>(max));
+    else if (param->type == "int")
+      why = outOfRange(param->name, boost::any_cast<int>(value), boost::any_cast<int>(min), boost::any_cast<int>(max));
+    if (!why.empty())
+      issues.push_back(why);
+  }
+  // (an enum of strings dynamic_reconfigure does not check)
+  if (!ballColorNamed(config.ball_color))
+  {
+    issues.push_back("ball_color: expected speed, id or motion, got \"" + config.ball_color + "\"");
+    return issues;
+  }
+  // what the scene's validation says besides the ranges (a status period of nearly 0), of
+  // the settings no range above refused
+  NodeSettings node;  // (the defaults, good, for the settings a config does not hold)
+  applyConfig(config, node);
+  for (const core::SceneIssue& issue : yaml::validateNodeSettings(node))
+    if (std::none_of(issues.begin(), issues.end(),
+                     [&](const std::string& seen) { return seen.rfind(issue.key + ": ", 0) == 0; }))
+      issues.push_back(issue.str());
+  return issues;
+}
+
+void applyConfig(const SimulatorConfig& config, NodeSettings& node)
+{
+  node.real_time_factor = config.real_time_factor;
+  node.marker_rate = config.marker_rate;
+  node.tf_rate = config.tf_rate;
+  node.state_rate = config.state_rate;
+  node.click_radius = config.click_radius;
+  node.click_mass = config.click_mass;
+  node.status_period = config.status_period;
+  node.speed_color_max = config.speed_color_max;
   node.tf_max_balls = config.tf_max_balls;
   node.max_balls = config.max_balls;
   node.marker_list_threshold = config.marker_list_threshold;
   node.play_max_balls = config.play_max_balls;
   node.publish_collisions = config.publish_collisions;
   node.collision_flashes = config.collision_flashes;
-  if (const std::optional<BallColor> color = ballColorNamed(config.ball_color))
-    node.ball_color = *color;
-  else
-  {
-    kept.push_back("ball_color: expected speed, id or motion, got \"" + config.ball_color + "\"");
-    config.ball_color = ballColorName(node.ball_color);
-  }
-  return kept;
+  node.ball_color = *ballColorNamed(config.ball_color);  // (checkConfig(): a colour's name)
 }
 }  // namespace ball_collision_sim::bridge

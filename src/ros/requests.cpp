@@ -35,12 +35,57 @@ std::string roomForABall(const core::World& world, int max_balls)
          " balls, the most this node takes (parameter max_balls)";
 }
 
+namespace
+{
+/// Whether a request gives this field: not all 0, the value of a field it leaves out
+/// (NaN counts as given).
+bool given(const geometry_msgs::Vector3& v)
+{
+  return v.x != 0 || v.y != 0 || v.z != 0;
+}
+
+bool given(const geometry_msgs::Point& p)
+{
+  return p.x != 0 || p.y != 0 || p.z != 0;
+}
+
+/// Why a field is refused that a request gives with its flag false: "<field>: given, but
+/// <flag> is false (...; false <what false does>)".
+std::string givenWithoutFlag(const std::string& field, const std::string& flag, const std::string& when_false)
+{
+  return field + ": given, but " + flag + " is false (set " + flag + ": true to use it; false " + when_false + ")";
+}
+
+/// Why `world` cannot take a spin or an inertia that a request gives, or "": without
+/// friction a ball keeps no spin of its own, and its moment of inertia plays no part.
+std::string spinWithoutFriction(const core::World& world, bool spin, double inertia)
+{
+  if (world.friction())
+    return "";
+  if (spin)
+    return "angular_velocity: the scene has no friction, so a ball keeps no spin of its own (it turns by rolling, "
+           "n x v / r): leave set_angular_velocity false";
+  if (inertia != 0)
+    return "inertia: the scene has no friction, so a ball's moment of inertia plays no part: leave it 0";
+  return "";
+}
+}  // namespace
+
 void answerAddBall(core::World& world, int max_balls, const AddBall::Request& req, AddBall::Response& res)
 {
   res.id = -1;
   res.success = false;
   const std::optional<core::Landing> landing = landingOf(req.placement, res.message);
   if (!landing)
+    return;
+  if (!req.set_angular_velocity && given(req.angular_velocity))
+  {
+    res.message =
+        givenWithoutFlag("angular_velocity", "set_angular_velocity", "rolls the ball without slip, n x v / r");
+    return;
+  }
+  res.message = spinWithoutFriction(world, req.set_angular_velocity, req.inertia);
+  if (!res.message.empty())
     return;
   if (const std::string full = roomForABall(world, max_balls); !full.empty())
   {
@@ -86,14 +131,32 @@ void answerSetBallState(core::World& world, const SetBallState::Request& req, Se
   const std::optional<core::Landing> landing = landingOf(req.placement, res.message);
   if (!landing)
     return;
-  std::optional<core::Vec3> spin;
+  if (!req.set_position && given(req.position))
+    res.message = givenWithoutFlag("position", "set_position", "keeps the ball where it is");
+  else if (!req.set_velocity && given(req.velocity))
+    res.message = givenWithoutFlag("velocity", "set_velocity", "keeps the ball's velocity");
+  else if (!req.set_angular_velocity && given(req.angular_velocity))
+    res.message = givenWithoutFlag("angular_velocity", "set_angular_velocity",
+                                   "keeps the ball's spin, or with a new velocity rolls it, n x v / r");
+  else if (!req.set_position && !req.set_velocity && !req.set_angular_velocity && req.inertia == 0)
+    res.message =
+        "set_position, set_velocity, set_angular_velocity, inertia: nothing to set (the flags are false "
+        "and inertia is 0)";
+  else
+    res.message = spinWithoutFriction(world, req.set_angular_velocity, req.inertia);
+  if (!res.message.empty())
+    return;
+  core::BallEdit edit;
+  edit.landing = *landing;
+  if (req.set_position)
+    edit.position = toVec3(req.position);
+  if (req.set_velocity)
+    edit.velocity = toVec3(req.velocity);
   if (req.set_angular_velocity)
-    spin = toVec3(req.angular_velocity);
-  std::optional<double> inertia;
+    edit.angular_velocity = toVec3(req.angular_velocity);
   if (req.inertia != 0)
-    inertia = req.inertia;
-  const core::AddResult result =
-      world.setBallState(req.id, toVec3(req.position), toVec3(req.velocity), *landing, spin, inertia);
+    edit.inertia = req.inertia;
+  const core::AddResult result = world.setBallState(req.id, edit);
   res.success = result.ok;
   res.message = result.ok ? "ball " + std::to_string(req.id) + " set" : result.error;
   if (result.ok)
@@ -106,6 +169,11 @@ void answerApplyImpulse(core::World& world, const ApplyImpulse::Request& req, Ap
   res.message = checkId(req.id);
   if (!res.message.empty())
     return;
+  if (!given(req.impulse))
+  {
+    res.message = "impulse: missing (0 N s would push nothing)";
+    return;
+  }
   const core::AddResult result = world.applyImpulse(req.id, toVec3(req.impulse));
   res.success = result.ok;
   res.message = result.ok ? "pushed ball " + std::to_string(req.id) : result.error;
@@ -117,6 +185,14 @@ void answerStrike(core::World& world, const Strike::Request& req, Strike::Respon
 {
   res.success = false;
   res.message = checkId(req.id);
+  if (!res.message.empty())
+    return;
+  if (!given(req.impulse))
+    res.message = "impulse: missing (0 N s would strike nothing)";
+  else if (!world.friction() && given(req.offset))
+    res.message =
+        "offset: the scene has no friction, so a ball keeps no spin of its own and a strike off its "
+        "centre acts as one through it: give offset 0 (or apply_impulse)";
   if (!res.message.empty())
     return;
   const core::AddResult result = world.strike(req.id, toVec3(req.impulse), toVec3(req.offset));

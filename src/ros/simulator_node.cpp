@@ -69,9 +69,9 @@ SimulatorNode::SimulatorNode(ros::NodeHandle nh, ros::NodeHandle pnh, yaml::Scen
   publishStatic();
   publishPresent();
 
-  // The settings as written above come back as the first configuration.
-  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<SimulatorConfig>>(pnh_);
-  reconfigure_->setCallback([this](SimulatorConfig& config, std::uint32_t level) { onReconfigure(config, level); });
+  // The settings in use are the first configuration.
+  reconfigure_ = std::make_unique<ReconfigureServer>(pnh_, toConfig(settings_.node),
+                                                     [this](const SimulatorConfig& config) { onReconfigure(config); });
 
   ROS_INFO("ball_sim: %zu balls, %zu walls, dt = %s s, real time factor %s%s; tf frames %sball_<id>%s",
            world_.balls().size(), world_.walls().size(), core::formatNumber(world_.dt()).c_str(),

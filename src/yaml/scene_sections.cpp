@@ -102,7 +102,7 @@ core::PocketDef readPocket(const YAML::Node& node, const std::string& key)
   return pocket;
 }
 
-/// `solid` (k = 2/5), `hollow` (k = 2/3) or a number k (checked to be in (0, 1] with the scene).
+/// `solid` (k = 2/5), `hollow` (k = 2/3) or a number k (checked to be in [0.01, 1] with the scene).
 double readInertia(const YAML::Node& node, const std::string& key)
 {
   if (node.IsScalar() && node.Scalar() == "solid")
@@ -115,7 +115,7 @@ double readInertia(const YAML::Node& node, const std::string& key)
   }
   catch (const KeyError&)
   {
-    fail(key, "expected solid, hollow or a number k in (0, 1], got " + describe(node));
+    fail(key, "expected solid, hollow or a number k in [0.01, 1], got " + describe(node));
   }
 }
 

@@ -272,8 +272,10 @@ std::vector<core::SceneIssue> validateNodeSettings(const NodeSettings& node)
   if (node.threads < 0 || node.threads > static_cast<int>(core::kMaxThreads))
     fail("threads", "must be in [0, " + std::to_string(core::kMaxThreads) + "] (0 = every core; got " +
                         std::to_string(node.threads) + ")");
-  if (finite("status_period", node.status_period) && !(node.status_period >= 0 && node.status_period <= 1e6))
-    fail("status_period", "must be in [0, 1e6] s (0 = no status line; got " + formatNumber(node.status_period) + ")");
+  if (finite("status_period", node.status_period) &&
+      !(node.status_period == 0 || (node.status_period >= kMinStatusPeriod && node.status_period <= 1e6)))
+    fail("status_period", "must be 0 (no status line) or in [" + formatNumber(kMinStatusPeriod) + ", 1e6] s (got " +
+                              formatNumber(node.status_period) + ")");
   positive("click_radius", node.click_radius, core::kMinLength, core::kMaxLength, "m");
   positive("click_mass", node.click_mass, core::kMinMass, core::kMaxMass, "kg");
   return issues;

@@ -1,9 +1,11 @@
 #!/usr/bin/python3
-"""Item: every launch starts from its own scene and settings only. Two launches of
-simulator.launch run one after the other on this test's master: the first with
+"""Every launch starts from its own scene and settings only, and a bad scene fails it. Two
+launches of simulator.launch run one after the other on this test's master: the first with
 config/default.yaml (a nine-point floor), paused and with a status line; the second with
 config/random_gas.yaml and nothing else. The second must be exactly its own: its floor,
-its balls, running, no status line, and none of the first's keys left on the server."""
+its balls, running, no status line, and none of the first's keys left on the server. A
+third, with a bad scene, exits non-zero before it starts anything."""
+import subprocess
 import sys
 import time
 import unittest
@@ -68,6 +70,21 @@ class CleanLaunch(unittest.TestCase):
         for key, value in wanted.items():
             self.assertEqual(published[key], value, key)
         self.assertEqual(published["start_paused"], False)
+
+    def test_a_bad_scene_fails_the_launch_with_its_one_message(self):
+        """roslaunch exits non-zero for a bad scene, before any node starts, and prints the
+        scene's one message (the key and the reason) once."""
+        bad = rospy.get_param("/clean_launch_test/bad_scene")
+        launch = nh.roslaunch("simulator.launch", "scene:=" + bad, "name:=bad_sim")
+        try:
+            out, _ = launch.communicate(timeout=60)
+        except subprocess.TimeoutExpired:
+            self.fail("roslaunch ran on with a bad scene:\n" + nh.stop(launch))
+        self.assertNotEqual(launch.returncode, 0, out)
+        self.assertEqual(out.count("balls[0].radius: must be > 0 (got -0.1)"), 1, out)
+        self.assertIn(bad + ": balls[0].radius", out)  # (the file named with the key)
+        self.assertNotIn("process[bad_sim", out)  # no node started
+        self.assertFalse(rospy.has_param("/bad_sim"))
 
 
 if __name__ == "__main__":

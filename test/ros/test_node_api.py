@@ -4,7 +4,9 @@ interfaces (test/data/node_scene.yaml, paused): get_state, set_ball_state,
 apply_impulse, load_scene, dynamic_reconfigure, empty requests, lost balls, the scene
 as YAML, and what a late or paused client sees."""
 import math
+import os
 import re
+import subprocess
 import sys
 import time
 import unittest
@@ -14,6 +16,7 @@ import rospy
 import rostest
 import tf2_ros
 import yaml
+from dynamic_reconfigure import DynamicReconfigureCallbackException
 from dynamic_reconfigure.client import Client
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import String
@@ -103,7 +106,8 @@ class NodeApi(unittest.TestCase):
         states.wait_for(lambda all: len(all) >= 1)
         states.take()
         # any height: the centre lands on the floor under (x, y)
-        r = nh.call(NS + "set_ball_state", SetBallState, id=2, position=vec(1.2, 0.5, 3.0), velocity=vec(-0.4, 0.2, 1.0))
+        r = nh.call(NS + "set_ball_state", SetBallState, id=2, position=vec(1.2, 0.5, 3.0), set_position=True,
+                    velocity=vec(-0.4, 0.2, 1.0), set_velocity=True)
         self.assertTrue(r.success, r.message)
         self.assertEqual(r.state.id, 2)
         s = get()
@@ -128,12 +132,23 @@ class NodeApi(unittest.TestCase):
         before = get()
         cases = [
             ("set_ball_state", SetBallState, {}, "id"),  # empty
-            ("set_ball_state", SetBallState, {"id": 9, "position": vec(1.2, 0.5)}, "id"),
-            ("set_ball_state", SetBallState, {"id": 1, "position": vec(0.55, 0.05)}, "position"),  # onto ball 2
-            ("set_ball_state", SetBallState, {"id": 1, "position": vec(1.95, 0.0)}, "position"),  # into wall 4
-            ("set_ball_state", SetBallState, {"id": 1, "position": vec(2.6, 0.0)}, "position"),  # off the floor
-            ("set_ball_state", SetBallState, {"id": 1, "position": vec(float("nan"), 0.0)}, "position"),
-            ("set_ball_state", SetBallState, {"id": 1, "position": vec(1.2, 0.5), "velocity": vec(1e9)}, "velocity"),
+            ("set_ball_state", SetBallState, {"id": 9, "position": vec(1.2, 0.5), "set_position": True}, "id"),
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(0.55, 0.05), "set_position": True},
+             "position"),  # onto ball 2
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(1.95, 0.0), "set_position": True},
+             "position"),  # into wall 4
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(2.6, 0.0), "set_position": True},
+             "position"),  # off the floor
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(float("nan"), 0.0), "set_position": True},
+             "position"),
+            ("set_ball_state", SetBallState, {"id": 1, "velocity": vec(1e9), "set_velocity": True}, "velocity"),
+            # a value given without its flag is refused, never dropped; so is a request that sets nothing
+            ("set_ball_state", SetBallState, {"id": 1, "position": vec(1.2, 0.5)}, "position"),
+            ("set_ball_state", SetBallState, {"id": 1, "velocity": vec(0.5), "set_velocity": True,
+                                              "angular_velocity": vec(0.0, 5.0)}, "angular_velocity"),
+            ("set_ball_state", SetBallState, {"id": 1},
+             "set_position, set_velocity, set_angular_velocity, inertia"),
+            ("apply_impulse", ApplyImpulse, {"id": 1}, "impulse"),
             ("apply_impulse", ApplyImpulse, {}, "id"),
             ("apply_impulse", ApplyImpulse, {"id": 3, "impulse": vec(1.0)}, "id"),
             ("apply_impulse", ApplyImpulse, {"id": 1, "impulse": vec(float("inf"))}, "impulse"),
@@ -176,9 +191,6 @@ class NodeApi(unittest.TestCase):
         client = Client("/ball_sim", timeout=20)
         client.update_configuration({"marker_rate": 5.0})
         self.assertEqual(rospy.get_param(NS + "marker_rate"), 5.0)
-        # a ball colour that is not speed, id or motion is refused and the old one kept
-        config = client.update_configuration({"ball_color": "red"})
-        self.assertEqual(config["ball_color"], "speed")
         # real_time_factor: simulated time runs 4 times as fast as wall time, at once
         for factor in (4.0, 1.0):
             client.update_configuration({"real_time_factor": factor})
@@ -191,6 +203,41 @@ class NodeApi(unittest.TestCase):
             self.assertAlmostEqual((t1 - t0) / (w1 - w0), factor, delta=0.25 * factor)
         client.update_configuration({"marker_rate": 30.0})
         fresh()
+
+    def test_settings_out_of_range_are_refused_and_the_caller_told(self):
+        """A value outside its range in cfg/Simulator.cfg, not finite, or a ball colour
+        that is not speed, id or motion: the set_parameters call fails with the reason
+        (dynparam exits non-zero and prints it), and nothing changes."""
+        fresh()
+        client = Client("/ball_sim", timeout=20)
+        before = rospy.get_param(NS[:-1])
+        bad = [({"ball_color": "red"}, 'ball_color: expected speed, id or motion, got "red"'),
+               ({"real_time_factor": -1.0}, "real_time_factor: must be >= 0 (got -1)"),
+               ({"marker_rate": float("nan")}, "marker_rate: must be finite"),
+               ({"max_balls": 0}, "max_balls: must be >= 1 (got 0)"),
+               ({"marker_rate": 5.0, "tf_rate": 2e6}, "tf_rate: must be <= 1e+06 (got 2e+06)")]
+        for changes, reason in bad:
+            with self.assertRaises(DynamicReconfigureCallbackException, msg=changes) as refused:
+                client.update_configuration(changes)
+            self.assertIn(reason, str(refused.exception.__context__))
+            self.assertEqual(rospy.get_param(NS[:-1]), before)
+            self.assertEqual(client.get_configuration(timeout=5)["marker_rate"], before["marker_rate"])
+        env = dict(os.environ, PATH="/usr/bin:" + os.environ.get("PATH", ""))
+        for args, reason in [(["ball_color", "purple"], 'ball_color: expected speed, id or motion, got "purple"'),
+                             (["real_time_factor", "-2"], "real_time_factor: must be >= 0 (got -2)"),
+                             (["click_radius", "0"], "click_radius: must be >= 1e-06 (got 0)")]:
+            run = subprocess.run(["rosrun", "dynamic_reconfigure", "dynparam", "set", "/ball_sim"] + args, env=env,
+                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60)
+            out = run.stdout.decode()
+            self.assertNotEqual(run.returncode, 0, out)
+            self.assertIn(reason, out)
+            self.assertEqual(rospy.get_param(NS[:-1]), before)
+        # the same command with a good value is taken (exit 0)
+        run = subprocess.run(["rosrun", "dynamic_reconfigure", "dynparam", "set", "/ball_sim", "ball_color", "id"],
+                             env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60)
+        self.assertEqual(run.returncode, 0, run.stdout.decode())
+        self.assertEqual(rospy.get_param(NS + "ball_color"), "id")
+        client.update_configuration({"ball_color": before["ball_color"]})
 
     def test_scene_is_yaml_with_the_shortest_numbers(self):
         text = rospy.wait_for_message(NS + "scene", String, timeout=10).data
@@ -269,7 +316,7 @@ class NodeApi(unittest.TestCase):
                    ("strike", Strike, {"id": 7, "impulse": vec(1.0)}, "id"),
                    ("add_ball", AddBall, {"position": vec(1.0), "radius": 0.1, "mass": 1.0, "inertia": 1.5},
                     "inertia"),
-                   ("set_ball_state", SetBallState, {"id": 1, "position": vec(-1.0),
+                   ("set_ball_state", SetBallState, {"id": 1, "position": vec(-1.0), "set_position": True,
                                                      "angular_velocity": vec(float("inf")),
                                                      "set_angular_velocity": True}, "angular_velocity")]
             for service, srv_type, fields, field in bad:
@@ -310,7 +357,8 @@ class NodeApi(unittest.TestCase):
         lost.wait_connected()
         log.wait_connected()
         self.assertTrue(nh.call(NS + "remove_wall", RemoveObject, id=4).success)  # the east wall
-        r = nh.call(NS + "set_ball_state", SetBallState, id=2, position=vec(1.5, 0.5), velocity=vec(2.0))
+        r = nh.call(NS + "set_ball_state", SetBallState, id=2, position=vec(1.5, 0.5), set_position=True,
+                    velocity=vec(2.0), set_velocity=True)
         self.assertTrue(r.success, r.message)
         # its foot passes x = 2 at t = 0.25 s and it falls off the floor: its centre is r below
         # the floor sqrt(4 r / g) = 0.2258 s later, found at the end of the step at 0.48 s

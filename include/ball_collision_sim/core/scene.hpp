@@ -47,6 +47,11 @@ struct WallDef
 /// A ball's moment of inertia is k m r^2: a solid ball k = 2/5, a hollow one 2/3.
 constexpr double kSolidInertia = 2.0 / 5;
 constexpr double kHollowInertia = 2.0 / 3;
+/// The least k a ball may have: below a sphere's any real k (all its mass at the centre
+/// gives 0), and far enough from 0 that k m r^2 stays a normal number for every ball
+/// (k = 2.2e-308 on a 0.17 kg ball of 5 cm makes it a denormal, 1 / I infinite, and
+/// friction's first step its spin NaN).
+constexpr double kMinInertia = 0.01;
 
 /// How a ball of a scene or an edit meets the floor.
 enum class BallPlacement : std::uint8_t
@@ -71,7 +76,7 @@ struct BallDef
   /// [rad/s]; unset: rolling without slip on the floor under it, n x v / r (the part
   /// about the floor's normal 0). Only a world with friction keeps a ball's own spin.
   std::optional<Vec3> angular_velocity;
-  double inertia = kSolidInertia;  ///< k in I = k m r^2, in (0, 1]
+  double inertia = kSolidInertia;  ///< k in I = k m r^2, in [kMinInertia, 1]
   BallPlacement placement = BallPlacement::kOnFloor;
 };
 

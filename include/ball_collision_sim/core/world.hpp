@@ -78,6 +78,22 @@ struct AddResult
   std::string error;  ///< "radius: must be > 0"
 };
 
+/// What World::setBallState() sets of a ball: each field left unset keeps its value.
+struct BallEdit
+{
+  /// [m], put on the floor as `landing` says; unset: the ball stays exactly where it is
+  /// (resting on the floor it stays on it, in flight it flies on)
+  std::optional<Vec3> position;
+  /// [m/s]; unset: kept. Under Landing::kUnder, on the floor, its part along the floor's
+  /// normal is dropped.
+  std::optional<Vec3> velocity;
+  /// [rad/s] (a world with friction); unset: kept where the velocity is kept, else rolling
+  /// without slip with the new velocity, n x v / r
+  std::optional<Vec3> angular_velocity;
+  std::optional<double> inertia;  ///< k in I = k m r^2, in [kMinInertia, 1]; unset: kept
+  Landing landing = Landing::kUnder;
+};
+
 /// A ball that left the world: off the floor, or outside the walls' bounds.
 struct LostBall
 {
@@ -245,15 +261,11 @@ public:
   /// Adds a ball (put on the floor as `landing` says) unless it is invalid, overlaps
   /// something or is off the floor; then nothing changes. Ids start at kFirstId.
   AddResult addBall(const BallDef& def, Landing landing = Landing::kNearest);
-  /// Moves ball `id` to `position` (put on the floor as `landing` says) with `velocity`
-  /// (less its part normal to the floor), keeping its id, radius, mass and orientation.
-  /// Refused, nothing changed, when no ball has the id, a value is bad, or the ball would
-  /// be off the floor or overlap a wall or another ball.
-  /// With friction, `angular_velocity` sets its spin (unset: rolling without slip) and
-  /// `inertia` its k (unset: kept).
-  AddResult setBallState(int id, const Vec3& position, const Vec3& velocity, Landing landing = Landing::kUnder,
-                         const std::optional<Vec3>& angular_velocity = std::nullopt,
-                         const std::optional<double>& inertia = std::nullopt);
+  /// Sets what `edit` gives of ball `id` (BallEdit: what it leaves unset is kept), keeping
+  /// its id, radius, mass and orientation. Refused, nothing changed, when no ball has the
+  /// id, a value is bad, or the ball would be off the floor or overlap a wall or another
+  /// ball. Spin and inertia count only where the world has friction.
+  AddResult setBallState(int id, const BallEdit& edit);
   /// Adds impulse / mass to ball `id`'s velocity [impulse: N s]. On a floor, a push into it
   /// comes back off it at floorRestitution(); the ball flies where what it then has along
   /// the floor's normal keeps it off the floor for StepSettings::min_flight_time, else the

@@ -36,8 +36,11 @@ void copyKeys(const std::vector<std::string>& keys, const NodeSettings& from, No
 /// The run-time settings as dynamic_reconfigure's config.
 SimulatorConfig toConfig(const NodeSettings& node);
 
-/// The settings `config` asks for; a value the scene's validation would refuse (a ball
-/// colour other than speed, id or motion) keeps its old value, and `config` is corrected to it.
-/// Returns one "key: reason" line per value kept.
-std::vector<std::string> applyConfig(SimulatorConfig& config, NodeSettings& node);
+/// Every value of `config` that the node does not take, one "key: reason" each: a number
+/// outside its range in cfg/Simulator.cfg (the scene's bounds) or not finite, a ball colour
+/// other than speed, id or motion.
+std::vector<std::string> checkConfig(const SimulatorConfig& config);
+
+/// The settings of a config that checkConfig() passes.
+void applyConfig(const SimulatorConfig& config, NodeSettings& node);
 }  // namespace ball_collision_sim::bridge

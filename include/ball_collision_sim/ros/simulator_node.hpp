@@ -5,6 +5,7 @@
 #include "ball_collision_sim/ros/node_settings.hpp"
 #include "ball_collision_sim/ros/outputs.hpp"
 #include "ball_collision_sim/ros/rate_limit.hpp"
+#include "ball_collision_sim/ros/reconfigure_server.hpp"
 #include "ball_collision_sim/yaml/scene_yaml.hpp"
 
 #include <actionlib/server/simple_action_server.h>
@@ -19,7 +20,6 @@
 #include <ball_collision_sim/SimulatorConfig.h>
 #include <ball_collision_sim/Step.h>
 #include <ball_collision_sim/StepAction.h>
-#include <dynamic_reconfigure/server.h>
 #include <geometry_msgs/PointStamped.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
@@ -120,7 +120,7 @@ private:
   bool onLoadScene(LoadScene::Request& req, LoadScene::Response& res);
   bool onPause(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   void onClickedPoint(const geometry_msgs::PointStamped& msg);
-  void onReconfigure(SimulatorConfig& config, std::uint32_t level);
+  void onReconfigure(const SimulatorConfig& config);
   void onMarkerSubscriber(const ros::SingleSubscriberPublisher& subscriber);
   void onStatesSubscriber(const ros::SingleSubscriberPublisher& subscriber);
   void onTfSubscriber(const ros::SingleSubscriberPublisher& subscriber);
@@ -206,6 +206,6 @@ private:
   // threads other than the global queue's, started last and stopped first
   std::unique_ptr<ros::AsyncSpinner> step_spinner_;
   std::unique_ptr<actionlib::SimpleActionServer<StepAction>> step_action_;
-  std::unique_ptr<dynamic_reconfigure::Server<SimulatorConfig>> reconfigure_;
+  std::unique_ptr<ReconfigureServer> reconfigure_;
 };
 }  // namespace ball_collision_sim::bridge
