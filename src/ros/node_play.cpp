@@ -39,12 +39,10 @@ void SimulatorNode::playMove(const PlayMove& move)
   const std::size_t k = world_.indexOf(move.id);
   if (k == world_.balls().size())
     return;
-  // set_ball_state's call, the ball's velocity and (with friction) spin kept: a drag moves it
-  std::optional<core::Vec3> spin;
-  if (world_.friction())
-    spin = world_.angularVelocity(k);
-  const core::AddResult result =
-      world_.setBallState(move.id, move.position, world_.balls()[k].velocity, core::Landing::kUnder, spin);
+  // set_ball_state's call with only the position set: its velocity and spin are kept
+  core::BallEdit edit;
+  edit.position = move.position;
+  const core::AddResult result = world_.setBallState(move.id, edit);
   if (!result.ok)
   {
     ROS_WARN("ball_sim: ball %d not moved to %s m: %s", move.id, vec(move.position).c_str(), result.error.c_str());
