@@ -5,10 +5,11 @@
 // the state is the same bits (time, steps, balls, walls, ...), and for set_parameters and
 // load_scene the node's parameters too. The seed is fixed and printed; BCS_FUZZ_SEED
 // replaces it. kRequestsPerService requests go to each service (BCS_FUZZ_REQUESTS
-// replaces the number), in a shuffled order: 21,000 in all, about 11 s on the 2-core CI
-// machine (a request with its checks takes about 0.3 ms, load_scene and set_parameters,
-// which also read the parameters, about 2 ms). Under the sanitizers (BCS_SLOWDOWN, e.g.
-// 4) that many times fewer, to keep the time.
+// replaces the number), in a shuffled order: 280,000 in all, about 95 s on the 2-core CI
+// machine (a request with its checks takes about 0.3 ms on average). Under the
+// sanitizers (BCS_SLOWDOWN, e.g. 4), whose requests take several times as long and which
+// look for what the requests do to memory, 5 x BCS_SLOWDOWN times fewer (1,000 to each
+// service at 4), to keep the time.
 #include "service_fuzz_requests.hpp"
 
 #include <ball_collision_sim/GetState.h>
@@ -34,7 +35,7 @@ namespace bcs = ball_collision_sim;
 namespace
 {
 constexpr std::uint64_t kSeed = 20240611;
-constexpr int kRequestsPerService = 1500;
+constexpr int kRequestsPerService = 20000;
 const std::string kNode = "/ball_sim/";
 
 std::uint64_t seed()
@@ -294,7 +295,7 @@ TEST(ServiceFuzz, RefusedRequestsChangeNothingAndTheStateStaysFinite)
                                           "relative/scene.yaml"};
   const std::uint64_t s = seed();
   const char* count = std::getenv("BCS_FUZZ_REQUESTS");
-  const int per_service = (count ? std::atoi(count) : kRequestsPerService) / slowdown();
+  const int per_service = (count ? std::atoi(count) : kRequestsPerService) / (slowdown() > 1 ? 5 * slowdown() : 1);
   ServiceFuzz fuzz(s, readFile(data + "/fuzz_scene.yaml"), paths);
   const std::size_t services = fuzz.services().size();
   std::vector<std::size_t> requests;
