@@ -281,7 +281,7 @@ TEST(LongRun, ElasticPilesKeepTheirEnergyForAMinute)
 TEST(LongRun, DissipativePilesComeToRestAndSleep)
 {
   const std::vector<int> sizes = startsToRun<int>({60, 200});
-  for (const double e : {0.5, 0.9})
+  for (const double e : startsToRun<double>({0.5, 0.9}))
     for (const int n : sizes)
       for (const bool slope : {false, true})
       {

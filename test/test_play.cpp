@@ -3,6 +3,7 @@
 // the node does, read back through get_state, ~play/update_full, motion_transitions and
 // /rosout.
 #include <ball_collision_sim/GetState.h>
+#include <ball_collision_sim/LoadScene.h>
 #include <ball_collision_sim/MotionTransition.h>
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <gtest/gtest.h>
@@ -34,6 +35,8 @@ constexpr double kSpeedPerPull = 10.0;
 constexpr double kMaxSpeed = 10.0;
 
 using Vec3 = Eigen::Vector3d;
+/// Ball 1's place in both scenes of the test [m]
+const Vec3 kStart1(-0.6, 0.0, kR);
 
 /// The latest of one topic's messages, and every message seen.
 template <class Msg>
@@ -335,6 +338,34 @@ TEST_F(Play, DragsMoveBallsOrAreRefusedAndTheCueStrikesAsItsPoseSays)
       full_.waitFor([](const auto& msgs)
                     { return !msgs.empty() && markerIn(msgs.back(), "ball_1") && markerIn(msgs.back(), "ball_4"); }))
       << "ball markers not back within play_max_balls";
+
+  // ---- without friction a ball keeps no spin of its own: the cue strikes through its
+  //      centre whatever its line's offset (or the round-off of rviz's pose), dv = J / m ----
+  bcs::LoadScene load;
+  load.request.yaml = "dt: 0.002\nfloor: {type: plane, point: [-1.27, -0.635, 0], u: [2.54, 0, 0], v: [0, 1.27, 0]}\n"
+                      "balls:\n  - {position: [-0.6, 0.0, 0.028575], radius: 0.028575, mass: 0.170097}\n"
+                      "  - {position: [0.3, 0.0, 0.028575], radius: 0.028575, mass: 0.170097}\n"
+                      "start_paused: true\n";
+  ASSERT_TRUE(ros::service::call("/ball_sim/load_scene", load));
+  ASSERT_TRUE(load.response.success) << load.response.message;
+  const auto plain1 = waitMarker("ball_1", [](const auto& m) { return !m.menu_entries.empty(); });
+  ASSERT_TRUE(plain1);
+  send("ball_1", "", InteractiveMarkerFeedback::MENU_SELECT, plain1->pose, entry);
+  const auto plain_cue = waitMarker("cue", [&](const auto& m) { return (toVec(m.pose.position) - kStart1).norm() < 1e-12; });
+  ASSERT_TRUE(plain_cue) << "no cue on ball 1 of the frictionless table";
+  drag("cue", "pull", plain_cue->pose, poseAt(kStart1 + o - s * d, level));
+  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(5);
+  bcs::GetState::Response plain;
+  do
+  {
+    plain = state();
+  } while (ballOf(plain, 1) != nullptr && toVec(ballOf(plain, 1)->twist.linear) == Vec3::Zero() &&
+           ros::WallTime::now() < until);
+  ASSERT_NE(ballOf(plain, 1), nullptr);
+  EXPECT_NEAR((toVec(ballOf(plain, 1)->twist.linear) - dv).norm(), 0.0, 1e-12)
+      << toVec(ballOf(plain, 1)->twist.linear).transpose();
+  // (rolling's spin, n x v / r, and none of the offset's)
+  EXPECT_NEAR((toVec(ballOf(plain, 1)->twist.angular) - Vec3::UnitZ().cross(dv) / kR).norm(), 0.0, 1e-9);
 }
 }  // namespace
 

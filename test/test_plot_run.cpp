@@ -94,7 +94,9 @@ TEST_F(PlotRun, AGasAgreesWithTheSummaryAboveItsRestingLevel)
   rosbag::Bag bag(path("gas.bag"));
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/ball_sim/ball_states")))
   {
-    for (const auto& b : m.instantiate<ball_collision_sim::BallStateArray>()->balls)
+    // (the message held while its balls are read: a range-for keeps no temporary alive)
+    const auto first = m.instantiate<ball_collision_sim::BallStateArray>();
+    for (const auto& b : first->balls)
       resting += b.mass * kG * b.radius;
     break;
   }

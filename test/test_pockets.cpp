@@ -112,13 +112,14 @@ TEST(Pockets, RollingBallDropsAtTheTimeItsDecelerationGives)
   EXPECT_TRUE(world.balls().empty());
 }
 
-// Two balls in a line 0.3 m apart at the same speed: the second rolls through where the
-// first dropped (nothing is left there to hit) and drops 0.3 / v later.
+// Two balls in a line, 0.21 m apart (centres) at the same speed: the first drops 0.0025 s
+// into a step of 0.01 s, and the second reaches where it dropped 0.005 s later, in the
+// same step; it meets nothing there and drops 0.21 / v after the first.
 TEST(Pockets, NothingMeetsADroppedBall)
 {
   Scene scene = flatScene();
-  scene.pockets = {pocket(1.2, 0.0, 0.2)};
-  scene.balls = {ball(0.0, 0.0, 2.0, 0.0), ball(-0.3, 0.0, 2.0, 0.0)};
+  scene.pockets = {pocket(1.205, 0.0, 0.2)};
+  scene.balls = {ball(0.0, 0.0, 2.0, 0.0), ball(-0.21, 0.0, 2.0, 0.0)};
   World world(scene);
   std::vector<PocketedBall> dropped;
   for (int k = 0; k < 100; ++k)
@@ -128,8 +129,8 @@ TEST(Pockets, NothingMeetsADroppedBall)
     dropped.insert(dropped.end(), world.lastPocketed().begin(), world.lastPocketed().end());
   }
   ASSERT_EQ(dropped.size(), 2u);
-  EXPECT_NEAR(dropped[0].time, 1.0 / 2.0, 1e-14);
-  EXPECT_NEAR(dropped[1].time, 1.3 / 2.0, 1e-14);
+  EXPECT_NEAR(dropped[0].time, 1.005 / 2.0, 1e-14);
+  EXPECT_NEAR(dropped[1].time, 1.215 / 2.0, 1e-14);
   EXPECT_EQ(dropped[1].ball.id, 2);
 }
 

@@ -35,8 +35,6 @@ std::string ballFrame(int id, const std::string& prefix)
   return prefix + "ball_" + std::to_string(id);
 }
 
-namespace
-{
 geometry_msgs::Quaternion toQuaternion(const core::Quat& q)
 {
   geometry_msgs::Quaternion out;
@@ -46,7 +44,16 @@ geometry_msgs::Quaternion toQuaternion(const core::Quat& q)
   out.w = q.w();
   return out;
 }
-}  // namespace
+
+std_msgs::ColorRGBA rgba(double r, double g, double b, double a)
+{
+  std_msgs::ColorRGBA c;
+  c.r = static_cast<float>(r);
+  c.g = static_cast<float>(g);
+  c.b = static_cast<float>(b);
+  c.a = static_cast<float>(a);
+  return c;
+}
 
 std::uint8_t motionConstant(core::MotionKind kind)
 {

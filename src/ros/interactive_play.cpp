@@ -204,16 +204,15 @@ PlayRequest InteractivePlay::interpret(const core::World& world, const Interacti
     pressed_.erase(down);
   markStale(name);
   if (name == kCueMarker)
-    return interpretCue(world, feedback, dragged);
+    return dragged ? interpretCue(world, feedback) : PlayRequest{};
   if (id == 0 || !dragged || world.indexOf(id) == world.balls().size())
     return {};
   return PlayMove{id, toVec3(feedback.pose.position)};
 }
 
-PlayRequest InteractivePlay::interpretCue(const core::World& world, const InteractiveMarkerFeedback& feedback,
-                                          bool dragged)
+PlayRequest InteractivePlay::interpretCue(const core::World& world, const InteractiveMarkerFeedback& feedback)
 {
-  if (!cue_ || !dragged)
+  if (!cue_)
     return {};
   const std::size_t k = world.indexOf(cue_->id);
   if (k == world.balls().size())
@@ -231,6 +230,8 @@ PlayRequest InteractivePlay::interpretCue(const core::World& world, const Intera
   cue_->offset = shot.offset;
   if (feedback.control_name != kCuePull || shot.impulse == core::Vec3::Zero())
     return {};
-  return PlayStrike{cue_->id, shot.impulse, shot.offset};
+  // (without friction a ball keeps no spin of its own: the strike goes through its centre,
+  // as the strike service asks there, whatever round-off rviz's pose leaves off it)
+  return PlayStrike{cue_->id, shot.impulse, world.friction() ? shot.offset : core::Vec3(core::Vec3::Zero())};
 }
 }  // namespace ball_collision_sim::bridge

@@ -10,16 +10,6 @@ namespace ball_collision_sim::bridge
 {
 namespace
 {
-std_msgs::ColorRGBA rgba(double r, double g, double b, double a)
-{
-  std_msgs::ColorRGBA c;
-  c.r = static_cast<float>(r);
-  c.g = static_cast<float>(g);
-  c.b = static_cast<float>(b);
-  c.a = static_cast<float>(a);
-  return c;
-}
-
 std_msgs::ColorRGBA mix(const std_msgs::ColorRGBA& a, const std_msgs::ColorRGBA& b, double t)
 {
   return rgba(a.r + t * (b.r - a.r), a.g + t * (b.g - a.g), a.b + t * (b.b - a.b), a.a + t * (b.a - a.a));
@@ -111,11 +101,7 @@ visualization_msgs::Marker pocketMarker(const core::PocketDef& pocket, int index
   core::placeOnFloor(probe, floor, nullptr, core::Landing::kUnder);
   const core::Vec3 up = floor ? floor->up() : core::Vec3(core::Vec3::UnitZ());
   m.pose.position = toPoint(probe.position - 0.5 * probe.radius * up);
-  const core::Quat turn = core::Quat::FromTwoVectors(core::Vec3::UnitZ(), up);
-  m.pose.orientation.x = turn.x();
-  m.pose.orientation.y = turn.y();
-  m.pose.orientation.z = turn.z();
-  m.pose.orientation.w = turn.w();
+  m.pose.orientation = toQuaternion(core::Quat::FromTwoVectors(core::Vec3::UnitZ(), up));
   m.scale.x = m.scale.y = 2 * pocket.radius;
   m.scale.z = probe.radius;
   m.color = rgba(0.02, 0.02, 0.02, 1.0);

@@ -29,31 +29,10 @@ constexpr double kCueLength = 24.0;
 constexpr double kCueThickness = 0.4;
 constexpr double kCueRings = 6.0;
 
-geometry_msgs::Quaternion toQuaternion(const Eigen::Quaterniond& q)
-{
-  const Eigen::Quaterniond n = q.normalized();
-  geometry_msgs::Quaternion out;
-  out.x = n.x();
-  out.y = n.y();
-  out.z = n.z();
-  out.w = n.w();
-  return out;
-}
-
 /// The rotation that takes a to b (unit vectors).
 geometry_msgs::Quaternion turning(const core::Vec3& a, const core::Vec3& b)
 {
   return toQuaternion(Eigen::Quaterniond::FromTwoVectors(a, b));
-}
-
-std_msgs::ColorRGBA colour(double r, double g, double b, double a)
-{
-  std_msgs::ColorRGBA c;
-  c.r = static_cast<float>(r);
-  c.g = static_cast<float>(g);
-  c.b = static_cast<float>(b);
-  c.a = static_cast<float>(a);
-  return c;
 }
 
 visualization_msgs::MenuEntry menuEntry(std::uint32_t id, const std::string& title)
@@ -95,7 +74,7 @@ geometry_msgs::Pose poseOf(const CuePose& cue)
 {
   geometry_msgs::Pose pose;
   pose.position = toPoint(cue.position);
-  pose.orientation = toQuaternion(cue.orientation);
+  pose.orientation = toQuaternion(cue.orientation.normalized());
   return pose;
 }
 
@@ -138,7 +117,7 @@ InteractiveMarker ballPlayMarker(const core::Ball& ball, const std::string& fram
   ring.pose.orientation = turning(core::Vec3::UnitZ(), up);
   ring.scale.x = ring.scale.y = 2 * kRingRadius * ball.radius;
   ring.scale.z = kRingThickness * ball.radius;
-  ring.color = colour(0.85, 0.85, 0.85, 0.45);
+  ring.color = rgba(0.85, 0.85, 0.85, 0.45);
   move.markers.push_back(ring);
   marker.controls.push_back(move);
   return marker;
@@ -163,8 +142,8 @@ InteractiveMarker cuePlayMarker(const CuePose& pose, int ball_id, double radius,
   pull.always_visible = true;
   const double tip = -kCueTipBehind * radius;
   pull.markers.push_back(
-      stick(tip - kCueLength * radius, tip - 0.5 * radius, kCueThickness * radius, colour(0.8, 0.6, 0.35, 1.0)));
-  pull.markers.push_back(stick(tip - 0.5 * radius, tip, kCueThickness * radius, colour(0.2, 0.4, 0.9, 1.0)));
+      stick(tip - kCueLength * radius, tip - 0.5 * radius, kCueThickness * radius, rgba(0.8, 0.6, 0.35, 1.0)));
+  pull.markers.push_back(stick(tip - 0.5 * radius, tip, kCueThickness * radius, rgba(0.2, 0.4, 0.9, 1.0)));
   marker.controls.push_back(pull);
 
   // Across the cue (its y-z plane) by a knob at its tip: where it meets the ball.
@@ -178,7 +157,7 @@ InteractiveMarker cuePlayMarker(const CuePose& pose, int ball_id, double radius,
   knob.pose.position.x = tip - 0.25 * radius;
   knob.pose.orientation.w = 1.0;
   knob.scale.x = knob.scale.y = knob.scale.z = 0.7 * radius;
-  knob.color = colour(0.95, 0.95, 0.95, 0.8);
+  knob.color = rgba(0.95, 0.95, 0.95, 0.8);
   offset.markers.push_back(knob);
   marker.controls.push_back(offset);
 

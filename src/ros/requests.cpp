@@ -56,16 +56,18 @@ std::string givenWithoutFlag(const std::string& field, const std::string& flag, 
   return field + ": given, but " + flag + " is false (set " + flag + ": true to use it; false " + when_false + ")";
 }
 
-/// Why `world` cannot take a spin or an inertia that a request gives, or "": without
-/// friction a ball keeps no spin of its own, and its moment of inertia plays no part.
-std::string spinWithoutFriction(const core::World& world, bool spin, double inertia)
+/// Why `world` cannot take a spin or an inertia that a request (add_ball, set_ball_state)
+/// gives, or "": without friction a ball keeps no spin of its own, and its moment of
+/// inertia plays no part.
+template <class Request>
+std::string spinWithoutFriction(const core::World& world, const Request& req)
 {
   if (world.friction())
     return "";
-  if (spin)
+  if (req.set_angular_velocity)
     return "angular_velocity: the scene has no friction, so a ball keeps no spin of its own (it turns by rolling, "
            "n x v / r): leave set_angular_velocity false";
-  if (inertia != 0)
+  if (req.inertia != 0)
     return "inertia: the scene has no friction, so a ball's moment of inertia plays no part: leave it 0";
   return "";
 }
@@ -84,7 +86,7 @@ void answerAddBall(core::World& world, int max_balls, const AddBall::Request& re
         givenWithoutFlag("angular_velocity", "set_angular_velocity", "rolls the ball without slip, n x v / r");
     return;
   }
-  res.message = spinWithoutFriction(world, req.set_angular_velocity, req.inertia);
+  res.message = spinWithoutFriction(world, req);
   if (!res.message.empty())
     return;
   if (const std::string full = roomForABall(world, max_balls); !full.empty())
@@ -143,7 +145,7 @@ void answerSetBallState(core::World& world, const SetBallState::Request& req, Se
         "set_position, set_velocity, set_angular_velocity, inertia: nothing to set (the flags are false "
         "and inertia is 0)";
   else
-    res.message = spinWithoutFriction(world, req.set_angular_velocity, req.inertia);
+    res.message = spinWithoutFriction(world, req);
   if (!res.message.empty())
     return;
   core::BallEdit edit;

@@ -110,7 +110,7 @@ struct PocketedBall
 {
   double time = 0.0;  ///< exact [s]
   int pocket = 0;     ///< index into Scene::pockets
-  Ball ball;          ///< its state at that time
+  Ball ball;          ///< its state at that time (its orientation: at the step's start)
   Vec3 angular_velocity = Vec3::Zero();         ///< [rad/s] then
   MotionKind motion = MotionKind::kStationary;  ///< its kind of motion then
   double inertia = kSolidInertia;               ///< k in I = k m r^2

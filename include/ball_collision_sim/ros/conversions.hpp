@@ -11,6 +11,8 @@
 #include <ball_collision_sim/BallState.h>
 #include <ball_collision_sim/CollisionEvent.h>
 #include <ball_collision_sim/MotionTransition.h>
+#include <geometry_msgs/Quaternion.h>
+#include <std_msgs/ColorRGBA.h>
 #include <ball_collision_sim/Wall.h>
 #include <geometry_msgs/Point.h>
 #include <geometry_msgs/TransformStamped.h>
@@ -24,6 +26,8 @@ namespace ball_collision_sim::bridge
 geometry_msgs::Point toPoint(const core::Vec3& v);
 geometry_msgs::Vector3 toVector3(const core::Vec3& v);
 core::Vec3 toVec3(const geometry_msgs::Point& p);
+geometry_msgs::Quaternion toQuaternion(const core::Quat& q);
+std_msgs::ColorRGBA rgba(double r, double g, double b, double a);
 core::Vec3 toVec3(const geometry_msgs::Vector3& v);
 
 /// The tf frame of a ball: prefix + "ball_<id>".

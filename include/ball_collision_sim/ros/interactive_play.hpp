@@ -83,8 +83,8 @@ private:
   void syncBalls(const core::World& world, int max_balls);
   void syncCue(const core::World& world);
   void chooseCue(const core::World& world, int id);
-  PlayRequest interpretCue(const core::World& world, const visualization_msgs::InteractiveMarkerFeedback& feedback,
-                           bool dragged);
+  /// The cue let go after a drag: its aim kept, and where it was pulled back, a strike.
+  PlayRequest interpretCue(const core::World& world, const visualization_msgs::InteractiveMarkerFeedback& feedback);
   void markStale(const std::string& name);
 
   interactive_markers::InteractiveMarkerServer server_;
