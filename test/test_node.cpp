@@ -14,6 +14,8 @@
 #include <ball_collision_sim/Step.h>
 #include <ball_collision_sim/Strike.h>
 #include <geometry_msgs/PointStamped.h>
+#include "ros_inbox.hpp"
+
 #include <gtest/gtest.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
@@ -43,53 +45,7 @@ namespace
 constexpr double kDt = 0.01;
 constexpr double kImpactTime = (1.263 - 0.25) / 2.0;  // gap over closing speed [s]
 
-/// Collects messages of one topic.
-template <class Msg>
-class Inbox
-{
-public:
-  explicit Inbox(const std::string& topic)
-  {
-    ros::NodeHandle nh;
-    sub_ = nh.subscribe<Msg>(topic, 1000, [this](const boost::shared_ptr<const Msg>& msg) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      msgs_.push_back(*msg);
-    });
-  }
-  /// Unsubscribes first: roscpp waits for a callback in progress, which uses the members.
-  ~Inbox() { sub_.shutdown(); }
-  Inbox(const Inbox&) = delete;
-  Inbox& operator=(const Inbox&) = delete;
-  std::vector<Msg> take()
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    std::vector<Msg> out;
-    out.swap(msgs_);
-    return out;
-  }
-  /// Waits until `pred(all messages so far)` holds or the timeout passes.
-  template <class Pred>
-  bool waitFor(Pred pred, double timeout = 5.0)
-  {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::WallTime::now() < end)
-    {
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (pred(msgs_))
-          return true;
-      }
-      ros::WallDuration(0.01).sleep();
-    }
-    return false;
-  }
-  bool connected() const { return sub_.getNumPublishers() > 0; }
-
-private:
-  ros::Subscriber sub_;
-  std::mutex mutex_;
-  std::vector<Msg> msgs_;
-};
+using ball_collision_sim::test::Inbox;
 
 template <class Msg>
 void waitConnected(const Inbox<Msg>& inbox)

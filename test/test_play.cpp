@@ -6,6 +6,8 @@
 #include <ball_collision_sim/LoadScene.h>
 #include <ball_collision_sim/MotionTransition.h>
 #include <dynamic_reconfigure/Reconfigure.h>
+#include "ros_inbox.hpp"
+
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Log.h>
@@ -38,49 +40,7 @@ using Vec3 = Eigen::Vector3d;
 /// Ball 1's place in both scenes of the test [m]
 const Vec3 kStart1(-0.6, 0.0, kR);
 
-/// The latest of one topic's messages, and every message seen.
-template <class Msg>
-class Inbox
-{
-public:
-  explicit Inbox(const std::string& topic)
-  {
-    sub_ = ros::NodeHandle().subscribe<Msg>(topic, 1000,
-                                            [this](const boost::shared_ptr<const Msg>& msg)
-                                            {
-                                              std::lock_guard<std::mutex> lock(mutex_);
-                                              msgs_.push_back(*msg);
-                                            });
-  }
-  ~Inbox() { sub_.shutdown(); }
-  Inbox(const Inbox&) = delete;
-  Inbox& operator=(const Inbox&) = delete;
-  std::vector<Msg> all()
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return msgs_;
-  }
-  template <class Pred>
-  bool waitFor(Pred pred, double timeout = 5.0)
-  {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::WallTime::now() < end)
-    {
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (pred(msgs_))
-          return true;
-      }
-      ros::WallDuration(0.01).sleep();
-    }
-    return false;
-  }
-
-private:
-  ros::Subscriber sub_;
-  std::mutex mutex_;
-  std::vector<Msg> msgs_;
-};
+using ball_collision_sim::test::Inbox;
 
 Vec3 toVec(const geometry_msgs::Point& p)
 {
